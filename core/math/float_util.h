@@ -1,0 +1,34 @@
+// Robust float helpers: square roots that never see a negative, 1 - cos from sin^2, ray origin offsets.
+#pragma once
+
+#include <cmath>
+
+#include "core/math/vec.h"
+
+namespace penumbra {
+
+inline float safeSqrt(float x) { return std::sqrt(std::max(x, 0.f)); }
+inline double safeSqrt(double x) { return std::sqrt(std::max(x, 0.0)); }
+inline float safeAcos(float x) { return std::acos(std::clamp(x, -1.f, 1.f)); }
+inline float safeAsin(float x) { return std::asin(std::clamp(x, -1.f, 1.f)); }
+
+// 1 - sqrt(1 - s2) without cancellation for small s2 (= s2 / (1 + sqrt(1 - s2))).
+inline float oneMinusSqrtOneMinus(float s2) { return s2 / (1.f + safeSqrt(1.f - s2)); }
+inline double oneMinusSqrtOneMinus(double s2) { return s2 / (1.0 + safeSqrt(1.0 - s2)); }
+
+inline bool isFinite(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+// Relative offset used to move ray origins off surfaces: a few thousand ulps of the hit point's
+// magnitude, so the same scene at 1e-4 and 1e4 units behaves identically.
+inline constexpr float kRayOffsetScale = 0x1p-17f;  // ~7.6e-6
+
+// Offsets p along the geometric normal ng (towards the side of w) by an amount proportional to
+// `scale`, the magnitude of the coordinates that produced p (hit point and the shape's extent).
+inline Vec3 offsetRayOrigin(const Vec3& p, const Vec3& ng, float scale, const Vec3& w) {
+  float d = kRayOffsetScale * scale;
+  Vec3 offset = ng * d;
+  if (glm::dot(w, ng) < 0.f) offset = -offset;
+  return p + offset;
+}
+
+}  // namespace penumbra

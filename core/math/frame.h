@@ -1,0 +1,24 @@
+// Orthonormal frame around a unit normal (Duff et al. 2017, branchless and continuous except at n.z = -1).
+#pragma once
+
+#include "core/math/vec.h"
+
+namespace penumbra {
+
+struct Frame {
+  Vec3 s, t, n;
+
+  Frame() : s(1, 0, 0), t(0, 1, 0), n(0, 0, 1) {}
+  explicit Frame(const Vec3& normal) : n(normal) {
+    float sign = std::copysign(1.f, n.z);
+    float a = -1.f / (sign + n.z);
+    float b = n.x * n.y * a;
+    s = Vec3(1.f + sign * n.x * n.x * a, sign * b, -sign * n.x);
+    t = Vec3(b, sign + n.y * n.y * a, -n.y);
+  }
+
+  Vec3 toLocal(const Vec3& v) const { return Vec3(glm::dot(v, s), glm::dot(v, t), glm::dot(v, n)); }
+  Vec3 toWorld(const Vec3& v) const { return s * v.x + t * v.y + n * v.z; }
+};
+
+}  // namespace penumbra
