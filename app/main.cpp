@@ -10,6 +10,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(0, 1);
   int exitCode = 0;
   penumbra::cli::addWarpCommand(app, exitCode);
+  penumbra::cli::addRenderCommand(app, exitCode);
 
   try {
     app.parse(argc, argv);

@@ -7,5 +7,6 @@
 namespace penumbra::cli {
 
 void addWarpCommand(CLI::App& app, int& exitCode);
+void addRenderCommand(CLI::App& app, int& exitCode);
 
 }  // namespace penumbra::cli

@@ -1,0 +1,35 @@
+// Ambient occlusion (seed hw2): AO(x) = (1/pi) * integral over the hemisphere of V(x, w) cos(theta) dw,
+// estimated with `samples` directions from the uniform (pdf 1/2pi) or cosine (pdf cos/pi) warp.
+// Visibility rays stop at the scene's extent; albedo is not applied (as in the seed's framework).
+#pragma once
+
+#include "core/integrators/shading_point.h"
+#include "core/sampling/sampler.h"
+#include "core/sampling/warp.h"
+
+namespace penumbra {
+
+template <HemisphereWarp kWarp>
+struct AoIntegrator {
+  int samples = 1;
+
+  Color3 Li(const Scene& scene, const Ray& ray, Sampler& sampler) const {
+    SurfaceHit hit;
+    if (!scene.geometry.intersect(ray, hit)) return Color3(0.f);
+    ShadingPoint sp(scene, ray, hit);
+    float sum = 0.f;
+    for (int i = 0; i < samples; ++i) {
+      Vec2 u = sampler.next2D();
+      Vec3 local = kWarp == HemisphereWarp::Cosine ? Warp::squareToCosineHemisphere(u)
+                                                   : Warp::squareToUniformHemisphere(u);
+      Vec3 w = sp.frame.toWorld(local);
+      if (glm::dot(w, sp.ng) <= 0.f) continue;  // below the true surface: blocked by it
+      if (scene.geometry.occluded(sp.spawnRay(w, scene.rayLengthBound))) continue;
+      // V cos / (pi pdf): 1 for cosine sampling, 2 cos for uniform sampling.
+      sum += kWarp == HemisphereWarp::Cosine ? 1.f : 2.f * local.z;
+    }
+    return Color3(sum / float(samples));
+  }
+};
+
+}  // namespace penumbra

@@ -1,0 +1,52 @@
+// What every integrator derives from a camera hit: the hit, its material, normals facing the viewer
+// (surfaces are two-sided for reflection; emitters stay one-sided) and the shading frame.
+#pragma once
+
+#include "core/geometry/ray.h"
+#include "core/geometry/surface_hit.h"
+#include "core/math/float_util.h"
+#include "core/math/frame.h"
+#include "core/render/scene.h"
+
+namespace penumbra {
+
+struct ShadingPoint {
+  SurfaceHit hit;
+  Vec3 ng, ns;  // flipped to the side the ray came from
+  Frame frame;  // around ns
+  const SurfaceMaterial* material;
+
+  ShadingPoint(const Scene& scene, const Ray& ray, const SurfaceHit& h) : hit(h) {
+    material = &scene.materials[h.objectId];
+    bool backFacing = glm::dot(h.ng, ray.d) > 0.f;
+    ng = backFacing ? -h.ng : h.ng;
+    ns = backFacing ? -h.ns : h.ns;
+    if (glm::dot(ns, ng) < 0.f) ns = ng;  // interpolated normal pointing inside: fall back to geometry
+    frame = Frame(ns);
+  }
+
+  // A ray leaving the surface towards unit direction w, up to distance tMax.
+  Ray spawnRay(const Vec3& w, float tMax) const {
+    Ray r;
+    r.o = offsetRayOrigin(hit.p, ng, hit.offsetScale, w);
+    r.d = w;
+    r.tMin = 0.f;
+    r.tMax = tMax;
+    return r;
+  }
+
+  // A shadow ray to point `target` (e.g. on a light), stopping short of it by the target's own
+  // offset so the light's surface does not occlude itself.
+  Ray spawnRayTo(const Vec3& target, float targetScale) const {
+    Ray r;
+    r.o = offsetRayOrigin(hit.p, ng, hit.offsetScale, target - hit.p);
+    Vec3 d = target - r.o;
+    float dist = glm::length(d);
+    r.d = d / dist;
+    r.tMin = 0.f;
+    r.tMax = dist - 2.f * kRayOffsetScale * std::max(targetScale, hit.offsetScale);
+    return r;
+  }
+};
+
+}  // namespace penumbra

@@ -1,0 +1,117 @@
+// Progressive renderer: whole-image passes of one sample per pixel on a pool of worker threads.
+// Pass p uses sample index p in every pixel, so the image depends only on (scene, settings, seed),
+// never on thread count or scheduling. Cancellation takes effect within one image row.
+#pragma once
+
+#include <atomic>
+#include <condition_variable>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+#include "core/image/image.h"
+#include "core/render/film.h"
+#include "core/render/render_settings.h"
+#include "core/render/scene.h"
+
+namespace penumbra {
+
+struct RenderJob {
+  std::shared_ptr<const Scene> scene;
+  RenderSettings settings;
+};
+
+struct RenderLimits {
+  uint32_t targetSpp = 0;  // 0: no limit
+  double seconds = 0.0;    // 0: no limit; checked at pass boundaries
+};
+
+struct RenderProgress {
+  uint32_t spp = 0;           // completed passes
+  double seconds = 0.0;       // rendering time, pauses excluded
+  uint64_t samples = 0;       // camera samples accumulated
+  uint64_t badSamples = 0;    // NaN, Inf or negative values (dropped and counted)
+  bool finished = false;
+};
+
+// The current mean (and standard error) as published at a pass boundary.
+struct FilmSnapshot {
+  uint64_t version = 0;
+  uint32_t spp = 0;
+  double seconds = 0.0;
+  Image mean;
+  Image standardError;
+};
+
+class Engine {
+ public:
+  Engine() = default;
+  ~Engine();
+  Engine(const Engine&) = delete;
+  Engine& operator=(const Engine&) = delete;
+
+  // Starts a fresh accumulation (cancelling any running one). threads <= 0: all cores.
+  void start(std::shared_ptr<const RenderJob> job, RenderLimits limits = {}, int threads = 0);
+  // Abandons the running pass and joins the workers; the film keeps the completed passes.
+  void cancel();
+  // Finishes the current pass, then stops (what Ctrl-C in `penumbra render` does).
+  void requestStop();
+  // Blocks until the limits are reached or the render is stopped.
+  void wait();
+  void setPaused(bool paused);
+  bool paused() const { return paused_.load(); }
+
+  RenderProgress progress() const;
+  // Asks the workers to publish a snapshot at the next pass boundary (cheap to call every frame).
+  void requestSnapshot(bool withStandardError = false);
+  // Copies the latest published snapshot into `out` if it is newer than out.version.
+  bool latestSnapshot(FilmSnapshot& out) const;
+
+  // Valid once the render has stopped (after wait() or cancel()).
+  const Film& film() const { return film_; }
+  std::shared_ptr<const RenderJob> job() const { return job_; }
+  int threadCount() const { return int(workers_.size()); }
+
+ private:
+  void workerLoop(int workerIndex);
+  bool passBoundary();  // run by the last worker to finish a pass; returns true to stop
+  void publishSnapshot();
+  double elapsedNow() const;
+
+  std::shared_ptr<const RenderJob> job_;
+  RenderLimits limits_;
+  Film film_;
+  std::vector<std::thread> workers_;
+
+  // Pass state.
+  std::atomic<int> nextRow_{0};
+  std::atomic<bool> cancel_{false};
+  std::atomic<bool> stopRequested_{false};
+  std::atomic<bool> finished_{true};
+  std::atomic<bool> paused_{false};
+  std::atomic<uint32_t> spp_{0};
+  std::atomic<uint64_t> badSamples_{0};
+  uint32_t pass_ = 0;
+  int arrived_ = 0;
+  uint64_t generation_ = 0;
+  bool stopAll_ = false;
+  int threadCount_ = 0;
+  mutable std::mutex passMutex_;
+  std::condition_variable passCv_;
+
+  // Time accounting (seconds since start, pauses excluded).
+  std::chrono::steady_clock::time_point startTime_;
+  std::atomic<double> pausedSeconds_{0.0};
+  std::chrono::steady_clock::time_point pauseBegan_;
+  std::atomic<double> finalSeconds_{0.0};
+
+  // Snapshot publishing.
+  std::atomic<bool> snapshotRequested_{false};
+  std::atomic<bool> snapshotWantsError_{false};
+  mutable std::mutex snapshotMutex_;
+  FilmSnapshot snapshot_;
+};
+
+}  // namespace penumbra

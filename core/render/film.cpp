@@ -1,0 +1,60 @@
+#include "core/render/film.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace penumbra {
+
+void Film::reset(int width, int height) {
+  width_ = width;
+  height_ = height;
+  sums_.assign(size_t(width) * height * 6, 0.0);
+}
+
+void Film::clear() { std::fill(sums_.begin(), sums_.end(), 0.0); }
+
+void Film::resolveMean(uint32_t spp, Image& out, int y0, int y1) const {
+  double inv = spp > 0 ? 1.0 / spp : 0.0;
+  for (int y = y0; y < y1; ++y) {
+    for (int x = 0; x < width_; ++x) {
+      size_t i = size_t(y) * width_ + x;
+      const double* s = &sums_[i * 6];
+      float* o = &out.rgb[i * 3];
+      for (int c = 0; c < 3; ++c) o[c] = float(s[c] * inv);
+    }
+  }
+}
+
+Image Film::mean(uint32_t spp) const {
+  Image img(width_, height_);
+  resolveMean(spp, img, 0, height_);
+  return img;
+}
+
+void Film::resolveStandardError(uint32_t spp, Image& out, int y0, int y1) const {
+  for (int y = y0; y < y1; ++y) {
+    for (int x = 0; x < width_; ++x) {
+      size_t i = size_t(y) * width_ + x;
+      const double* s = &sums_[i * 6];
+      float* o = &out.rgb[i * 3];
+      for (int c = 0; c < 3; ++c) {
+        if (spp < 2) {
+          o[c] = 0.f;
+          continue;
+        }
+        double n = spp, m = s[c] / n;
+        // Unbiased sample variance of the samples, then of their mean.
+        double var = std::max(0.0, (s[c + 3] - n * m * m) / (n - 1.0));
+        o[c] = float(std::sqrt(var / n));
+      }
+    }
+  }
+}
+
+Image Film::standardError(uint32_t spp) const {
+  Image img(width_, height_);
+  resolveStandardError(spp, img, 0, height_);
+  return img;
+}
+
+}  // namespace penumbra

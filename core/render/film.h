@@ -1,0 +1,48 @@
+// Accumulation buffer: per-pixel double sums of the sample values and of their squares, so the
+// viewer and the analysis can show the mean and its standard error. Samples are added one pass at a
+// time by whichever worker owns the pixel's row in that pass; no locks are needed.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/image/image.h"
+#include "core/math/vec.h"
+
+namespace penumbra {
+
+class Film {
+ public:
+  Film() = default;
+  Film(int width, int height) { reset(width, height); }
+
+  void reset(int width, int height);
+  void clear();
+
+  // Adds one weighted sample to a pixel (the caller has already rejected non-finite values).
+  void add(int x, int y, const Color3& value) {
+    double* s = &sums_[(size_t(y) * width_ + x) * 6];
+    s[0] += value.x;
+    s[1] += value.y;
+    s[2] += value.z;
+    s[3] += double(value.x) * value.x;
+    s[4] += double(value.y) * value.y;
+    s[5] += double(value.z) * value.z;
+  }
+
+  int width() const { return width_; }
+  int height() const { return height_; }
+
+  // Mean of `spp` samples per pixel, for rows [y0, y1).
+  void resolveMean(uint32_t spp, Image& out, int y0, int y1) const;
+  Image mean(uint32_t spp) const;
+  // Standard error of the mean (per channel) for rows [y0, y1); zero below 2 samples.
+  void resolveStandardError(uint32_t spp, Image& out, int y0, int y1) const;
+  Image standardError(uint32_t spp) const;
+
+ private:
+  int width_ = 0, height_ = 0;
+  std::vector<double> sums_;  // per pixel: sum r, g, b, sum r^2, g^2, b^2
+};
+
+}  // namespace penumbra

@@ -1,0 +1,40 @@
+// SceneNode tree → a renderable Scene plus the RenderSettings it asks for. This is where type names
+// are resolved ("sphere", "obj", "ao", ...), aliases of the seed's scenes are accepted, ranges are
+// validated with the offending line, and unread properties become warnings.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/render/render_settings.h"
+#include "core/render/scene.h"
+#include "core/scene/scene_desc.h"
+
+namespace penumbra {
+
+struct LoadedScene {
+  SceneNode desc;  // the parsed description, overrides applied (the viewer edits and saves it)
+  std::shared_ptr<const Scene> scene;
+  RenderSettings settings;
+  std::vector<std::string> warnings;
+  std::string path;  // the file it came from ("" for built-in scenes)
+};
+
+// Parses, applies "tag.property=value" overrides (--set), builds. Throws penumbra::Error.
+LoadedScene loadScene(const std::string& path,
+                      const std::vector<std::pair<std::string, std::string>>& overrides = {});
+LoadedScene loadSceneFromString(const std::string& xml, const std::string& nameForErrors,
+                                const std::string& baseDir,
+                                const std::vector<std::pair<std::string, std::string>>& overrides = {});
+// Builds geometry, lights and settings from a parsed description.
+LoadedScene buildScene(SceneNode desc);
+// Only the settings (camera, filter, sampler, integrator): cheap, no geometry. Used when the viewer
+// edits settings of an already built scene.
+RenderSettings buildSettings(const SceneNode& desc, std::vector<std::string>* warnings = nullptr);
+
+// The scene `penumbra` opens with no arguments: the hw2 sphere lit by a sphere light.
+const char* defaultSceneXml();
+
+}  // namespace penumbra
