@@ -179,15 +179,19 @@ TriangleMesh loadObjMesh(const std::string& path, const glm::mat4& toWorld, cons
 
   TriangleMesh mesh;
   std::unordered_map<std::pair<int, int>, uint32_t, PairHash> remap;
-  auto vertexOf = [&](const tinyobj::index_t& c) -> uint32_t {
-    std::pair<int, int> key(c.vertex_index, allNormals ? c.normal_index : -1);
-    auto it = remap.find(key);
-    if (it != remap.end()) return it->second;
+  auto worldPos = [&](const tinyobj::index_t& c) -> Vec3 {
     const float* p = &attrib.vertices[3 * static_cast<size_t>(c.vertex_index)];
     glm::vec4 w = toWorld * glm::vec4(p[0], p[1], p[2], 1.f);
     Vec3 pos = w.w != 1.f && w.w != 0.f ? Vec3(w) / w.w : Vec3(w);
     if (!std::isfinite(pos.x) || !std::isfinite(pos.y) || !std::isfinite(pos.z))
       throw Error(sceneFile, sceneLine, "mesh '" + path + "': transformed vertex is not finite");
+    return pos;
+  };
+  auto vertexOf = [&](const tinyobj::index_t& c) -> uint32_t {
+    std::pair<int, int> key(c.vertex_index, allNormals ? c.normal_index : -1);
+    auto it = remap.find(key);
+    if (it != remap.end()) return it->second;
+    Vec3 pos = worldPos(c);
     uint32_t index = static_cast<uint32_t>(mesh.positions.size());
     mesh.positions.push_back(pos);
     if (allNormals) {
@@ -207,14 +211,13 @@ TriangleMesh loadObjMesh(const std::string& path, const glm::mat4& toWorld, cons
       ++stats.droppedDegenerate;
       continue;
     }
-    glm::uvec3 tri(vertexOf(a), vertexOf(b), vertexOf(c));
-    Vec3 e1 = mesh.positions[tri.y] - mesh.positions[tri.x];
-    Vec3 e2 = mesh.positions[tri.z] - mesh.positions[tri.x];
+    // Zero area in world space (checked before adding vertices, so none are left unreferenced).
+    Vec3 pa = worldPos(a), e1 = worldPos(b) - pa, e2 = worldPos(c) - pa;
     if (!(glm::length(glm::cross(e1, e2)) > 0.f)) {
       ++stats.droppedDegenerate;
       continue;
     }
-    mesh.triangles.push_back(tri);
+    mesh.triangles.push_back(glm::uvec3(vertexOf(a), vertexOf(b), vertexOf(c)));
   }
   if (stats.droppedDegenerate > 0)
     stats.warnings.push_back(path + ": warning: dropped " + std::to_string(stats.droppedDegenerate) +

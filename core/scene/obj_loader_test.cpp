@@ -114,6 +114,7 @@ TEST(ObjLoader, MissingNormalsQuadsAndDegenerates) {
   ObjLoadStats stats;
   TriangleMesh m = loadObjMesh(p, glm::mat4(1.f), "s.xml", 1, &stats);
   EXPECT_EQ(m.triangles.size(), 2u);
+  EXPECT_EQ(m.positions.size(), 4u);  // vertex 5 is only used by a dropped triangle
   EXPECT_EQ(stats.inputTriangles, 4u);
   EXPECT_EQ(stats.droppedDegenerate, 2u);
   EXPECT_TRUE(m.normals.empty());
