@@ -28,7 +28,10 @@ void removeQuietly(const std::string& p) {
 // fsync the file's data to disk; throws with strerror on failure.
 void syncFile(const std::string& tempPath, const std::string& path) {
   int fd = ::open(tempPath.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) throw Error(path, 0, "cannot reopen temporary file " + tempPath + ": " + errnoText(errno));
+  if (fd < 0) {
+    const int err = errno;
+    throw Error(path, 0, "cannot reopen temporary file " + tempPath + ": " + errnoText(err));
+  }
   int rc = ::fsync(fd);
   int err = errno;
   ::close(fd);
@@ -60,8 +63,10 @@ void writeFileAtomically(const std::string& path,
   try {
     write(temp);
     syncFile(temp, path);
-    if (std::rename(temp.c_str(), path.c_str()) != 0)
-      throw Error(path, 0, "cannot rename " + temp + " onto it: " + errnoText(errno));
+    if (std::rename(temp.c_str(), path.c_str()) != 0) {
+      const int err = errno;
+      throw Error(path, 0, "cannot rename " + temp + " onto it: " + errnoText(err));
+    }
   } catch (...) {
     removeQuietly(temp);
     throw;
@@ -72,7 +77,10 @@ void writeFileAtomically(const std::string& path,
 void writeStdioAtomically(const std::string& path, const std::function<void(std::FILE*)>& write) {
   writeFileAtomically(path, [&](const std::string& temp) {
     std::FILE* f = std::fopen(temp.c_str(), "wb");
-    if (!f) throw Error(path, 0, "cannot create " + temp + ": " + errnoText(errno));
+    if (!f) {
+      const int err = errno;
+      throw Error(path, 0, "cannot create " + temp + ": " + errnoText(err));
+    }
     try {
       write(f);
     } catch (...) {
@@ -80,7 +88,7 @@ void writeStdioAtomically(const std::string& path, const std::function<void(std:
       throw;
     }
     bool bad = std::ferror(f) != 0;
-    int err = errno;
+    int err = bad ? errno : 0;
     if (std::fflush(f) != 0) {
       bad = true;
       err = errno;
@@ -95,8 +103,10 @@ void writeStdioAtomically(const std::string& path, const std::function<void(std:
 
 void writeBytesAtomically(const std::string& path, const void* data, std::size_t size) {
   writeStdioAtomically(path, [&](std::FILE* f) {
-    if (size > 0 && std::fwrite(data, 1, size, f) != size)
-      throw Error(path, 0, "write failed: " + errnoText(errno ? errno : EIO));
+    if (size > 0 && std::fwrite(data, 1, size, f) != size) {
+      const int err = errno ? errno : EIO;
+      throw Error(path, 0, "write failed: " + errnoText(err));
+    }
   });
 }
 

@@ -1,10 +1,12 @@
 // Reading and writing images, dispatched on the file extension (case-insensitive):
 //   .exr  32-bit float RGB, ZIP compression, metadata as string attributes (read: any RGB/RGBA/Y,
-//         half/float/uint channels)
+//         half/float/uint channels; A is ignored, missing R/G/B are 0, Y is replicated; the image is
+//         the data window; only string attributes come back as metadata)
 //   .pfm  little-endian "PF" colour, bottom row first (read: "PF"/"Pf", either endianness)
 //   .png  8-bit sRGB via toSrgb8 (tonemap.h); NaN/Inf become 0; metadata is not stored
 //         (read: any PNG, converted to 8-bit sRGB RGB by libpng, then decoded to linear exactly)
-// All writes are atomic (atomic_file.h): the target is replaced completely or left untouched.
+// All writes are atomic (atomic_file.h): the target is replaced completely or left untouched. A
+// replaced file gets default permissions (0666 & ~umask), not the old file's.
 #pragma once
 
 #include <string>
