@@ -1,0 +1,210 @@
+#include "core/geometry/scene_geometry.h"
+
+#include <embree3/rtcore.h>
+
+#include <cstring>
+#include <string>
+#include <utility>
+
+#include "core/geometry/triangle.h"
+#include "core/math/error.h"
+
+namespace penumbra {
+namespace {
+
+void checkEmbree(RTCDevice device, const char* what) {
+  const RTCError err = rtcGetDeviceError(device);
+  if (err != RTC_ERROR_NONE)
+    throw Error(std::string("Embree: ") + what + " failed (error " + std::to_string(static_cast<int>(err)) +
+                ")");
+}
+
+inline void setupRay(const Ray& ray, float tMax, RTCRay& r) {
+  r.org_x = ray.o.x;
+  r.org_y = ray.o.y;
+  r.org_z = ray.o.z;
+  r.dir_x = ray.d.x;
+  r.dir_y = ray.d.y;
+  r.dir_z = ray.d.z;
+  r.tnear = ray.tMin;
+  r.tfar = tMax;
+  r.time = 0.f;
+  r.mask = 0xFFFFFFFFu;
+  r.id = 0;
+  r.flags = 0;
+}
+
+}  // namespace
+
+SceneGeometry::~SceneGeometry() {
+  release();
+}
+
+SceneGeometry::SceneGeometry(SceneGeometry&& other) noexcept {
+  *this = std::move(other);
+}
+
+SceneGeometry& SceneGeometry::operator=(SceneGeometry&& other) noexcept {
+  if (this != &other) {
+    release();
+    spheres_ = std::move(other.spheres_);
+    sphereIds_ = std::move(other.sphereIds_);
+    meshes_ = std::move(other.meshes_);
+    meshIds_ = std::move(other.meshIds_);
+    flat_ = std::move(other.flat_);
+    triangleCount_ = std::exchange(other.triangleCount_, 0);
+    bounds_ = std::exchange(other.bounds_, Bounds{});
+    device_ = std::exchange(other.device_, nullptr);
+    scene_ = std::exchange(other.scene_, nullptr);
+  }
+  return *this;
+}
+
+void SceneGeometry::release() {
+  if (scene_) rtcReleaseScene(static_cast<RTCScene>(scene_));
+  if (device_) rtcReleaseDevice(static_cast<RTCDevice>(device_));
+  scene_ = nullptr;
+  device_ = nullptr;
+}
+
+uint32_t SceneGeometry::addSphere(const Sphere& sphere, uint32_t objectId) {
+  spheres_.push_back(sphere);
+  sphereIds_.push_back(objectId);
+  bounds_.expand(sphere.bounds());
+  return static_cast<uint32_t>(spheres_.size() - 1);
+}
+
+void SceneGeometry::addMesh(const TriangleMesh& mesh, uint32_t objectId) {
+  if (!mesh.normals.empty() && mesh.normals.size() != mesh.positions.size())
+    throw Error("mesh has " + std::to_string(mesh.normals.size()) + " normals for " +
+                std::to_string(mesh.positions.size()) + " vertices");
+  for (const glm::uvec3& t : mesh.triangles)
+    if (t.x >= mesh.positions.size() || t.y >= mesh.positions.size() || t.z >= mesh.positions.size())
+      throw Error("mesh triangle refers to a vertex out of range");
+  meshes_.push_back(mesh);
+  meshIds_.push_back(objectId);
+  triangleCount_ += mesh.triangles.size();
+  for (const glm::uvec3& t : mesh.triangles) {
+    bounds_.expand(mesh.positions[t.x]);
+    bounds_.expand(mesh.positions[t.y]);
+    bounds_.expand(mesh.positions[t.z]);
+  }
+}
+
+void SceneGeometry::build(AccelMode mode) {
+  release();
+  flat_.clear();
+  const bool useEmbree =
+      triangleCount_ > 0 &&
+      (mode == AccelMode::Embree || (mode == AccelMode::Auto && triangleCount_ > kBruteForceMaxTriangles));
+  if (!useEmbree) {
+    flat_.reserve(triangleCount_);
+    for (uint32_t m = 0; m < meshes_.size(); ++m) {
+      const TriangleMesh& mesh = meshes_[m];
+      for (uint32_t i = 0; i < mesh.triangles.size(); ++i) {
+        const glm::uvec3 t = mesh.triangles[i];
+        flat_.push_back({mesh.positions[t.x], mesh.positions[t.y], mesh.positions[t.z], m, i});
+      }
+    }
+    return;
+  }
+
+  RTCDevice device = rtcNewDevice(nullptr);
+  if (!device) throw Error("Embree: cannot create a device");
+  device_ = device;
+  RTCScene scene = rtcNewScene(device);
+  checkEmbree(device, "rtcNewScene");
+  scene_ = scene;
+  rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_HIGH);
+  rtcSetSceneFlags(scene, RTC_SCENE_FLAG_ROBUST);  // no cracks between triangles sharing an edge
+  for (uint32_t m = 0; m < meshes_.size(); ++m) {
+    const TriangleMesh& mesh = meshes_[m];
+    RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
+        geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), mesh.positions.size()));
+    auto* indices = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(
+        geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), mesh.triangles.size()));
+    checkEmbree(device, "rtcSetNewGeometryBuffer");
+    std::memcpy(vertices, mesh.positions.data(), mesh.positions.size() * sizeof(Vec3));
+    std::memcpy(indices, mesh.triangles.data(), mesh.triangles.size() * sizeof(glm::uvec3));
+    rtcCommitGeometry(geom);
+    // Geometry ids are assigned sequentially from 0, so the id is the index into meshes_.
+    rtcAttachGeometryByID(scene, geom, m);
+    rtcReleaseGeometry(geom);
+    checkEmbree(device, "attaching a mesh");
+  }
+  rtcCommitScene(scene);
+  checkEmbree(device, "rtcCommitScene");
+}
+
+bool SceneGeometry::intersect(const Ray& ray, SurfaceHit& hit) const {
+  Ray r = ray;
+  int sphereHit = -1;
+  for (size_t i = 0; i < spheres_.size(); ++i) {
+    float t;
+    if (spheres_[i].intersect(r, t)) {
+      r.tMax = t;
+      sphereHit = static_cast<int>(i);
+    }
+  }
+
+  uint32_t meshHit = 0, primHit = 0;
+  bool triHit = false;
+  TriangleIntersection best{};
+  if (scene_) {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRayHit rh;
+    setupRay(r, r.tMax, rh.ray);
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(static_cast<RTCScene>(scene_), &context, &rh);
+    if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
+      triHit = true;
+      meshHit = rh.hit.geomID;
+      primHit = rh.hit.primID;
+      best = {rh.ray.tfar, 1.f - rh.hit.u - rh.hit.v, rh.hit.u, rh.hit.v};
+    }
+  } else {
+    for (const FlatTriangle& tri : flat_) {
+      TriangleIntersection isect;
+      if (intersectTriangle(r, r.tMax, tri.p0, tri.p1, tri.p2, isect)) {
+        r.tMax = isect.t;
+        best = isect;
+        triHit = true;
+        meshHit = tri.mesh;
+        primHit = tri.prim;
+      }
+    }
+  }
+
+  if (triHit) {
+    fillTriangleHit(meshes_[meshHit], primHit, best, meshIds_[meshHit], hit);
+    return true;
+  }
+  if (sphereHit >= 0) {
+    spheres_[sphereHit].fillHit(ray, r.tMax, sphereIds_[sphereHit], hit);
+    return true;
+  }
+  return false;
+}
+
+bool SceneGeometry::occluded(const Ray& ray) const {
+  for (const Sphere& s : spheres_)
+    if (s.occludes(ray)) return true;
+  if (scene_) {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRay r;
+    setupRay(ray, ray.tMax, r);
+    rtcOccluded1(static_cast<RTCScene>(scene_), &context, &r);
+    return r.tfar < 0.f;  // Embree sets tfar = -inf on a hit
+  }
+  for (const FlatTriangle& tri : flat_) {
+    TriangleIntersection isect;
+    if (intersectTriangle(ray, ray.tMax, tri.p0, tri.p1, tri.p2, isect)) return true;
+  }
+  return false;
+}
+
+}  // namespace penumbra

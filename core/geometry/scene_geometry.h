@@ -1,0 +1,76 @@
+// All the geometry of a scene behind two queries: nearest hit and occlusion. Spheres are tested
+// analytically in a flat loop; triangles are tested by brute force in a flat array when there are
+// few of them, otherwise through an Embree 3 BVH. No virtual calls and no allocation per query;
+// concurrent const queries are thread-safe once build() has returned.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "core/geometry/bounds.h"
+#include "core/geometry/ray.h"
+#include "core/geometry/sphere.h"
+#include "core/geometry/surface_hit.h"
+#include "core/geometry/triangle_mesh.h"
+
+namespace penumbra {
+
+enum class AccelMode : uint8_t {
+  Auto,        // brute force up to kBruteForceMaxTriangles triangles, Embree above
+  BruteForce,  // always the flat loop (tests, tiny scenes)
+  Embree,      // always Embree (if there is at least one triangle)
+};
+
+// Up to this many triangles a flat loop beats an Embree traversal (bench/geometry_bench.cpp,
+// BM_TrianglesBruteForce vs BM_TrianglesEmbree: see the numbers recorded there).
+inline constexpr size_t kBruteForceMaxTriangles = 64;
+
+class SceneGeometry {
+ public:
+  SceneGeometry() = default;
+  ~SceneGeometry();
+  SceneGeometry(const SceneGeometry&) = delete;
+  SceneGeometry& operator=(const SceneGeometry&) = delete;
+  SceneGeometry(SceneGeometry&& other) noexcept;
+  SceneGeometry& operator=(SceneGeometry&& other) noexcept;
+
+  // Returns the sphere's index. objectId is reported back in SurfaceHit::objectId.
+  uint32_t addSphere(const Sphere& sphere, uint32_t objectId);
+  // The mesh is copied (its vertex normals are needed to shade Embree hits).
+  void addMesh(const TriangleMesh& mesh, uint32_t objectId);
+  // Prepares the acceleration structure; must be called after the last add and before queries.
+  // Throws penumbra::Error if Embree fails.
+  void build(AccelMode mode = AccelMode::Auto);
+
+  // Nearest hit with ray.tMin < t < ray.tMax.
+  bool intersect(const Ray& ray, SurfaceHit& hit) const;
+  // Whether anything is hit with ray.tMin < t < ray.tMax.
+  bool occluded(const Ray& ray) const;
+
+  Bounds bounds() const { return bounds_; }
+  size_t sphereCount() const { return spheres_.size(); }
+  size_t triangleCount() const { return triangleCount_; }
+  bool usesEmbree() const { return scene_ != nullptr; }
+  const std::vector<Sphere>& spheres() const { return spheres_; }
+  const std::vector<TriangleMesh>& meshes() const { return meshes_; }
+
+ private:
+  struct FlatTriangle {
+    Vec3 p0, p1, p2;
+    uint32_t mesh, prim;
+  };
+  void release();
+
+  std::vector<Sphere> spheres_;
+  std::vector<uint32_t> sphereIds_;
+  std::vector<TriangleMesh> meshes_;
+  std::vector<uint32_t> meshIds_;
+  std::vector<FlatTriangle> flat_;  // brute-force path only
+  size_t triangleCount_ = 0;
+  Bounds bounds_;
+  void* device_ = nullptr;  // RTCDevice, created only when a BVH is needed
+  void* scene_ = nullptr;   // RTCScene
+};
+
+}  // namespace penumbra

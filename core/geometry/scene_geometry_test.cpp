@@ -1,0 +1,186 @@
+#include "core/geometry/scene_geometry.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "core/geometry/procedural_mesh.h"
+#include "core/math/float_util.h"
+
+namespace penumbra {
+namespace {
+
+Vec3 randomUnit(std::mt19937& rng) {
+  std::normal_distribution<float> n;
+  for (;;) {
+    Vec3 v(n(rng), n(rng), n(rng));
+    float l = glm::length(v);
+    if (l > 1e-3f) return v / l;
+  }
+}
+
+SceneGeometry rockScene(AccelMode mode, int subdivisions) {
+  SceneGeometry g;
+  g.addMesh(makeRockMesh(subdivisions, 42), 3);
+  g.addSphere(Sphere{Vec3(1.5f, 0, 0), 0.3f}, 5);
+  g.addMesh(makeGridPlane(Vec3(-4, -4, -1.2f), Vec3(8, 0, 0), Vec3(0, 8, 0), 2, 2), 8);
+  g.build(mode);
+  return g;
+}
+
+TEST(SceneGeometry, EmptyScene) {
+  SceneGeometry g;
+  g.build();
+  SurfaceHit hit;
+  EXPECT_FALSE(g.intersect(Ray{Vec3(0), Vec3(0, 0, 1)}, hit));
+  EXPECT_FALSE(g.occluded(Ray{Vec3(0), Vec3(0, 0, 1)}));
+  EXPECT_TRUE(g.bounds().empty());
+  EXPECT_FALSE(g.usesEmbree());
+}
+
+TEST(SceneGeometry, AutoModePaysOnlyForWhatItNeeds) {
+  SceneGeometry small;
+  small.addSphere(Sphere{Vec3(0), 1}, 0);
+  small.addMesh(makeGridPlane(Vec3(-1, -1, -1), Vec3(2, 0, 0), Vec3(0, 2, 0), 1, 1), 1);
+  small.build();
+  EXPECT_FALSE(small.usesEmbree());
+  EXPECT_EQ(small.triangleCount(), 2u);
+  SceneGeometry big;
+  big.addMesh(makeRockMesh(2, 1), 0);  // 320 triangles
+  big.build();
+  EXPECT_TRUE(big.usesEmbree());
+  EXPECT_EQ(big.triangleCount(), 320u);
+}
+
+TEST(SceneGeometry, NearestOfSpheresAndTrianglesWithIds) {
+  SceneGeometry g;
+  g.addSphere(Sphere{Vec3(0, 0, 0), 1}, 10);
+  g.addSphere(Sphere{Vec3(0, 0, 5), 1}, 11);
+  g.addMesh(makeGridPlane(Vec3(-10, -10, -2), Vec3(20, 0, 0), Vec3(0, 20, 0), 1, 1), 12);
+  for (AccelMode mode : {AccelMode::BruteForce, AccelMode::Embree}) {
+    g.build(mode);
+    EXPECT_EQ(g.usesEmbree(), mode == AccelMode::Embree);
+    SurfaceHit hit;
+    ASSERT_TRUE(g.intersect(Ray{Vec3(0, 0, 10), Vec3(0, 0, -1)}, hit));
+    EXPECT_EQ(hit.objectId, 11u);
+    EXPECT_FLOAT_EQ(hit.t, 4.f);
+    ASSERT_TRUE(g.intersect(Ray{Vec3(0, 0, 3), Vec3(0, 0, -1)}, hit));
+    EXPECT_EQ(hit.objectId, 10u);
+    ASSERT_TRUE(g.intersect(Ray{Vec3(3, 0, 3), Vec3(0, 0, -1)}, hit));
+    EXPECT_EQ(hit.objectId, 12u);
+    EXPECT_FLOAT_EQ(hit.t, 5.f);
+    EXPECT_EQ(hit.ng, Vec3(0, 0, 1));
+    EXPECT_FALSE(g.occluded(Ray{Vec3(3, 0, 3), Vec3(0, 0, -1), 0.f, 4.99f}));
+    EXPECT_TRUE(g.occluded(Ray{Vec3(3, 0, 3), Vec3(0, 0, -1), 0.f, 5.01f}));
+  }
+  Bounds b = g.bounds();
+  EXPECT_EQ(b.min, Vec3(-10, -10, -2));
+  EXPECT_EQ(b.max, Vec3(10, 10, 6));
+}
+
+TEST(SceneGeometry, MoveKeepsEmbreeScene) {
+  SceneGeometry a = rockScene(AccelMode::Embree, 2);
+  SceneGeometry b = std::move(a);
+  EXPECT_TRUE(b.usesEmbree());
+  SurfaceHit hit;
+  EXPECT_TRUE(b.intersect(Ray{Vec3(0, 0, 5), Vec3(0, 0, -1)}, hit));
+  SceneGeometry c;
+  c = std::move(b);
+  EXPECT_TRUE(c.intersect(Ray{Vec3(0, 0, 5), Vec3(0, 0, -1)}, hit));
+  EXPECT_EQ(hit.objectId, 3u);
+}
+
+TEST(SceneGeometry, BruteForceAndEmbreeAgree) {
+  SceneGeometry brute = rockScene(AccelMode::BruteForce, 4);  // 5120 rock triangles
+  SceneGeometry embree = rockScene(AccelMode::Embree, 4);
+  ASSERT_FALSE(brute.usesEmbree());
+  ASSERT_TRUE(embree.usesEmbree());
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> u(-1.f, 1.f);
+  int hits = 0, primMismatch = 0;
+  const int n = 4000;
+  for (int i = 0; i < n; ++i) {
+    Ray ray;
+    if (i % 2 == 0) {  // from outside towards the rock
+      ray.o = randomUnit(rng) * 4.f;
+      ray.d = glm::normalize(Vec3(u(rng), u(rng), u(rng)) * 0.8f - ray.o);
+    } else {  // from inside the rock outwards (crevices, plane, sphere)
+      ray.o = Vec3(u(rng), u(rng), u(rng)) * 0.3f;
+      ray.d = randomUnit(rng);
+    }
+    SurfaceHit hb, he;
+    bool b = brute.intersect(ray, hb);
+    bool e = embree.intersect(ray, he);
+    ASSERT_EQ(b, e) << i;
+    EXPECT_EQ(brute.occluded(ray), b);
+    EXPECT_EQ(embree.occluded(ray), e);
+    if (!b) continue;
+    ++hits;
+    EXPECT_EQ(hb.objectId, he.objectId) << i;
+    EXPECT_NEAR(hb.t, he.t, 1e-5f * std::max(1.f, hb.t)) << i;
+    EXPECT_LT(glm::length(hb.p - he.p), 1e-5f) << i;
+    if (hb.primId != he.primId) {
+      ++primMismatch;  // ray through a shared edge: either triangle is right
+    } else {
+      EXPECT_EQ(hb.ng, he.ng);
+      EXPECT_LT(glm::length(hb.ns - he.ns), 1e-4f);  // Embree's u, v differ in the last bits
+    }
+    // Occlusion limited to just before / after the hit.
+    Ray before = ray;
+    before.tMax = hb.t * (1.f - 1e-4f);
+    EXPECT_FALSE(brute.occluded(before)) << i;
+    EXPECT_FALSE(embree.occluded(before)) << i;
+  }
+  EXPECT_GT(hits, n * 9 / 10);
+  EXPECT_LT(primMismatch, n / 100);
+}
+
+// AO-style rays leaving the surface of a convex shape never hit that shape again.
+TEST(SceneGeometry, NoSelfIntersectionOnConvexShapes) {
+  for (AccelMode mode : {AccelMode::BruteForce, AccelMode::Embree}) {
+    for (float k : {1e-4f, 1.f, 1e4f}) {
+      SceneGeometry g;
+      g.addMesh(makeGridPlane(Vec3(-k, -k, -0.5f * k), Vec3(2 * k, 0, 0), Vec3(0, 2 * k, 0), 4, 4), 1);
+      g.addSphere(Sphere{Vec3(0.1f, 0.2f, 0.3f) * k, 0.5f * k}, 2);
+      g.build(mode);
+      std::mt19937 rng(8);
+      std::uniform_real_distribution<float> u(-1.f, 1.f);
+      int tested = 0;
+      for (int i = 0; i < 20000; ++i) {
+        Ray ray{Vec3(u(rng), u(rng), 1.f) * (2.f * k), Vec3(0)};
+        ray.d = glm::normalize(Vec3(u(rng) * k, u(rng) * k, -0.5f * k) - ray.o);
+        SurfaceHit hit;
+        if (!g.intersect(ray, hit)) continue;
+        Vec3 w = randomUnit(rng);
+        if (glm::dot(w, hit.ng) < 0.f) w = -w;
+        if (i % 4 == 0) w = glm::normalize(glm::normalize(glm::cross(hit.ng, w)) + hit.ng * 1e-4f);
+        Ray ao{offsetRayOrigin(hit.p, hit.ng, hit.offsetScale, w), w};
+        SurfaceHit again;
+        if (g.intersect(ao, again)) {
+          // The only legitimate hit: from the plane, the sphere.
+          EXPECT_NE(again.objectId, hit.objectId) << "k=" << k << " i=" << i << " t=" << again.t;
+        }
+        ++tested;
+      }
+      EXPECT_GT(tested, 10000);
+    }
+  }
+}
+
+TEST(ProceduralMesh, RockIsDeterministicAndSized) {
+  TriangleMesh a = makeRockMesh(3, 9), b = makeRockMesh(3, 9), c = makeRockMesh(3, 10);
+  EXPECT_EQ(a.triangles.size(), 20u * 64u);
+  EXPECT_EQ(a.positions.size(), a.normals.size());
+  EXPECT_EQ(a.positions.size(), 10u * 64u + 2u);  // closed icosphere: V = 10·4^s + 2
+  EXPECT_EQ(a.positions, b.positions);
+  EXPECT_NE(a.positions, c.positions);
+  for (const Vec3& p : a.positions) {
+    EXPECT_GT(glm::length(p), 0.4f);
+    EXPECT_LT(glm::length(p), 1.5f);
+  }
+  for (const Vec3& n : a.normals) EXPECT_NEAR(glm::length(n), 1.f, 1e-5f);
+}
+
+}  // namespace
+}  // namespace penumbra

@@ -1,0 +1,29 @@
+// Atomic file replacement: write everything to a temporary file in the target's directory, flush and
+// fsync it, then rename() it onto the target. Readers (the viewer, scripts polling an output file) see
+// either the old file or the complete new one, never a partial write; on any failure the temporary is
+// removed, the old file is untouched, and an Error naming the path and strerror is thrown.
+#pragma once
+
+#include <cstddef>
+#include <cstdio>
+#include <functional>
+#include <string>
+
+namespace penumbra {
+
+// Unique temp name next to `path`: path + ".tmp-<pid>-<counter>".
+std::string atomicTempPath(const std::string& path);
+
+// Calls `write(tempPath)`, which must create and fully write the file at tempPath (by any means, e.g.
+// a third-party library that only takes a filename) and throw on failure. Then fsyncs the temp file
+// and renames it onto `path`. If `write` throws, the temp file is removed and the exception rethrown.
+void writeFileAtomically(const std::string& path,
+                         const std::function<void(const std::string& tempPath)>& write);
+
+// Convenience: atomically replace `path` with the given bytes.
+void writeBytesAtomically(const std::string& path, const void* data, std::size_t size);
+
+// Convenience for stdio writers: `write(FILE*)` writes into an open temp file; checks ferror/fflush.
+void writeStdioAtomically(const std::string& path, const std::function<void(std::FILE*)>& write);
+
+}  // namespace penumbra
