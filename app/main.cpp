@@ -11,6 +11,7 @@ int main(int argc, char** argv) {
   int exitCode = 0;
   penumbra::cli::addWarpCommand(app, exitCode);
   penumbra::cli::addRenderCommand(app, exitCode);
+  penumbra::cli::addBenchCommand(app, exitCode);
 
   try {
     app.parse(argc, argv);

@@ -8,5 +8,6 @@ namespace penumbra::cli {
 
 void addWarpCommand(CLI::App& app, int& exitCode);
 void addRenderCommand(CLI::App& app, int& exitCode);
+void addBenchCommand(CLI::App& app, int& exitCode);
 
 }  // namespace penumbra::cli
