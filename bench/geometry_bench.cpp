@@ -227,5 +227,3 @@ BENCHMARK(BM_MakeRockMesh)->Arg(7)->Unit(benchmark::kMillisecond)->Iterations(1)
 
 }  // namespace
 }  // namespace penumbra
-
-BENCHMARK_MAIN();

@@ -116,7 +116,8 @@ void SceneGeometry::build(AccelMode mode) {
   checkEmbree(device, "rtcNewScene");
   scene_ = scene;
   rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_HIGH);
-  rtcSetSceneFlags(scene, RTC_SCENE_FLAG_ROBUST);  // no cracks between triangles sharing an edge
+  // Watertight like the flat loop (no cracks between triangles sharing an edge); costs ~15-20%.
+  rtcSetSceneFlags(scene, RTC_SCENE_FLAG_ROBUST);
   for (uint32_t m = 0; m < meshes_.size(); ++m) {
     const TriangleMesh& mesh = meshes_[m];
     RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);

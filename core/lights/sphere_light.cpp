@@ -32,13 +32,14 @@ struct Cone {
 bool subtendedCone(const Sphere& s, const Vec3& x, Cone& cone) {
   const double r = s.radius;
   const DVec3 dc = DVec3(s.center) - DVec3(x);
-  const double d = glm::length(dc);  // float inputs: squares exact in double
+  const double d = std::sqrt(glm::dot(dc, dc));  // float inputs: the squares are exact in double
   if (!(r > 0.0) || !(d >= r) || !std::isfinite(d)) return false;
-  cone.wc = dc / d;
+  const double invD = 1.0 / d;
+  cone.wc = dc * invD;
   cone.d = d;
-  const double sinMax = r / d;
+  const double sinMax = r * invD;
   cone.sin2Max = sinMax * sinMax;
-  cone.cosMax = std::sqrt(((d - r) / d) * ((d + r) / d));
+  cone.cosMax = std::sqrt((d - r) * (d + r)) * invD;
   cone.oneMinusCos = cone.sin2Max / (1.0 + cone.cosMax);
   return cone.oneMinusCos >= kMinOneMinusCos;
 }
@@ -91,13 +92,15 @@ LightSample SphereLight::sampleSolidAngle(const Vec3& x, Vec2 u) const {
   const double cosT = 1.0 - oneMinusCosT;
   const double sin2T = oneMinusCosT * (2.0 - oneMinusCosT);
   const double sinT = std::sqrt(sin2T);
-  const double phi = kTwoPiD * double(u.y);
+  // φ only needs float precision (it sets no cancellation-prone quantity); sincosf is much cheaper.
+  const float phi = 2.f * kPi * u.y;
   const double cosPhi = std::cos(phi), sinPhi = std::sin(phi);
 
   // Angle α at the centre between (x − c) and (p − c) (pbrt-v4):
-  // cos α = sin²θ / sin θmax + cos θ √(1 − sin²θ / sin²θmax).
-  const double sinMax = std::sqrt(cone.sin2Max);
-  const double cosA = sin2T / sinMax + cosT * std::sqrt(std::max(0.0, 1.0 - sin2T / cone.sin2Max));
+  // cos α = sin²θ / sin θmax + cos θ √(1 − sin²θ / sin²θmax), with 1 / sin θmax = d / r.
+  const double invSinMax = cone.d / double(sphere.radius);
+  const double ratio = sin2T * invSinMax;  // sin²θ / sin θmax
+  const double cosA = ratio + cosT * std::sqrt(std::max(0.0, 1.0 - ratio * invSinMax));
   const double sinA = std::sqrt(std::max(0.0, 1.0 - cosA * cosA));
 
   DVec3 s, t;
@@ -108,8 +111,8 @@ LightSample SphereLight::sampleSolidAngle(const Vec3& x, Vec2 u) const {
   const DVec3 p = DVec3(sphere.center) + double(sphere.radius) * n;
 
   ls.p = Vec3(p);
-  ls.n = Vec3(glm::normalize(n));
-  ls.wi = Vec3(glm::normalize(wi));
+  ls.n = Vec3(n);    // unit by construction (sin²α + cos²α = 1, orthonormal basis)
+  ls.wi = Vec3(wi);  // unit by construction
   ls.dist = static_cast<float>(glm::length(p - DVec3(x)));
   ls.pdf = static_cast<float>(1.0 / (kTwoPiD * cone.oneMinusCos));
   ls.Le = radiance;
