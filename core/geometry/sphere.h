@@ -25,8 +25,18 @@ struct Sphere {
   void fillHit(const Ray& ray, float t, uint32_t objectId, SurfaceHit& hit) const;
   Bounds bounds() const;
 
+  // Cheap float pre-test: false only if the ray's line certainly misses (closest approach beyond r by
+  // far more than the float rounding of a·(|f|² − r²) − b², bounded by a few ulps of a·|f|²).
+  // Inconclusive cases (tiny far spheres, near-silhouette rays, NaN) go to the double path.
+  bool mayHit(const Ray& ray) const {
+    const Vec3 f = ray.o - center;
+    const float a = glm::dot(ray.d, ray.d), b = glm::dot(f, ray.d), ff = glm::dot(f, f);
+    return !(a * (ff - radius * radius) - b * b > 1e-5f * a * ff);
+  }
+
   // Both roots t0 <= t1 of the ray-sphere quadratic; false if the ray's line misses the sphere.
   bool roots(const Ray& ray, double& t0, double& t1) const {
+    if (!mayHit(ray)) return false;
     const DVec3 f = DVec3(ray.o) - DVec3(center);
     const DVec3 d(ray.d);
     const double r = radius;
