@@ -2,6 +2,8 @@
 // known-missing ajax.obj).
 #include <gtest/gtest.h>
 
+#include "tests/test_support.h"
+
 #include <filesystem>
 #include <functional>
 
@@ -14,13 +16,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::vector<std::string> sceneFiles() {
-  std::vector<std::string> out;
-  for (const auto& e : fs::recursive_directory_iterator(std::string(PENUMBRA_SOURCE_DIR) + "/scenes"))
-    if (e.is_regular_file() && e.path().extension() == ".xml") out.push_back(e.path().string());
-  std::sort(out.begin(), out.end());
-  return out;
-}
+std::vector<std::string> sceneFiles() { return test::seedSceneFiles(); }
 
 TEST(SeedScenes, AllParseAndMeshesLoad) {
   std::vector<std::string> files = sceneFiles();

@@ -15,13 +15,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::vector<std::string> seedScenes() {
-  std::vector<std::string> out;
-  for (auto& e : fs::recursive_directory_iterator(test::sourcePath("scenes")))
-    if (e.path().extension() == ".xml") out.push_back(e.path().string());
-  std::sort(out.begin(), out.end());
-  return out;
-}
+std::vector<std::string> seedScenes() { return test::seedSceneFiles(); }
 
 RenderProgress renderScene(const LoadedScene& s, uint32_t spp, Image* mean = nullptr, Image* se = nullptr,
                            uint64_t seed = 0) {

@@ -2,9 +2,12 @@
 // their standard error, and paths of the repository and the built executable.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <filesystem>
 #include <string>
+#include <vector>
 
 #include "core/render/scene.h"
 #include "core/sampling/sampler.h"
@@ -13,6 +16,16 @@
 namespace penumbra::test {
 
 inline std::string sourcePath(const std::string& relative) { return std::string(PENUMBRA_SOURCE_DIR) + "/" + relative; }
+
+// The seed assignment's scene files shipped under scenes/ (hw0, hw1, hw2, dev-scenes), sorted.
+inline std::vector<std::string> seedSceneFiles() {
+  std::vector<std::string> out;
+  for (const char* dir : {"hw0", "hw1", "hw2", "dev-scenes"})
+    for (const auto& e : std::filesystem::recursive_directory_iterator(sourcePath("scenes/") + dir))
+      if (e.is_regular_file() && e.path().extension() == ".xml") out.push_back(e.path().string());
+  std::sort(out.begin(), out.end());
+  return out;
+}
 
 struct Estimate {
   double mean = 0, standardError = 0;

@@ -195,6 +195,14 @@ bool SceneGeometry::intersect(const Ray& ray, SurfaceHit& hit) const {
 
   if (triHit) {
     fillTriangleHit(meshes_[meshHit], primHit, best, meshIds_[meshHit], hit);
+    if (scene_) {
+      // Embree's t carries error relative to the triangle's coordinates: offset by those.
+      const TriangleMesh& m = meshes_[meshHit];
+      const glm::uvec3 tri = m.triangles[primHit];
+      const Vec3 v = glm::max(glm::abs(m.positions[tri.x]),
+                              glm::max(glm::abs(m.positions[tri.y]), glm::abs(m.positions[tri.z])));
+      hit.offsetScale = std::max(hit.offsetScale, maxComponent(v));
+    }
     return true;
   }
   if (sphereHit >= 0) {

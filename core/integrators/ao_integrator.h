@@ -3,6 +3,7 @@
 // Visibility rays stop at the scene's extent; albedo is not applied (as in the seed's framework).
 #pragma once
 
+#include "core/integrators/integrator_desc.h"
 #include "core/integrators/shading_point.h"
 #include "core/sampling/sampler.h"
 #include "core/sampling/warp.h"

@@ -19,9 +19,12 @@ inline double oneMinusSqrtOneMinus(double s2) { return s2 / (1.0 + safeSqrt(1.0 
 
 inline bool isFinite(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
-// Relative offset used to move ray origins off surfaces: a few thousand ulps of the hit point's
-// magnitude, so the same scene at 1e-4 and 1e4 units behaves identically.
-inline constexpr float kRayOffsetScale = 0x1p-17f;  // ~7.6e-6
+// Relative offset used to move ray origins off surfaces: 16 ulps of the magnitude of the numbers the
+// hit point came from, so the same scene at 1e-4 and 1e4 units behaves identically. Small enough for
+// a shading point 1e-6 r outside a sphere light; large enough that spheres (re-projected hit points)
+// and Embree triangles do not re-hit themselves; brute-force triangles also reject t within their
+// rounding error (see triangle.h).
+inline constexpr float kRayOffsetScale = 0x1p-20f;  // ~9.5e-7: 16 float ulps
 
 // Offsets p along the geometric normal ng (towards the side of w) by an amount proportional to
 // `scale`, the magnitude of the coordinates that produced p (hit point and the shape's extent).

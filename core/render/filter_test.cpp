@@ -19,7 +19,7 @@ double filterExpectation(const FilterDesc& d, double (*g)(double)) {
     Vec2 off = fs.sample(Vec2(u, 0.5f), w);
     float wy;
     fs.sample(Vec2(0.5f, 0.5f), wy);
-    sum += (w / wy) * g(off.x);
+    sum += (w / std::sqrt(wy)) * g(off.x);  // wy = (weight at the centre)^2 of both axes
   }
   return sum / n;
 }

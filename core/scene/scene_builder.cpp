@@ -123,10 +123,21 @@ void buildIntegrator(const SceneNode& node, RenderSettings& s) {
 
 // ---- geometry and lights ------------------------------------------------------------------------
 
-Color3 buildBsdf(const SceneNode* bsdf) {
+Color3 buildBsdf(const SceneNode* bsdf, std::vector<std::string>& warnings) {
   if (!bsdf) return Color3(0.5f);
-  if (bsdf->type == "diffuse") return getNonNegativeColor(*bsdf, {"albedo"}, Color3(0.5f), "albedo");
-  unknownType(*bsdf, "diffuse");
+  Color3 albedo = getNonNegativeColor(*bsdf, {"albedo"}, Color3(0.5f), "albedo");
+  if (bsdf->type == "diffuse") return albedo;
+  if (bsdf->type == "phong") {
+    // The seed's dev scenes carry hw3's Phong; only its diffuse lobe is rendered here.
+    float kd = getPositiveFloat(*bsdf, {"diffuseCoef"}, 1.f, "diffuseCoef", true);
+    float ks = getPositiveFloat(*bsdf, {"specularCoef"}, 0.f, "specularCoef", true);
+    bsdf->props.markUsed({"shininess"});
+    if (ks > 0.f)
+      warnings.push_back(bsdf->file + ":" + std::to_string(bsdf->line) +
+                         ": warning: phong specular lobe is not implemented; rendering the diffuse part only");
+    return albedo * kd;
+  }
+  unknownType(*bsdf, "diffuse, phong (diffuse part)");
 }
 
 TriangleMesh buildMesh(const SceneNode& node) {
@@ -152,10 +163,10 @@ TriangleMesh buildMesh(const SceneNode& node) {
   return mesh;
 }
 
-void buildShape(const SceneNode& node, Scene& scene) {
+void buildShape(const SceneNode& node, Scene& scene, std::vector<std::string>& warnings) {
   uint32_t objectId = uint32_t(scene.materials.size());
   SurfaceMaterial material;
-  material.albedo = buildBsdf(node.child("bsdf"));
+  material.albedo = buildBsdf(node.child("bsdf"), warnings);
   const SceneNode* emitter = node.child("emitter");
   node.props.markUsed({"name"});  // seed scenes label shapes; harmless
 
@@ -223,7 +234,7 @@ LoadedScene buildScene(SceneNode desc) {
   if (desc.tag != "scene") throw Error(desc.file, desc.line, "the root element must be <scene>");
   auto scene = std::make_shared<Scene>();
   for (const SceneNode& node : desc.children) {
-    if (node.tag == "shape") buildShape(node, *scene);
+    if (node.tag == "shape") buildShape(node, *scene, out.warnings);
     else if (node.tag == "emitter") buildEmitter(node, *scene);
   }
   out.settings = buildSettings(desc, &out.warnings);

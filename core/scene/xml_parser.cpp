@@ -338,6 +338,23 @@ void applyOverride(SceneNode& root, std::string_view key, std::string_view value
   std::string tag = normaliseTag(key.substr(0, dot));
   std::string_view prop = key.substr(dot + 1);
   SceneNode* node = tag == "scene" ? &root : root.tag == tag ? &root : findFirst(root, tag);
+  if (!node && (tag == "integrator" || tag == "sampler" || tag == "camera")) {
+    // Scene-wide objects may be absent from the file: --set creates them with their default type.
+    SceneNode created;
+    created.tag = tag;
+    created.type = tag == "integrator" ? "direct" : tag == "sampler" ? "independent" : "perspective";
+    created.file = root.file;
+    created.baseDir = root.baseDir;
+    created.props.setContext(root.file, created.tag, created.type);
+    root.children.push_back(std::move(created));
+    node = &root.children.back();
+  }
+  if (node && prop == "type") {
+    // "integrator.type=ao" switches the object's type (its properties stay; unused ones warn).
+    node->type = std::string(value);
+    node->props.setContext(node->file, node->tag, node->type);
+    return;
+  }
   if (!node) {
     std::string known =
         isObjectTag(tag) ? ""
