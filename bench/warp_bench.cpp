@@ -112,4 +112,3 @@ BENCHMARK_CAPTURE(BM_SamplerNext1D, stratified, SamplerKind::Stratified);
 }  // namespace
 }  // namespace penumbra
 
-BENCHMARK_MAIN();
