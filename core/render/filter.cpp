@@ -8,6 +8,7 @@ namespace penumbra {
 namespace {
 constexpr int kBins = 512;
 constexpr int kSubsamples = 16;  // per bin, to integrate |f| accurately
+constexpr int kGuide = 1024;
 }  // namespace
 
 const char* filterTypeName(FilterType type) {
@@ -97,6 +98,13 @@ FilterSampler::FilterSampler(const FilterDesc& desc) : desc_(desc) {
     binWeight_[i] = pdfMass > 0 ? float((signedMass[i] / signedTotal) / pdfMass) : 0.f;
   }
   cdf_[kBins] = 1.f;
+  guide_.resize(kGuide);
+  int bin = 0;
+  for (int j = 0; j < kGuide; ++j) {
+    float u = float(j) / kGuide;
+    while (bin < kBins - 1 && cdf_[bin + 1] <= u) ++bin;
+    guide_[j] = uint16_t(bin);
+  }
 }
 
 float FilterSampler::sample1D(float u, float& weight) const {
@@ -104,9 +112,9 @@ float FilterSampler::sample1D(float u, float& weight) const {
     weight = 1.f;
     return (2.f * u - 1.f) * desc_.radius;
   }
-  // Find the bin with cdf_[i] <= u < cdf_[i+1].
-  int i = int(std::upper_bound(cdf_.begin(), cdf_.end(), u) - cdf_.begin()) - 1;
-  i = std::clamp(i, 0, kBins - 1);
+  // Find the bin with cdf_[i] <= u < cdf_[i+1], starting from the guide table's bin.
+  int i = guide_[std::min(int(u * kGuide), kGuide - 1)];
+  while (i < kBins - 1 && cdf_[i + 1] <= u) ++i;
   float lo = cdf_[i], hi = cdf_[i + 1];
   float t = hi > lo ? (u - lo) / (hi - lo) : 0.5f;
   weight = binWeight_[i];

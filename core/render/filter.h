@@ -48,6 +48,9 @@ class FilterSampler {
   bool isBox_ = true;
   std::vector<float> cdf_;        // kBins + 1 entries over [-radius, radius], cdf_[kBins] = 1
   std::vector<float> binWeight_;  // per bin: sign(f) * integral|f| / integral f / bin pdf mass
+  // guide_[j]: the bin holding u = j / kGuide. A lookup plus a short forward scan replaces a binary
+  // search whose unpredictable branches cost more than the rest of a camera sample.
+  std::vector<uint16_t> guide_;
 };
 
 }  // namespace penumbra
