@@ -7,6 +7,7 @@
 #include <string>
 
 #include "core/math/vec.h"
+#include "core/sampling/rng.h"
 
 namespace penumbra {
 
@@ -32,7 +33,44 @@ class Sampler {
   SamplerKind kind() const;
   uint32_t sampleCount() const;
   uint64_t seed() const;
-  // (implementation-defined private state follows)
+
+ private:
+  float stratified1D();
+  Vec2 stratified2D();
+  // Key of the (pixel, dimension, epoch) permutation of strata; epoch = sampleIndex / strata.
+  uint64_t dimensionKey(uint32_t epoch) const;
+
+  Rng rng_;
+  uint64_t seed_ = 0;
+  uint64_t pixelKey_ = 0;     // hash of (seed, pixel)
+  uint32_t sampleCount_ = 1;  // N: strata of 1-D dimensions
+  uint32_t gridSide_ = 1;     // floor(sqrt(N)): 2-D dimensions use gridSide^2 strata
+  uint32_t sampleIndex_ = 0;
+  uint32_t dimension_ = 0;  // dimensions consumed since startPixelSample
+  SamplerKind kind_ = SamplerKind::Independent;
 };
+
+inline float Sampler::next1D() {
+  if (kind_ == SamplerKind::Stratified) return stratified1D();
+  ++dimension_;
+  return rng_.nextFloat();
+}
+
+inline Vec2 Sampler::next2D() {
+  if (kind_ == SamplerKind::Stratified) return stratified2D();
+  ++dimension_;
+  float x = rng_.nextFloat();
+  return Vec2(x, rng_.nextFloat());
+}
+
+inline SamplerKind Sampler::kind() const {
+  return kind_;
+}
+inline uint32_t Sampler::sampleCount() const {
+  return sampleCount_;
+}
+inline uint64_t Sampler::seed() const {
+  return seed_;
+}
 
 }  // namespace penumbra

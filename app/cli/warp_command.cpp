@@ -1,0 +1,285 @@
+// `penumbra warp`: chi-square tests of the sample warps, sample dumps and pdf evaluation.
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "app/cli/commands.h"
+#include "core/math/error.h"
+#include "core/sampling/chi2.h"
+#include "core/sampling/rng.h"
+#include "core/sampling/warp.h"
+
+namespace penumbra::cli {
+
+namespace {
+
+struct WarpArgs {
+  std::string type;
+  double param = 0.0;
+  uint64_t samples = 1'000'000;
+  int res = 51;
+  uint64_t seed = 1;
+  bool all = false;
+  uint64_t dump = 0;
+  bool pdf = false;
+  std::string pdfOf;
+  double pdfParam = 0.0;
+  double pdfScale = 1.0;
+  bool mismatch = false;
+};
+
+std::string typeList() {
+  std::string s;
+  for (int i = 0; i < kWarpTypeCount; ++i) {
+    if (i) s += ", ";
+    s += warpTypeName(static_cast<WarpType>(i));
+  }
+  return s;
+}
+
+WarpType parseType(const std::string& name) {
+  WarpType t;
+  if (!parseWarpType(name, t))
+    throw Error("unknown warp type '" + name + "' (expected one of: " + typeList() + ")");
+  return t;
+}
+
+std::string number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+
+float defaultParam(WarpType type) {
+  return type == WarpType::Beckmann ? 0.2f : 0.5f;
+}
+
+// Validates the parameter of `type` (throws penumbra::Error -> exit code 2) and returns it as float.
+float checkedParam(WarpType type, bool given, double value, const char* option) {
+  if (!warpHasParameter(type)) {
+    if (given)
+      throw Error(std::string("warp '") + warpTypeName(type) + "' takes no parameter (" + option + ")");
+    return 0.f;
+  }
+  if (!given) return defaultParam(type);
+  if (type == WarpType::UniformCone && !(value >= -1.0 && value < 1.0))
+    throw Error(std::string("uniform-cone: ") + option + " is cos(theta_max) and must be in [-1, 1), got " +
+                number(value));
+  if (type == WarpType::Beckmann && !(value > 0.0 && std::isfinite(value)))
+    throw Error(std::string("beckmann: ") + option + " is the roughness alpha and must be > 0, got " +
+                number(value));
+  return static_cast<float>(value);
+}
+
+// A deliberately wrong pdf for each warp (for --mismatch): the test must reject the pair.
+void mismatchPartner(WarpType type, float param, WarpType& pdfType, float& pdfParam) {
+  pdfParam = 0.f;
+  switch (type) {
+    case WarpType::UniformSquare:
+      pdfType = WarpType::Tent;
+      return;
+    case WarpType::Tent:
+      pdfType = WarpType::UniformSquare;
+      return;
+    case WarpType::UniformDisk:
+    case WarpType::ConcentricDisk:
+      pdfType = WarpType::Tent;
+      return;
+    case WarpType::UniformSphere:
+    case WarpType::CosineHemisphere:
+      pdfType = WarpType::UniformHemisphere;
+      return;
+    case WarpType::UniformHemisphere:
+      pdfType = WarpType::CosineHemisphere;
+      return;
+    case WarpType::UniformCone:
+      pdfType = WarpType::UniformCone;
+      pdfParam = 0.5f * (param + 1.f);  // a narrower cone
+      return;
+    case WarpType::Beckmann:
+      pdfType = WarpType::Beckmann;
+      pdfParam = 2.f * param;
+      return;
+  }
+}
+
+std::string paramText(WarpType type, float param) {
+  if (!warpHasParameter(type)) return "-";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.9g", param);
+  return buf;
+}
+
+void dumpSamples(WarpType type, float param, uint64_t count, uint64_t seed) {
+  Rng rng(mix64(seed), seed);  // the same stream the chi-square test draws from
+  for (uint64_t i = 0; i < count; ++i) {
+    float u1 = rng.nextFloat();
+    Vec3 v = Warp::warp(type, Vec2(u1, rng.nextFloat()), param);
+    std::printf("%.9g %.9g %.9g\n", v.x, v.y, v.z);
+  }
+}
+
+void evaluatePdfs(WarpType type, float param) {
+  std::string line;
+  int lineNo = 0;
+  while (std::getline(std::cin, line)) {
+    ++lineNo;
+    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+    std::istringstream in(line);
+    float x, y, z;
+    if (!(in >> x >> y >> z))
+      throw Error("<stdin>", lineNo, "expected three numbers 'x y z', got '" + line + "'");
+    std::printf("%.9g\n", Warp::pdf(type, Vec3(x, y, z), param));
+  }
+}
+
+int runSingle(const WarpArgs& a, const CLI::App& cmd) {
+  WarpType type = parseType(a.type);
+  float param = checkedParam(type, cmd.count("--param") > 0, a.param, "--param");
+  WarpType pdfType = type;
+  float pdfParam = param;
+  if (a.mismatch) {
+    mismatchPartner(type, param, pdfType, pdfParam);
+  } else if (!a.pdfOf.empty()) {
+    pdfType = parseType(a.pdfOf);
+    pdfParam = checkedParam(pdfType, cmd.count("--pdf-param") > 0, a.pdfParam, "--pdf-param");
+  }
+
+  Chi2Options opt;
+  opt.sampleCount = a.samples;
+  opt.resolution = a.res;
+  opt.seed = a.seed;
+  Chi2Result r = chi2Test(chi2DomainFor(pdfType, pdfParam), warpSampleFunction(type, param),
+                          warpPdfFunction(pdfType, pdfParam, a.pdfScale), opt);
+
+  std::printf("warp      %s%s%s\n", warpTypeName(type), warpHasParameter(type) ? "  param " : "",
+              warpHasParameter(type) ? paramText(type, param).c_str() : "");
+  if (pdfType != type || pdfParam != param || a.pdfScale != 1.0)
+    std::printf("pdf of    %s%s%s  x %g   (mismatched pair)\n", warpTypeName(pdfType),
+                warpHasParameter(pdfType) ? "  param " : "",
+                warpHasParameter(pdfType) ? paramText(pdfType, pdfParam).c_str() : "", a.pdfScale);
+  std::printf("samples   %llu (seed %llu) in %d x %d cells + outside, %d pooled\n",
+              static_cast<unsigned long long>(a.samples), static_cast<unsigned long long>(a.seed), r.resX,
+              r.resY, r.pooledCells);
+  std::printf("chi2      %.2f\n", r.chi2);
+  std::printf("dof       %d\n", r.dof);
+  std::printf("p-value   %.4g\n", r.pValue);
+  std::printf("verdict   %s (alpha %.3g)%s%s\n", r.accepted ? "accept" : "REJECT", r.alphaEffective,
+              r.message.empty() ? "" : ": ", r.message.c_str());
+  return r.accepted ? 0 : 1;
+}
+
+struct Case {
+  WarpType type;
+  float param;
+  std::string label;
+};
+
+std::vector<Case> allCases() {
+  std::vector<Case> cases;
+  for (int i = 0; i < kWarpTypeCount; ++i) {
+    auto t = static_cast<WarpType>(i);
+    if (!warpHasParameter(t)) cases.push_back({t, 0.f, "-"});
+  }
+  for (float c : {-0.5f, 0.f, 0.5f, 0.9f, 0.99f})
+    cases.push_back({WarpType::UniformCone, c, paramText(WarpType::UniformCone, c)});
+  for (double s2 : {1e-4, 1e-6}) {
+    auto c = static_cast<float>(std::sqrt(1.0 - s2));
+    char label[64];
+    std::snprintf(label, sizeof label, "%.9g (sin2=%g)", c, s2);
+    cases.push_back({WarpType::UniformCone, c, label});
+  }
+  for (float alpha : {0.05f, 0.2f, 0.5f, 1.0f})
+    cases.push_back({WarpType::Beckmann, alpha, paramText(WarpType::Beckmann, alpha)});
+  return cases;
+}
+
+int runAll(const WarpArgs& a) {
+  std::vector<Case> cases = allCases();
+  Chi2Options opt;
+  opt.sampleCount = a.samples;
+  opt.resolution = a.res;
+  opt.seed = a.seed;
+  opt.testCount = static_cast<int>(cases.size());
+  std::printf(
+      "chi-square tests: %llu samples each, seed %llu, alpha 0.01 over %d tests (Sidak: %.3g per test)\n\n",
+      static_cast<unsigned long long>(a.samples), static_cast<unsigned long long>(a.seed), opt.testCount,
+      sidakAlpha(opt.alpha, opt.testCount));
+  std::printf("%-20s %-26s %12s %6s %10s  %s\n", "warp", "param", "chi2", "dof", "p-value", "verdict");
+  int failures = 0;
+  for (const Case& c : cases) {
+    Chi2Result r = chi2Test(chi2DomainFor(c.type, c.param), warpSampleFunction(c.type, c.param),
+                            warpPdfFunction(c.type, c.param), opt);
+    if (!r.accepted) ++failures;
+    std::printf("%-20s %-26s %12.2f %6d %10.4f  %s%s%s\n", warpTypeName(c.type), c.label.c_str(), r.chi2,
+                r.dof, r.pValue, r.accepted ? "accept" : "REJECT", r.message.empty() ? "" : ": ",
+                r.message.c_str());
+    std::fflush(stdout);
+  }
+  std::printf("\n%d of %zu accepted\n", static_cast<int>(cases.size()) - failures, cases.size());
+  return failures == 0 ? 0 : 1;
+}
+
+}  // namespace
+
+void addWarpCommand(CLI::App& app, int& exitCode) {
+  auto args = std::make_shared<WarpArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "warp", "Chi-square test a sample warp against its pdf; dump samples; evaluate pdfs");
+  cmd->add_option("type", args->type, "Warp: " + typeList());
+  cmd->add_option("--param", args->param,
+                  "uniform-cone: cos(theta_max) in [-1, 1) (default 0.5); beckmann: alpha > 0 (default 0.2)");
+  cmd->add_option("--samples", args->samples, "Number of samples for the test")
+      ->capture_default_str()
+      ->check(CLI::Range(uint64_t{100}, uint64_t{1'000'000'000}));
+  cmd->add_option("--res", args->res,
+                  "Histogram resolution (2-D: res x res; sphere: 2res x res in (phi, cos theta))")
+      ->capture_default_str()
+      ->check(CLI::Range(2, 1000));
+  cmd->add_option("--seed", args->seed, "Random seed")->capture_default_str();
+  auto* all =
+      cmd->add_flag("--all", args->all, "Test every warp (several parameters), Sidak-corrected, as a table");
+  auto* dump = cmd->add_option("--dump", args->dump, "Write N warped samples to stdout as 'x y z' lines");
+  auto* pdf = cmd->add_flag("--pdf", args->pdf, "Read 'x y z' lines from stdin, write the pdf of each");
+  auto* pdfOf = cmd->add_option("--pdf-of", args->pdfOf, "Judge the samples by the pdf of another warp TYPE");
+  cmd->add_option("--pdf-param", args->pdfParam, "Parameter of the --pdf-of warp")->needs(pdfOf);
+  auto* scale = cmd->add_option("--pdf-scale", args->pdfScale, "Multiply the judging pdf by this factor")
+                    ->capture_default_str();
+  auto* mismatch =
+      cmd->add_flag("--mismatch", args->mismatch,
+                    "Judge the samples by a deliberately wrong pdf (e.g. cosine vs uniform hemisphere)");
+  all->excludes(dump)->excludes(pdf)->excludes(pdfOf)->excludes(mismatch)->excludes(scale);
+  dump->excludes(pdf)->excludes(pdfOf)->excludes(mismatch)->excludes(scale);
+  pdf->excludes(pdfOf)->excludes(mismatch)->excludes(scale);
+  mismatch->excludes(pdfOf);
+
+  cmd->callback([args, cmd, &exitCode]() {
+    const WarpArgs& a = *args;
+    if (a.all) {
+      if (!a.type.empty() || cmd->count("--param"))
+        throw Error("--all runs every warp: give no TYPE or --param");
+      exitCode = runAll(a);
+      return;
+    }
+    if (a.type.empty()) throw Error("missing warp TYPE (one of: " + typeList() + "), or use --all");
+    if (cmd->count("--dump") || a.pdf) {
+      WarpType type = parseType(a.type);
+      float param = checkedParam(type, cmd->count("--param") > 0, a.param, "--param");
+      if (a.pdf)
+        evaluatePdfs(type, param);
+      else
+        dumpSamples(type, param, a.dump, a.seed);
+      exitCode = 0;
+      return;
+    }
+    if (!(a.pdfScale > 0.0 && std::isfinite(a.pdfScale)))
+      throw Error("--pdf-scale must be a positive number");
+    exitCode = runSingle(a, *cmd);
+  });
+}
+
+}  // namespace penumbra::cli

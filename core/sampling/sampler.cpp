@@ -1,0 +1,111 @@
+#include "core/sampling/sampler.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace penumbra {
+
+namespace {
+
+// Kensler's hashed permutation of [0, n) ("Correlated Multi-Jittered Sampling", 2013): a bijection
+// chosen by `key`, evaluated for one element without storing the permutation (cycle walking).
+uint32_t permute(uint32_t i, uint32_t n, uint32_t key) {
+  uint32_t w = n - 1;
+  w |= w >> 1;
+  w |= w >> 2;
+  w |= w >> 4;
+  w |= w >> 8;
+  w |= w >> 16;
+  do {
+    i ^= key;
+    i *= 0xe170893d;
+    i ^= key >> 16;
+    i ^= (i & w) >> 4;
+    i ^= key >> 8;
+    i *= 0x0929eb3f;
+    i ^= key >> 23;
+    i ^= (i & w) >> 1;
+    i *= 1 | key >> 27;
+    i *= 0x6935fa69;
+    i ^= (i & w) >> 11;
+    i *= 0x74dcb303;
+    i ^= (i & w) >> 2;
+    i *= 0x9e501cc3;
+    i ^= (i & w) >> 2;
+    i *= 0xc860a3df;
+    i &= w;
+    i ^= i >> 5;
+  } while (i >= n);
+  return (i + key) % n;
+}
+
+// (stratum + jitter) / strata, kept below 1 when the float sum rounds up.
+inline float jittered(uint32_t stratum, float jitter, float invStrata) {
+  return std::min((static_cast<float>(stratum) + jitter) * invStrata, kOneMinusEpsilon);
+}
+
+}  // namespace
+
+const char* samplerKindName(SamplerKind kind) {
+  switch (kind) {
+    case SamplerKind::Independent:
+      return "independent";
+    case SamplerKind::Stratified:
+      return "stratified";
+  }
+  return "unknown";
+}
+
+bool parseSamplerKind(const std::string& name, SamplerKind& out) {
+  if (name == "independent") {
+    out = SamplerKind::Independent;
+    return true;
+  }
+  if (name == "stratified") {
+    out = SamplerKind::Stratified;
+    return true;
+  }
+  return false;
+}
+
+Sampler::Sampler(SamplerKind kind, uint32_t sampleCount, uint64_t seed)
+    : seed_(seed), sampleCount_(std::max<uint32_t>(sampleCount, 1)), kind_(kind) {
+  auto side = static_cast<uint32_t>(std::sqrt(static_cast<double>(sampleCount_)));
+  while (side * side > sampleCount_) --side;
+  while ((side + 1) * (side + 1) <= sampleCount_) ++side;
+  gridSide_ = std::max<uint32_t>(side, 1);
+  startPixelSample(IVec2(0, 0), 0);
+}
+
+void Sampler::startPixelSample(IVec2 pixel, uint32_t sampleIndex) {
+  uint64_t packed =
+      (static_cast<uint64_t>(static_cast<uint32_t>(pixel.x)) << 32) | static_cast<uint32_t>(pixel.y);
+  pixelKey_ = hashCombine(mix64(seed_), packed);
+  sampleIndex_ = sampleIndex;
+  dimension_ = 0;
+  // The sequence (stream) is chosen by the pixel; the starting state by the sample index.
+  rng_.seed(hashCombine(pixelKey_, sampleIndex), pixelKey_);
+}
+
+uint64_t Sampler::dimensionKey(uint32_t epoch) const {
+  return hashCombine(pixelKey_, (static_cast<uint64_t>(epoch) << 32) | dimension_);
+}
+
+float Sampler::stratified1D() {
+  uint32_t n = sampleCount_;
+  uint32_t stratum = permute(sampleIndex_ % n, n, static_cast<uint32_t>(dimensionKey(sampleIndex_ / n)));
+  ++dimension_;
+  return jittered(stratum, rng_.nextFloat(), 1.f / static_cast<float>(n));
+}
+
+Vec2 Sampler::stratified2D() {
+  uint32_t side = gridSide_, n = side * side;
+  uint32_t stratum = permute(sampleIndex_ % n, n, static_cast<uint32_t>(dimensionKey(sampleIndex_ / n)));
+  ++dimension_;
+  float inv = 1.f / static_cast<float>(side);
+  float jx = rng_.nextFloat();
+  float jy = rng_.nextFloat();
+  return Vec2(jittered(stratum % side, jx, inv), jittered(stratum / side, jy, inv));
+}
+
+}  // namespace penumbra
