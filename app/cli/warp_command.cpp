@@ -48,6 +48,12 @@ WarpType parseType(const std::string& name) {
   return t;
 }
 
+std::string number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+
 float defaultParam(WarpType type) {
   return type == WarpType::Beckmann ? 0.2f : 0.5f;
 }
@@ -62,10 +68,10 @@ float checkedParam(WarpType type, bool given, double value, const char* option) 
   if (!given) return defaultParam(type);
   if (type == WarpType::UniformCone && !(value >= -1.0 && value < 1.0))
     throw Error(std::string("uniform-cone: ") + option + " is cos(theta_max) and must be in [-1, 1), got " +
-                std::to_string(value));
+                number(value));
   if (type == WarpType::Beckmann && !(value > 0.0 && std::isfinite(value)))
     throw Error(std::string("beckmann: ") + option + " is the roughness alpha and must be > 0, got " +
-                std::to_string(value));
+                number(value));
   return static_cast<float>(value);
 }
 
