@@ -6,9 +6,7 @@
 namespace penumbra {
 
 namespace {
-constexpr int kBins = 512;
 constexpr int kSubsamples = 16;  // per bin, to integrate |f| accurately
-constexpr int kGuide = 1024;
 }  // namespace
 
 const char* filterTypeName(FilterType type) {
@@ -66,8 +64,6 @@ float evalFilter1D(const FilterDesc& desc, float x) {
 }
 
 FilterSampler::FilterSampler(const FilterDesc& desc) : desc_(desc) {
-  isBox_ = desc.type == FilterType::Box;
-  if (isBox_) return;
   // Tabulate |f| per bin (integrated with sub-samples) and the signed integral of f.
   std::vector<double> absMass(kBins), signedMass(kBins);
   double absTotal = 0, signedTotal = 0;
@@ -85,41 +81,24 @@ FilterSampler::FilterSampler(const FilterDesc& desc) : desc_(desc) {
     absTotal += absMass[i];
     signedTotal += signedMass[i];
   }
-  cdf_.resize(kBins + 1);
+  invBinWidth_ = float(1.0 / binWidth);
   binWeight_.resize(kBins);
-  double acc = 0;
-  cdf_[0] = 0.f;
   for (int i = 0; i < kBins; ++i) {
-    acc += absMass[i];
-    cdf_[i + 1] = float(acc / absTotal);
-    // Within a bin the sampled density is absMass/absTotal/binWidth; the estimator weight is
-    // (f / integral f) / pdf, with f taken as the bin's average signed value.
-    double pdfMass = absMass[i] / absTotal;
-    binWeight_[i] = pdfMass > 0 ? float((signedMass[i] / signedTotal) / pdfMass) : 0.f;
+    binWeight_[i] = signedMass[i] < 0 ? float(-absTotal / signedTotal) : float(absTotal / signedTotal);
+    if (signedMass[i] < 0) signed_ = true;
   }
-  cdf_[kBins] = 1.f;
-  guide_.resize(kGuide);
+  // Invert the piecewise-linear CDF at kTable + 1 evenly spaced levels.
+  invCdf_.resize(kTable + 1);
+  double acc = 0;
   int bin = 0;
-  for (int j = 0; j < kGuide; ++j) {
-    float u = float(j) / kGuide;
-    while (bin < kBins - 1 && cdf_[bin + 1] <= u) ++bin;
-    guide_[j] = uint16_t(bin);
+  for (int k = 0; k <= kTable; ++k) {
+    double level = absTotal * k / kTable;
+    while (bin < kBins - 1 && acc + absMass[bin] < level) acc += absMass[bin++];
+    double frac = absMass[bin] > 0 ? std::clamp((level - acc) / absMass[bin], 0.0, 1.0) : 0.0;
+    invCdf_[k] = float(-desc.radius + (bin + frac) * binWidth);
   }
-}
-
-float FilterSampler::sample1D(float u, float& weight) const {
-  if (isBox_) {
-    weight = 1.f;
-    return (2.f * u - 1.f) * desc_.radius;
-  }
-  // Find the bin with cdf_[i] <= u < cdf_[i+1], starting from the guide table's bin.
-  int i = guide_[std::min(int(u * kGuide), kGuide - 1)];
-  while (i < kBins - 1 && cdf_[i + 1] <= u) ++i;
-  float lo = cdf_[i], hi = cdf_[i + 1];
-  float t = hi > lo ? (u - lo) / (hi - lo) : 0.5f;
-  weight = binWeight_[i];
-  float binWidth = 2.f * desc_.radius / kBins;
-  return -desc_.radius + (float(i) + std::clamp(t, 0.f, 1.f)) * binWidth;
+  invCdf_[0] = -desc.radius;
+  invCdf_[kTable] = desc.radius;
 }
 
 }  // namespace penumbra

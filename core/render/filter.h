@@ -3,6 +3,7 @@
 // proportion to |f|, weighted by f / pdf, so nothing is splatted into neighbouring pixels (pbrt-v4).
 #pragma once
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -42,15 +43,29 @@ class FilterSampler {
   const FilterDesc& desc() const { return desc_; }
 
  private:
-  float sample1D(float u, float& weight) const;
+  static constexpr int kBins = 512;   // signed-weight bins over [-radius, radius]
+  static constexpr int kTable = 1024;  // inverse-CDF entries, uniform in u
+
+  // Inverse-CDF lookup with linear interpolation: the sampled density is |f| approximated by
+  // kTable pieces (no search, no branches). Positive filters have weight 1; signed ones (Mitchell)
+  // take sign(f) * integral|f| / integral f from the bin of x.
+  float sample1D(float u, float& weight) const {
+    float t = u * float(kTable);
+    int k = std::min(int(t), kTable - 1);
+    float x = invCdf_[k] + (t - float(k)) * (invCdf_[k + 1] - invCdf_[k]);
+    weight = 1.f;
+    if (signed_) {
+      int bin = std::clamp(int((x + desc_.radius) * invBinWidth_), 0, kBins - 1);
+      weight = binWeight_[bin];
+    }
+    return x;
+  }
 
   FilterDesc desc_;
-  bool isBox_ = true;
-  std::vector<float> cdf_;        // kBins + 1 entries over [-radius, radius], cdf_[kBins] = 1
-  std::vector<float> binWeight_;  // per bin: sign(f) * integral|f| / integral f / bin pdf mass
-  // guide_[j]: the bin holding u = j / kGuide. A lookup plus a short forward scan replaces a binary
-  // search whose unpredictable branches cost more than the rest of a camera sample.
-  std::vector<uint16_t> guide_;
+  bool signed_ = false;          // the filter has negative lobes
+  float invBinWidth_ = 1.f;
+  std::vector<float> invCdf_;    // kTable + 1 entries: x with CDF(x) = k / kTable
+  std::vector<float> binWeight_;  // per bin: sign(f) * integral|f| / integral f
 };
 
 }  // namespace penumbra
