@@ -5,6 +5,7 @@
 
 #include "core/geometry/procedural_mesh.h"
 #include "core/math/error.h"
+#include "core/math/float_util.h"
 #include "core/scene/obj_loader.h"
 #include "core/scene/xml_parser.h"
 
@@ -194,12 +195,11 @@ void buildEmitter(const SceneNode& node, Scene& scene) {
     if (!isFinite(light.position)) fail(node, {"position"}, "position must be finite");
     scene.pointLights.push_back(light);
   } else if (node.type == "directional") {
-    DirectionalLight light;
+    // `direction` points toward the light (see DirectionalLight).
     Vec3 dir = node.props.getVector({"direction"}, Vec3(0, 0, 1));
     if (!isFinite(dir) || glm::length(dir) == 0.f) fail(node, {"direction"}, "direction must be a non-zero vector");
-    light.direction = glm::normalize(dir);
-    light.radiance = getNonNegativeColor(node, {"radiance", "irradiance"}, Color3(1.f), "radiance");
-    scene.directionalLights.push_back(light);
+    Color3 irradiance = getNonNegativeColor(node, {"radiance", "irradiance"}, Color3(1.f), "radiance");
+    scene.directionalLights.push_back(DirectionalLight::make(dir, irradiance));
   } else if (node.type == "area") {
     throw Error(node.file, node.line, "an area emitter must be nested inside the sphere it lights");
   } else {

@@ -1,0 +1,114 @@
+// Direct illumination (seed hw2) from all emitters onto diffuse surfaces:
+//   Lr(x) = albedo/pi * [ sum over delta lights of E_i  +  integral of Le(x, w) cos(theta) dw ].
+// Point and directional lights are evaluated deterministically. The area-light integral uses the
+// strategy chosen at compile time (one instantiation per measure, so no per-sample branching):
+//   hemisphere (uniform or cosine warp): trace the sampled direction, add Le of an emitter it hits;
+//   area: a uniform point on each light sphere, pdf converted to solid angle (far side adds 0);
+//   solid angle: a uniform direction in the cone each light sphere subtends.
+// `simple` (seed hw1) is the same integrator with delta lights only.
+#pragma once
+
+#include <cmath>
+
+#include "core/integrators/shading_point.h"
+#include "core/sampling/sampler.h"
+#include "core/sampling/warp.h"
+
+namespace penumbra {
+
+enum class DirectStrategy : uint8_t { DeltaOnly, UniformHemisphere, CosineHemisphere, Area, SolidAngle };
+
+template <DirectStrategy kStrategy>
+struct DirectIntegrator {
+  int samples = 1;
+
+  Color3 Li(const Scene& scene, const Ray& ray, Sampler& sampler) const {
+    SurfaceHit hit;
+    if (!scene.geometry.intersect(ray, hit)) return Color3(0.f);
+    const SurfaceMaterial& material = scene.materials[hit.objectId];
+    Color3 L(0.f);
+    if (material.sphereLight >= 0) L += scene.sphereLights[material.sphereLight].eval(hit.p, hit.ng, ray.d);
+    if (isBlack(material.albedo)) return L;
+
+    ShadingPoint sp(scene, ray, hit);
+    Color3 E = deltaIrradiance(scene, sp);
+    if constexpr (kStrategy == DirectStrategy::UniformHemisphere || kStrategy == DirectStrategy::CosineHemisphere) {
+      if (scene.hasAreaLights()) E += hemisphereIrradiance(scene, sp, sampler);
+    } else if constexpr (kStrategy == DirectStrategy::Area || kStrategy == DirectStrategy::SolidAngle) {
+      E += lightSamplingIrradiance(scene, sp, sampler);
+    }
+    return L + material.albedo * kInvPi * E;
+  }
+
+ private:
+  // A direction w (with cosine `cosTheta` to the shading normal) can carry light only if it also
+  // leaves the geometric surface on the lit side.
+  static bool leavesSurface(const ShadingPoint& sp, const Vec3& w, float cosTheta) {
+    return cosTheta > 0.f && glm::dot(w, sp.ng) > 0.f;
+  }
+
+  static Color3 deltaIrradiance(const Scene& scene, const ShadingPoint& sp) {
+    Color3 E(0.f);
+    for (const PointLight& light : scene.pointLights) {
+      DeltaLightSample s = light.sample(sp.hit.p);
+      float cosTheta = glm::dot(sp.ns, s.wi);
+      if (isBlack(s.Li) || !leavesSurface(sp, s.wi, cosTheta)) continue;
+      if (scene.geometry.occluded(sp.spawnRayTo(light.position, maxComponent(glm::abs(light.position)))))
+        continue;
+      E += s.Li * cosTheta;
+    }
+    for (const DirectionalLight& light : scene.directionalLights) {
+      DeltaLightSample s = light.sample(sp.hit.p);
+      float cosTheta = glm::dot(sp.ns, s.wi);
+      if (isBlack(s.Li) || !leavesSurface(sp, s.wi, cosTheta)) continue;
+      if (scene.geometry.occluded(sp.spawnRay(s.wi, scene.rayLengthBound))) continue;
+      E += s.Li * cosTheta;
+    }
+    return E;
+  }
+
+  Color3 hemisphereIrradiance(const Scene& scene, const ShadingPoint& sp, Sampler& sampler) const {
+    Color3 E(0.f);
+    for (int i = 0; i < samples; ++i) {
+      Vec2 u = sampler.next2D();
+      Vec3 local;
+      float invPdf;
+      if constexpr (kStrategy == DirectStrategy::CosineHemisphere) {
+        local = Warp::squareToCosineHemisphere(u);
+        if (!(local.z > 0.f)) continue;
+        invPdf = kPi / local.z;
+      } else {
+        local = Warp::squareToUniformHemisphere(u);
+        invPdf = 2.f * kPi;
+      }
+      Vec3 w = sp.frame.toWorld(local);
+      if (!leavesSurface(sp, w, local.z)) continue;
+      SurfaceHit lightHit;
+      if (!scene.geometry.intersect(sp.spawnRay(w, INFINITY), lightHit)) continue;
+      int32_t light = scene.materials[lightHit.objectId].sphereLight;
+      if (light < 0) continue;
+      E += scene.sphereLights[light].eval(lightHit.p, lightHit.ng, w) * (local.z * invPdf);
+    }
+    return E / float(samples);
+  }
+
+  Color3 lightSamplingIrradiance(const Scene& scene, const ShadingPoint& sp, Sampler& sampler) const {
+    Color3 E(0.f);
+    for (const SphereLight& light : scene.sphereLights) {
+      float lightScale = maxComponent(glm::abs(light.sphere.center)) + light.sphere.radius;
+      for (int i = 0; i < samples; ++i) {
+        Vec2 u = sampler.next2D();
+        LightSample s = kStrategy == DirectStrategy::Area ? light.sampleArea(sp.hit.p, u)
+                                                          : light.sampleSolidAngle(sp.hit.p, u);
+        if (!(s.pdf > 0.f) || isBlack(s.Le)) continue;
+        float cosTheta = glm::dot(sp.ns, s.wi);
+        if (!leavesSurface(sp, s.wi, cosTheta)) continue;
+        if (scene.geometry.occluded(sp.spawnRayTo(s.p, lightScale))) continue;
+        E += s.Le * (cosTheta / s.pdf);
+      }
+    }
+    return E / float(samples);
+  }
+};
+
+}  // namespace penumbra

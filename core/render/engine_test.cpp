@@ -1,0 +1,127 @@
+#include "core/render/engine.h"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <thread>
+
+#include "core/scene/scene_builder.h"
+
+namespace penumbra {
+namespace {
+
+std::shared_ptr<RenderJob> smallJob(const char* integratorOverride = nullptr) {
+  std::vector<std::pair<std::string, std::string>> sets = {{"camera.width", "48"}, {"camera.height", "32"}};
+  if (integratorOverride) sets.emplace_back("integrator.measure", integratorOverride);
+  LoadedScene s = loadSceneFromString(defaultSceneXml(), "default", ".", sets);
+  auto job = std::make_shared<RenderJob>();
+  job->scene = s.scene;
+  job->settings = s.settings;
+  job->settings.seed = 42;
+  return job;
+}
+
+Image render(std::shared_ptr<RenderJob> job, uint32_t spp, int threads) {
+  Engine engine;
+  engine.start(job, RenderLimits{spp, 0.0}, threads);
+  engine.wait();
+  EXPECT_EQ(engine.progress().spp, spp);
+  EXPECT_TRUE(engine.progress().finished);
+  return engine.film().mean(spp);
+}
+
+TEST(Engine, ImageDoesNotDependOnThreadCount) {
+  auto job = smallJob();
+  Image a = render(job, 8, 1), b = render(job, 8, 2), c = render(job, 8, 5);
+  ASSERT_EQ(a.rgb.size(), b.rgb.size());
+  EXPECT_EQ(a.rgb, b.rgb);  // bitwise
+  EXPECT_EQ(a.rgb, c.rgb);
+}
+
+TEST(Engine, SeedChangesTheImage) {
+  auto job = smallJob();
+  Image a = render(job, 4, 2);
+  auto other = std::make_shared<RenderJob>(*job);
+  other->settings.seed = 43;
+  Image b = render(other, 4, 2);
+  EXPECT_NE(a.rgb, b.rgb);
+}
+
+TEST(Engine, CancelStopsQuicklyAndRestartBeginsAtZero) {
+  auto job = smallJob();
+  Engine engine;
+  engine.start(job, RenderLimits{}, 2);  // unlimited
+  std::this_thread::sleep_for(std::chrono::milliseconds(30));
+  auto t0 = std::chrono::steady_clock::now();
+  engine.cancel();
+  double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  EXPECT_LT(ms, 1000.0);  // generous: a row takes well under a millisecond; this only catches hangs
+  EXPECT_TRUE(engine.progress().finished);
+  uint32_t before = engine.progress().spp;
+  EXPECT_GT(before, 0u);
+  engine.start(job, RenderLimits{3, 0.0}, 2);
+  engine.wait();
+  EXPECT_EQ(engine.progress().spp, 3u);
+}
+
+TEST(Engine, RequestStopFinishesTheCurrentPass) {
+  auto job = smallJob();
+  Engine engine;
+  engine.start(job, RenderLimits{}, 2);
+  std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  engine.requestStop();
+  engine.wait();
+  uint32_t spp = engine.progress().spp;
+  EXPECT_GT(spp, 0u);
+  // The film holds exactly `spp` whole passes: it equals a fresh render of that many passes.
+  Image stopped = engine.film().mean(spp);
+  EXPECT_EQ(stopped.rgb, render(job, spp, 1).rgb);
+}
+
+TEST(Engine, PausedRenderMakesNoProgress) {
+  auto job = smallJob();
+  Engine engine;
+  engine.start(job, RenderLimits{}, 2);
+  std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  engine.setPaused(true);
+  std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  uint32_t a = engine.progress().spp;
+  std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  EXPECT_LE(engine.progress().spp, a + 1);  // at most the pass that was running when paused
+  uint32_t b = engine.progress().spp;
+  std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  EXPECT_EQ(engine.progress().spp, b);
+  engine.setPaused(false);
+  std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  EXPECT_GT(engine.progress().spp, b);
+  engine.cancel();
+}
+
+TEST(Engine, SnapshotsArePublishedOnRequest) {
+  auto job = smallJob();
+  Engine engine;
+  engine.start(job, RenderLimits{}, 2);
+  FilmSnapshot snap;
+  bool got = false;
+  for (int i = 0; i < 200 && !got; ++i) {
+    engine.requestSnapshot(true);
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    got = engine.latestSnapshot(snap) && snap.spp > 0;
+  }
+  engine.cancel();
+  ASSERT_TRUE(got);
+  EXPECT_EQ(snap.mean.width, 48);
+  EXPECT_EQ(snap.standardError.width, 48);
+}
+
+TEST(Engine, TimeLimitStopsTheRender) {
+  auto job = smallJob();
+  Engine engine;
+  engine.start(job, RenderLimits{0, 0.05}, 2);
+  engine.wait();
+  EXPECT_TRUE(engine.progress().finished);
+  EXPECT_GE(engine.progress().seconds, 0.05);
+}
+
+}  // namespace
+}  // namespace penumbra

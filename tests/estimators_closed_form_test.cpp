@@ -1,0 +1,162 @@
+// Every estimator against closed-form ground truth (../shared/reference/closed-forms.md), with a
+// statistical bound: |estimate - truth| < 4 standard errors of the estimate (plus a tiny absolute
+// slack for float rounding when the truth is exactly representable).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <sstream>
+
+#include "core/analysis/closed_forms.h"
+#include "core/integrators/ao_integrator.h"
+#include "core/integrators/direct_integrator.h"
+#include "tests/test_support.h"
+
+namespace penumbra {
+namespace {
+
+using test::Estimate;
+using test::estimateRay;
+
+// A diffuse plane z = 0 (albedo 1, half-size `planeHalf`) and one sphere light.
+LoadedScene planeAndLight(const Vec3& c, float r, float Le, float planeHalf = 1000.f) {
+  std::ostringstream xml;
+  xml.precision(9);
+  xml << "<scene><integrator type=\"direct\"/>"
+      << "<shape type=\"plane\"><bsdf type=\"diffuse\"><color name=\"albedo\" value=\"1\"/></bsdf>"
+      << "<transform name=\"toWorld\"><scale value=\"" << planeHalf << ",1," << planeHalf << "\"/>"
+      << "<rotate axis=\"1,0,0\" angle=\"90\"/></transform></shape>"
+      << "<shape type=\"sphere\"><point name=\"center\" value=\"" << c.x << "," << c.y << "," << c.z << "\"/>"
+      << "<float name=\"radius\" value=\"" << r << "\"/><emitter type=\"area\"><color name=\"radiance\" value=\""
+      << Le << "\"/></emitter></shape></scene>";
+  return loadSceneFromString(xml.str(), "test.xml", ".");
+}
+
+// Reaches x on the plane z = 0 at a grazing angle, so the camera ray passes under a light that
+// nearly touches the plane instead of through it.
+Ray grazingRayOnto(const Vec3& x) {
+  Ray r;
+  r.o = x + Vec3(-1.f, 0.f, 1e-7f);
+  r.d = glm::normalize(x - r.o);
+  return r;
+}
+
+template <DirectStrategy S>
+Estimate directAt(const LoadedScene& s, const Vec3& x, int n, uint64_t seed) {
+  DirectIntegrator<S> integrator{1};
+  return estimateRay(*s.scene, integrator, grazingRayOnto(x), n, seed);
+}
+
+struct LightCase {
+  const char* name;
+  Vec3 c;
+  float r;
+  float Le;
+  bool hemisphereToo;  // hemisphere sampling of tiny lights has (correctly) enormous variance
+};
+
+void checkAgainstTruth(const char* what, const Estimate& e, double truth) {
+  EXPECT_EQ(e.bad, 0u) << what;
+  double tolerance = 4.0 * e.standardError + 1e-6 * std::fabs(truth);
+  EXPECT_NEAR(e.mean, truth, tolerance) << what << ": estimate " << e.mean << " ± " << e.standardError;
+}
+
+class DirectClosedForm : public ::testing::TestWithParam<LightCase> {};
+
+TEST_P(DirectClosedForm, EveryMeasureMatchesTheIrradianceClosedForm) {
+  const LightCase& lc = GetParam();
+  LoadedScene s = planeAndLight(lc.c, lc.r, lc.Le);
+  const Vec3 x(0.f);
+  // Lr = albedo/pi * Le * I(theta, alpha), albedo = 1.
+  double truth = lc.Le / M_PI *
+                 sphereLightIrradianceFactor(glm::dvec3(0), glm::dvec3(0, 0, 1), glm::dvec3(lc.c), double(lc.r));
+  const int n = 40000;
+  for (uint64_t seed : {1u, 2u}) {
+    checkAgainstTruth("solid-angle", directAt<DirectStrategy::SolidAngle>(s, x, n, seed), truth);
+    checkAgainstTruth("area", directAt<DirectStrategy::Area>(s, x, n, seed), truth);
+    if (lc.hemisphereToo) {
+      checkAgainstTruth("cosine-hemisphere", directAt<DirectStrategy::CosineHemisphere>(s, x, 4 * n, seed), truth);
+      checkAgainstTruth("uniform-hemisphere", directAt<DirectStrategy::UniformHemisphere>(s, x, 4 * n, seed), truth);
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Lights, DirectClosedForm,
+    ::testing::Values(LightCase{"above", Vec3(0.5f, 0.2f, 2.f), 0.5f, 10.f, true},
+                      LightCase{"overhead", Vec3(0.f, 0.f, 3.f), 1.f, 1.f, true},
+                      LightCase{"straddling", Vec3(1.5f, 0.f, 0.3f), 0.6f, 5.f, true},
+                      LightCase{"centreOnHorizon", Vec3(2.f, 0.f, 0.f), 0.5f, 5.f, true},
+                      LightCase{"grazing89_9", Vec3(2.f * std::cos(0.0017453f), 0.f, 2.f * std::sin(0.0017453f)), 0.3f,
+                                5.f, true},
+                      LightCase{"tinyDistant", Vec3(300.f, 100.f, 800.f), 0.01f, 1e7f, false},
+                      LightCase{"veryTinyDistant", Vec3(0.f, 3000.f, 4000.f), 0.005f, 1e9f, false},
+                      LightCase{"justOutsideSurface", Vec3(0.f, 0.f, 1.000001f), 1.f, 1.f, true},
+                      LightCase{"belowHorizon", Vec3(0.f, 2.f, -1.5f), 1.f, 1.f, true}),
+    [](const auto& info) { return std::string(info.param.name); });
+
+TEST(DirectClosedForm, LightBelowTheHorizonGivesExactlyZero) {
+  LoadedScene s = planeAndLight(Vec3(0, 2, -1.5f), 1.f, 100.f);
+  for (auto e : {directAt<DirectStrategy::SolidAngle>(s, Vec3(0), 1000, 3), directAt<DirectStrategy::Area>(s, Vec3(0), 1000, 3),
+                 directAt<DirectStrategy::UniformHemisphere>(s, Vec3(0), 1000, 3)}) {
+    EXPECT_EQ(e.mean, 0.0);
+    EXPECT_EQ(e.bad, 0u);
+  }
+}
+
+// ---- ambient occlusion --------------------------------------------------------------------------
+
+// A sphere of radius R resting on the plane z = 0 at the origin.
+LoadedScene restingSphere(float R) {
+  std::ostringstream xml;
+  xml.precision(9);
+  xml << "<scene><integrator type=\"ao\"/>"
+      << "<shape type=\"plane\"><transform name=\"toWorld\"><scale value=\"2000,1,2000\"/>"
+      << "<rotate axis=\"1,0,0\" angle=\"90\"/></transform></shape>"
+      << "<shape type=\"sphere\"><point name=\"center\" value=\"0,0," << R << "\"/><float name=\"radius\" value=\"" << R
+      << "\"/></shape></scene>";
+  return loadSceneFromString(xml.str(), "ao.xml", ".");
+}
+
+template <HemisphereWarp W>
+Estimate aoAt(const LoadedScene& s, const Ray& ray, int n, uint64_t seed) {
+  AoIntegrator<W> integrator{1};
+  return estimateRay(*s.scene, integrator, ray, n, seed);
+}
+
+TEST(AoClosedForm, PlaneNextToARestingSphere) {
+  const float R = 1.f;
+  LoadedScene s = restingSphere(R);
+  for (float rho : {0.05f, 0.3f, 1.f, 2.5f}) {
+    double truth = aoPlaneNearRestingSphere(rho, R);
+    // Look straight down onto the plane point (rho, 0, 0) from just above it.
+    Ray ray = test::rayOnto(Vec3(rho, 0, 0), Vec3(0, 0, 1), 1e-3f);
+    checkAgainstTruth("ao uniform", aoAt<HemisphereWarp::Uniform>(s, ray, 100000, 5), truth);
+    checkAgainstTruth("ao cosine", aoAt<HemisphereWarp::Cosine>(s, ray, 100000, 6), truth);
+  }
+}
+
+TEST(AoClosedForm, PointsOnARestingSphere) {
+  const float R = 1.f;
+  LoadedScene s = restingSphere(R);
+  for (float psiDeg : {0.f, 45.f, 90.f, 135.f, 170.f}) {
+    double psi = psiDeg * M_PI / 180.0;
+    Vec3 n(float(std::sin(psi)), 0.f, float(std::cos(psi)));
+    Vec3 p = Vec3(0, 0, R) + R * n;
+    double truth = aoOnRestingConvexBody(psi);
+    Ray ray = test::rayOnto(p, n, 0.01f);
+    checkAgainstTruth("ao uniform", aoAt<HemisphereWarp::Uniform>(s, ray, 100000, 7), truth);
+    checkAgainstTruth("ao cosine", aoAt<HemisphereWarp::Cosine>(s, ray, 100000, 8), truth);
+  }
+}
+
+TEST(AoClosedForm, ACameraRayThatMissesIsBlack) {
+  LoadedScene s = restingSphere(1.f);
+  Ray ray;
+  ray.o = Vec3(0, 0, 5);
+  ray.d = Vec3(0, 0, 1);
+  Estimate e = aoAt<HemisphereWarp::Cosine>(s, ray, 100, 1);
+  EXPECT_EQ(e.mean, 0.0);
+}
+
+}  // namespace
+}  // namespace penumbra
