@@ -245,7 +245,6 @@ int runViewer(LoadedScene scene, ViewerController::Overrides overrides, const Vi
           // Last frame: let the accumulation reach its limit first (bounded wait).
           while (!controller.progress().finished && msSince(t0) < 120000)
             std::this_thread::sleep_for(std::chrono::milliseconds(5));
-          controller.pollSnapshot(false);
           app.frame();  // picks up the final snapshot
         }
         app.frame();
