@@ -116,7 +116,8 @@ void SceneGeometry::build(AccelMode mode) {
   checkEmbree(device, "rtcNewScene");
   scene_ = scene;
   rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_HIGH);
-  rtcSetSceneFlags(scene, RTC_SCENE_FLAG_ROBUST);  // no cracks between triangles sharing an edge
+  // Watertight like the flat loop (no cracks between triangles sharing an edge); costs ~15-20%.
+  rtcSetSceneFlags(scene, RTC_SCENE_FLAG_ROBUST);
   for (uint32_t m = 0; m < meshes_.size(); ++m) {
     const TriangleMesh& mesh = meshes_[m];
     RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
@@ -165,16 +166,30 @@ bool SceneGeometry::intersect(const Ray& ray, SurfaceHit& hit) const {
       primHit = rh.hit.primID;
       best = {rh.ray.tfar, 1.f - rh.hit.u - rh.hit.v, rh.hit.u, rh.hit.v};
     }
-  } else {
-    for (const FlatTriangle& tri : flat_) {
-      TriangleIntersection isect;
-      if (intersectTriangle(r, r.tMax, tri.p0, tri.p1, tri.p2, isect)) {
-        r.tMax = isect.t;
-        best = isect;
-        triHit = true;
-        meshHit = tri.mesh;
-        primHit = tri.prim;
+  } else if (!flat_.empty()) {
+    const TriangleRay tr(r);
+    auto loop = [&]<int KZ>() {
+      for (const FlatTriangle& tri : flat_) {
+        TriangleIntersection isect;
+        if (intersectTriangleK<KZ>(tr, r.tMax, tri.p0, tri.p1, tri.p2, isect)) {
+          r.tMax = isect.t;
+          best = isect;
+          triHit = true;
+          meshHit = tri.mesh;
+          primHit = tri.prim;
+        }
       }
+    };
+    switch (tr.kz) {
+      case 0:
+        loop.template operator()<0>();
+        break;
+      case 1:
+        loop.template operator()<1>();
+        break;
+      default:
+        loop.template operator()<2>();
+        break;
     }
   }
 
@@ -200,11 +215,23 @@ bool SceneGeometry::occluded(const Ray& ray) const {
     rtcOccluded1(static_cast<RTCScene>(scene_), &context, &r);
     return r.tfar < 0.f;  // Embree sets tfar = -inf on a hit
   }
-  for (const FlatTriangle& tri : flat_) {
-    TriangleIntersection isect;
-    if (intersectTriangle(ray, ray.tMax, tri.p0, tri.p1, tri.p2, isect)) return true;
+  if (flat_.empty()) return false;
+  const TriangleRay tr(ray);
+  auto loop = [&]<int KZ>() {
+    for (const FlatTriangle& tri : flat_) {
+      TriangleIntersection isect;
+      if (intersectTriangleK<KZ>(tr, ray.tMax, tri.p0, tri.p1, tri.p2, isect)) return true;
+    }
+    return false;
+  };
+  switch (tr.kz) {
+    case 0:
+      return loop.template operator()<0>();
+    case 1:
+      return loop.template operator()<1>();
+    default:
+      return loop.template operator()<2>();
   }
-  return false;
 }
 
 }  // namespace penumbra

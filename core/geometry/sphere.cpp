@@ -4,50 +4,6 @@
 #include <utility>
 
 namespace penumbra {
-namespace {
-
-// Both roots t0 <= t1 of the ray-sphere quadratic; false if the ray misses the sphere.
-inline bool sphereRoots(const Sphere& s, const Ray& ray, double& t0, double& t1) {
-  const DVec3 f = DVec3(ray.o) - DVec3(s.center);
-  const DVec3 d(ray.d);
-  const double r = s.radius;
-  const double a = glm::dot(d, d);
-  const double b = glm::dot(f, d);  // half of the usual b
-  // Closest-approach form: b^2 - a·c = a·(r^2 - |f - (b/a)·d|^2), accurate when |f| >> r.
-  const DVec3 v = f - (b / a) * d;
-  const double disc = r * r - glm::dot(v, v);
-  if (!(disc >= 0.0)) return false;  // also rejects NaN (degenerate d)
-  const double c = glm::dot(f, f) - r * r;
-  const double q = -(b + std::copysign(std::sqrt(a * disc), b));
-  t0 = c / q;
-  t1 = q / a;
-  if (q == 0.0) t0 = t1;  // r == 0 tangent case: c == 0 too
-  if (t0 > t1) std::swap(t0, t1);
-  return true;
-}
-
-}  // namespace
-
-bool Sphere::intersect(const Ray& ray, float& tHit) const {
-  double t0, t1;
-  if (!sphereRoots(*this, ray, t0, t1)) return false;
-  double t;
-  if (t0 > ray.tMin && t0 < ray.tMax)
-    t = t0;
-  else if (t1 > ray.tMin && t1 < ray.tMax)
-    t = t1;
-  else
-    return false;
-  tHit = static_cast<float>(t);
-  return true;
-}
-
-bool Sphere::occludes(const Ray& ray) const {
-  double t0, t1;
-  if (!sphereRoots(*this, ray, t0, t1)) return false;
-  return (t0 > ray.tMin && t0 < ray.tMax) || (t1 > ray.tMin && t1 < ray.tMax);
-}
-
 void Sphere::fillHit(const Ray& ray, float t, uint32_t objectId, SurfaceHit& hit) const {
   const DVec3 c(center);
   DVec3 n = DVec3(ray.o) + static_cast<double>(t) * DVec3(ray.d) - c;

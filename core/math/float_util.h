@@ -1,6 +1,7 @@
 // Robust float helpers: square roots that never see a negative, 1 - cos from sin^2, ray origin offsets.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/math/vec.h"
