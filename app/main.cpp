@@ -1,4 +1,5 @@
-// penumbra: one executable, one subcommand per file under app/cli/.
+// penumbra: one subcommand per file under app/cli/. Built twice: `penumbra` (GLFW window) and
+// `penumbra-offscreen` (OSMesa); see app/cli/view_command.cpp.
 #include <cstdio>
 #include <exception>
 
@@ -12,7 +13,15 @@ int main(int argc, char** argv) {
   penumbra::cli::addWarpCommand(app, exitCode);
   penumbra::cli::addRenderCommand(app, exitCode);
   penumbra::cli::addBenchCommand(app, exitCode);
+  penumbra::cli::addViewCommand(app, exitCode);
 
+  // `penumbra` with no arguments opens the viewer on the built-in scene.
+  char viewArg[] = "view";
+  char* viewArgv[] = {argv[0], viewArg, nullptr};
+  if (argc == 1) {
+    argc = 2;
+    argv = viewArgv;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,0 +1,116 @@
+// penumbra view: the interactive viewer (app/ui) in a GLFW window, or offscreen through OSMesa.
+//
+// Two executables are built from the same UI library: `penumbra` (GLFW + libGL) and
+// `penumbra-offscreen` (OSMesa, no libGL: an executable must not link both, or gl* calls go to the
+// wrong library). `penumbra view --offscreen`, and `penumbra view` on a machine without a display,
+// re-execute the sibling penumbra-offscreen with the same options, so users see one command.
+// This file is compiled into each executable (not into penumbra_cli, which the tests link without GL).
+#include <cstdio>
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <string>
+#include <unistd.h>
+#include <vector>
+
+#include "app/cli/commands.h"
+#include "app/cli/scene_options.h"
+#include "app/platform/platform.h"
+#include "app/ui/viewer_app.h"
+#include "core/math/error.h"
+
+namespace penumbra::cli {
+
+namespace {
+
+struct ViewOptions {
+  SceneOptions scene;
+  bool offscreen = false;
+  int frames = -1;
+  std::string screenshot;
+  bool bench = false;
+  bool noWait = false;
+  bool printLayout = false;
+  int threads = 0;
+  std::string window;  // WxH
+};
+
+constexpr const char* kFallbackScreenshot = "penumbra-view.png";
+
+std::string offscreenBinary() {
+  std::error_code ec;
+  std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (ec) throw Error("cannot locate the penumbra executable (/proc/self/exe): " + ec.message());
+  return (self.parent_path() / "penumbra-offscreen").string();
+}
+
+// Re-runs this command in penumbra-offscreen; returns only on failure.
+[[noreturn]] void execOffscreen(const ViewOptions& o) {
+  std::string bin = offscreenBinary();
+  std::vector<std::string> args = {bin, "view"};
+  if (!o.scene.scenePath.empty()) args.push_back(o.scene.scenePath);
+  for (const std::string& s : o.scene.sets) args.insert(args.end(), {"--set", s});
+  if (o.frames >= 0) args.insert(args.end(), {"--frames", std::to_string(o.frames)});
+  args.insert(args.end(), {"--screenshot", o.screenshot.empty() && !o.bench ? kFallbackScreenshot : o.screenshot});
+  if (args.back().empty()) args.resize(args.size() - 2);
+  if (o.bench) args.push_back("--bench");
+  if (o.noWait) args.push_back("--no-wait");
+  if (o.printLayout) args.push_back("--print-layout");
+  if (o.threads > 0) args.insert(args.end(), {"--threads", std::to_string(o.threads)});
+  if (!o.window.empty()) args.insert(args.end(), {"--window", o.window});
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  std::fflush(stdout);
+  std::fflush(stderr);
+  execv(bin.c_str(), argv.data());
+  throw Error("cannot run " + bin + " for offscreen rendering: " + std::strerror(errno));
+}
+
+int runView(ViewOptions o) {
+  const bool offscreenBuild = platform::isOffscreenBuild();
+  if (!offscreenBuild) {
+    std::string why;
+    if (!o.offscreen && !platform::displayAvailable(why)) {
+      std::fprintf(stderr, "penumbra view: %s; rendering offscreen instead (OSMesa) and writing %s\n", why.c_str(),
+                   o.screenshot.empty() ? kFallbackScreenshot : o.screenshot.c_str());
+      o.offscreen = true;
+    }
+    if (o.offscreen) execOffscreen(o);
+  }
+
+  LoadedScene loaded = o.scene.load();  // throws penumbra::Error (exit code 2) on a bad scene
+  ui::ViewerOptions vo;
+  vo.bench = o.bench;
+  vo.threads = o.threads;
+  vo.printLayout = o.printLayout;
+  vo.screenshot = o.screenshot;
+  if (offscreenBuild && vo.screenshot.empty() && !o.bench) vo.screenshot = kFallbackScreenshot;
+  vo.frames = o.frames >= 0 ? o.frames : (offscreenBuild ? 3 : 0);
+  vo.waitForTarget = offscreenBuild && !o.noWait && !vo.screenshot.empty();
+  if (!o.window.empty()) {
+    if (std::sscanf(o.window.c_str(), "%dx%d", &vo.windowWidth, &vo.windowHeight) != 2 || vo.windowWidth < 64 ||
+        vo.windowHeight < 64)
+      throw Error("--window " + o.window + ": expected WIDTHxHEIGHT, e.g. 1280x800");
+  }
+  return ui::runViewer(std::move(loaded), o.scene.overrides(), vo);
+}
+
+}  // namespace
+
+void addViewCommand(CLI::App& app, int& exitCode) {
+  auto opts = std::make_shared<ViewOptions>();
+  CLI::App* cmd = app.add_subcommand("view", "Open the interactive progressive viewer (default: the built-in scene)");
+  opts->scene.addTo(*cmd, /*sceneRequired=*/false);
+  cmd->add_flag("--offscreen", opts->offscreen, "Render the UI offscreen (OSMesa) instead of opening a window");
+  cmd->add_option("--frames", opts->frames, "Stop after N UI frames (offscreen default: 3)")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--screenshot", opts->screenshot, "Write the last frame, panels included, to this PNG");
+  cmd->add_flag("--no-wait", opts->noWait, "Offscreen: take the screenshot without waiting for the target spp");
+  cmd->add_flag("--bench", opts->bench, "Measure UI frame time, restart latency and throughput lost to the UI");
+  cmd->add_option("--threads", opts->threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 1024));
+  cmd->add_option("--window", opts->window, "Window / offscreen buffer size, e.g. 1280x800");
+  cmd->add_flag("--print-layout", opts->printLayout, "Print where the image is drawn (for tests)")->group("");
+  cmd->callback([opts, &exitCode] { exitCode = runView(*opts); });
+}
+
+}  // namespace penumbra::cli

@@ -1,0 +1,77 @@
+#include <cmath>
+
+#include <imgui.h>
+
+#include "app/ui/panels.h"
+
+namespace penumbra::ui {
+
+void drawDisplayPanel(ViewerController& c, PanelState& st) {
+  if (!ImGui::CollapsingHeader("Display", ImGuiTreeNodeFlags_DefaultOpen)) return;
+  DisplaySettings& d = c.display;
+  ImGui::SliderFloat("exposure", &d.exposure, -10.f, 10.f, "%+.2f stops");
+  int tm = int(d.tonemap);
+  const char* tms[] = {"sRGB", "gamma 2.2"};
+  if (ImGui::Combo("tonemap", &tm, tms, 2)) d.tonemap = Tonemap(tm);
+  int fc = int(d.falseColour);
+  const char* fcs[] = {"none", "relative std. error", "NaN/Inf/negative"};
+  if (ImGui::Combo("false colour", &fc, fcs, 3)) d.falseColour = FalseColour(fc);
+  if (d.falseColour == FalseColour::RelativeError)
+    ImGui::TextDisabled("log scale: blue 0.1%% .. red 100%%");
+  if (d.falseColour == FalseColour::BadPixels)
+    ImGui::TextDisabled("magenta: NaN/Inf, cyan: negative");
+  float zoomLog = std::log2(d.zoom);
+  if (ImGui::SliderFloat("zoom", &zoomLog, -4.f, 4.f, "")) {
+    d.zoom = std::exp2(zoomLog);
+    d.fit = false;
+  }
+  ImGui::SameLine();
+  ImGui::Text("%.3gx", d.zoom);
+  if (ImGui::Button("1:1")) {
+    d.zoom = 1.f;
+    d.panX = d.panY = 0.f;
+    d.fit = false;
+  }
+  ImGui::SameLine();
+  if (ImGui::Button("Fit (F)")) {
+    d.fit = true;
+    d.panX = d.panY = 0.f;
+  }
+
+  // Pixel inspector.
+  const FilmSnapshot& snap = c.snapshot();
+  if (st.hoverValid && !snap.mean.empty()) {
+    Color3 v = snap.mean.at(st.hoverX, st.hoverY);
+    ImGui::Text("pixel (%d, %d)", st.hoverX, st.hoverY);
+    if (!snap.standardError.empty() && snap.standardError.width == snap.mean.width) {
+      Color3 e = snap.standardError.at(st.hoverX, st.hoverY);
+      ImGui::Text("R %.5g ± %.2g", v.x, e.x);
+      ImGui::Text("G %.5g ± %.2g", v.y, e.y);
+      ImGui::Text("B %.5g ± %.2g", v.z, e.z);
+    } else {
+      ImGui::Text("RGB %.5g %.5g %.5g", v.x, v.y, v.z);
+    }
+  } else {
+    ImGui::TextDisabled("hover the image to inspect a pixel");
+  }
+
+  ImGui::Separator();
+  ImGui::SetNextItemWidth(-70);
+  ImGui::InputText("##save", st.savePath, sizeof st.savePath);
+  ImGui::SameLine();
+  if (ImGui::Button("Save")) st.requestSavePng = true;
+  ImGui::TextDisabled(".png: display (exposure applied); .exr/.pfm: accumulation");
+  ImGui::SetNextItemWidth(-70);
+  ImGui::InputText("##savescene", st.sceneSavePath, sizeof st.sceneSavePath);
+  ImGui::SameLine();
+  if (ImGui::Button("Save as")) {
+    try {
+      st.status = c.saveSceneAs(st.sceneSavePath);
+    } catch (const std::exception& e) {
+      st.status = e.what();
+    }
+  }
+  if (!st.status.empty()) ImGui::TextWrapped("%s", st.status.c_str());
+}
+
+}  // namespace penumbra::ui

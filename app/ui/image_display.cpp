@@ -1,0 +1,139 @@
+#include "app/ui/image_display.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#define GL_GLEXT_PROTOTYPES 1
+#include <GL/gl.h>
+#include <GL/glext.h>
+
+#include "core/math/error.h"
+#include "penumbra_shaders.h"  // generated from shaders/
+
+namespace penumbra::ui {
+
+namespace {
+
+GLuint compile(GLenum type, const char* source, const char* name) {
+  GLuint s = glCreateShader(type);
+  glShaderSource(s, 1, &source, nullptr);
+  glCompileShader(s);
+  GLint ok = 0;
+  glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
+  if (!ok) {
+    char log[4096] = "";
+    glGetShaderInfoLog(s, sizeof log, nullptr, log);
+    glDeleteShader(s);
+    throw Error(std::string("shaders/") + name + ": " + log);
+  }
+  return s;
+}
+
+void makeTexture(GLuint& tex) {
+  glGenTextures(1, &tex);
+  glBindTexture(GL_TEXTURE_2D, tex);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  const float zero[3] = {0, 0, 0};
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB32F, 1, 1, 0, GL_RGB, GL_FLOAT, zero);
+}
+
+void uploadImage(GLuint tex, const Image& img, int& w, int& h) {
+  glBindTexture(GL_TEXTURE_2D, tex);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  if (w != img.width || h != img.height) {
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB32F, img.width, img.height, 0, GL_RGB, GL_FLOAT, img.rgb.data());
+    w = img.width;
+    h = img.height;
+  } else {
+    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, img.width, img.height, GL_RGB, GL_FLOAT, img.rgb.data());
+  }
+}
+
+}  // namespace
+
+ImageLayout layoutImage(const DisplaySettings& d, int imageW, int imageH, int areaX, int areaW, int areaH) {
+  ImageLayout l;
+  l.width = imageW;
+  l.height = imageH;
+  if (imageW <= 0 || imageH <= 0) return l;
+  float zoom = d.zoom;
+  if (d.fit) {
+    float z = std::min(float(areaW) / imageW, float(areaH) / imageH);
+    zoom = z >= 1.f ? std::floor(z) : z;  // integer magnification keeps pixels exact
+    if (!(zoom > 0.f)) zoom = 1.f;
+  }
+  l.zoom = zoom;
+  l.x = std::round(areaX + (areaW - imageW * zoom) * 0.5f + d.panX);
+  l.y = std::round((areaH - imageH * zoom) * 0.5f + d.panY);
+  return l;
+}
+
+ImageDisplay::ImageDisplay() {
+  GLuint vs = compile(GL_VERTEX_SHADER, shaders::k_display_vert, "display.vert");
+  GLuint fs = compile(GL_FRAGMENT_SHADER, shaders::k_display_frag, "display.frag");
+  program_ = glCreateProgram();
+  glAttachShader(program_, vs);
+  glAttachShader(program_, fs);
+  glLinkProgram(program_);
+  glDeleteShader(vs);
+  glDeleteShader(fs);
+  GLint ok = 0;
+  glGetProgramiv(program_, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    char log[4096] = "";
+    glGetProgramInfoLog(program_, sizeof log, nullptr, log);
+    throw Error(std::string("shaders/display: link failed: ") + log);
+  }
+  glGenVertexArrays(1, &vao_);
+  makeTexture(mean_);
+  makeTexture(stdErr_);
+  meanW_ = meanH_ = errW_ = errH_ = 1;
+}
+
+ImageDisplay::~ImageDisplay() {
+  glDeleteTextures(1, &mean_);
+  glDeleteTextures(1, &stdErr_);
+  glDeleteVertexArrays(1, &vao_);
+  glDeleteProgram(program_);
+}
+
+void ImageDisplay::upload(const FilmSnapshot& snapshot) {
+  // A restart publishes an empty snapshot: keep showing the previous image until the first pass of
+  // the new accumulation arrives (no flash to the background while dragging the camera).
+  if (snapshot.mean.empty()) return;
+  hasImage_ = true;
+  uploadImage(mean_, snapshot.mean, meanW_, meanH_);
+  if (!snapshot.standardError.empty()) uploadImage(stdErr_, snapshot.standardError, errW_, errH_);
+  ++uploads_;
+}
+
+void ImageDisplay::draw(const DisplaySettings& d, const ImageLayout& l, int fbWidth, int fbHeight) const {
+  glViewport(0, 0, fbWidth, fbHeight);
+  glDisable(GL_BLEND);
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_SCISSOR_TEST);
+  glUseProgram(program_);
+  glActiveTexture(GL_TEXTURE1);
+  glBindTexture(GL_TEXTURE_2D, stdErr_);
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D, mean_);
+  glUniform1i(glGetUniformLocation(program_, "uMean"), 0);
+  glUniform1i(glGetUniformLocation(program_, "uStdErr"), 1);
+  glUniform2f(glGetUniformLocation(program_, "uTopLeft"), l.x, float(fbHeight) - l.y);
+  glUniform1f(glGetUniformLocation(program_, "uZoom"), l.zoom);
+  glUniform1f(glGetUniformLocation(program_, "uExposure"), d.exposure);
+  glUniform1i(glGetUniformLocation(program_, "uTonemap"), int(d.tonemap));
+  glUniform1i(glGetUniformLocation(program_, "uView"), int(d.falseColour));
+  glUniform1i(glGetUniformLocation(program_, "uHasImage"), hasImage_ ? 1 : 0);
+  glUniform3f(glGetUniformLocation(program_, "uBackground"), 0.16f, 0.16f, 0.17f);
+  glBindVertexArray(vao_);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glBindVertexArray(0);
+  glUseProgram(0);
+}
+
+}  // namespace penumbra::ui

@@ -1,0 +1,39 @@
+// One function per ImGui panel (scene, integrator, sampler, camera, display, stats, help), each in its
+// own file. They read and edit the ViewerController; nothing here touches GL.
+#pragma once
+
+#include <string>
+
+#include "app/ui/viewer_controller.h"
+
+namespace penumbra::ui {
+
+// UI-only state shared by the panels (text fields, messages, toggles).
+struct PanelState {
+  char openPath[1024] = "";
+  char savePath[1024] = "penumbra.png";
+  char sceneSavePath[1024] = "scene-live.xml";
+  std::string status;         // last save / load message
+  bool showHelp = false;
+  bool hoverValid = false;    // pixel inspector: the cursor is over the image
+  int hoverX = 0, hoverY = 0;
+  bool requestSavePng = false;
+};
+
+void drawScenePanel(ViewerController& c, PanelState& st);
+void drawIntegratorPanel(ViewerController& c, PanelState& st);
+void drawSamplerPanel(ViewerController& c, PanelState& st);
+void drawCameraPanel(ViewerController& c, PanelState& st);
+void drawDisplayPanel(ViewerController& c, PanelState& st);
+void drawStatsPanel(ViewerController& c, PanelState& st);
+void drawHelpPanel(ViewerController& c, PanelState& st);
+
+// The keyboard shortcuts, as listed in the help panel (key, action).
+struct Shortcut {
+  const char* key;
+  const char* action;
+};
+extern const Shortcut kShortcuts[];
+extern const int kShortcutCount;
+
+}  // namespace penumbra::ui

@@ -1,0 +1,28 @@
+// The interactive viewer: a Platform (GLFW window or OSMesa buffer), the ViewerController (engine,
+// scene, live settings), the GL image display and the ImGui panels, and the frame loop that ties
+// them together. Also the offscreen screenshot mode and the --bench measurements.
+#pragma once
+
+#include <string>
+
+#include "app/ui/viewer_controller.h"
+
+namespace penumbra::ui {
+
+struct ViewerOptions {
+  int frames = 0;          // stop after this many frames (0: until the window closes)
+  std::string screenshot;  // write the final frame (UI included) here as PNG
+  bool bench = false;
+  bool waitForTarget = false;  // before the screenshot, wait until the accumulation reaches its limit
+  int windowWidth = 0, windowHeight = 0;  // 0: fit the image beside the panels
+  int threads = 0;
+  bool printLayout = false;  // print "image-rect X Y W H ZOOM" (tests)
+};
+
+// Width of the panel column on the left, in pixels.
+constexpr int kSidebarWidth = 400;
+
+// Runs the viewer on the current platform build. Returns the process exit code.
+int runViewer(LoadedScene scene, ViewerController::Overrides overrides, const ViewerOptions& options);
+
+}  // namespace penumbra::ui

@@ -1,0 +1,343 @@
+#include "app/ui/viewer_controller.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "core/image/atomic_file.h"
+#include "core/image/image_io.h"
+#include "core/math/error.h"
+#include "core/scene/xml_parser.h"
+
+namespace penumbra::ui {
+
+namespace fs = std::filesystem;
+
+glm::mat4 lookAt(const Vec3& origin, const Vec3& target, const Vec3& up) {
+  Vec3 dir = glm::normalize(target - origin);
+  Vec3 left = glm::cross(up, dir);
+  if (glm::length(left) < 1e-6f) left = glm::cross(std::abs(dir.z) < 0.9f ? Vec3(0, 0, 1) : Vec3(1, 0, 0), dir);
+  left = glm::normalize(left);
+  Vec3 newUp = glm::normalize(glm::cross(dir, left));
+  glm::mat4 m(1.f);
+  m[0] = glm::vec4(left, 0.f);
+  m[1] = glm::vec4(newUp, 0.f);
+  m[2] = glm::vec4(dir, 0.f);
+  m[3] = glm::vec4(origin, 1.f);
+  return m;
+}
+
+ViewerController::ViewerController(LoadedScene scene, Overrides overrides, int threads)
+    : overrides_(std::move(overrides)), threads_(threads) {
+  adoptScene(std::move(scene));
+  if (!scene_.path.empty()) rememberRecent(scene_.path);
+}
+
+ViewerController::~ViewerController() { engine_.cancel(); }
+
+void ViewerController::adoptScene(LoadedScene loaded) {
+  scene_ = std::move(loaded);
+  settings_ = scene_.settings;
+  limits_ = RenderLimits{};
+  limits_.targetSpp = settings_.sampleCount;
+  sceneError_.clear();
+  sceneMtime_ = scene_.path.empty() ? fs::file_time_type{} : mtimeOf(scene_.path);
+  initOrbitFromCamera();
+}
+
+void ViewerController::initOrbitFromCamera() {
+  const glm::mat4& m = settings_.camera.toWorld;
+  Vec3 origin(m[3]), forward = glm::normalize(Vec3(m[2]));
+  orbit_.worldUp = glm::normalize(Vec3(m[1]));
+  float distance = 0.f;
+  if (scene_.scene) {
+    Bounds b = scene_.scene->geometry.bounds();
+    if (!b.empty()) distance = glm::dot(b.center() - origin, forward);
+    // A huge ground plane moves the centre far away: prefer the distance to the nearest object
+    // centre-ish point when the bound is unreasonable.
+    if (!(distance > 1e-3f) || distance > 10.f * glm::length(origin - b.center()) + 1.f)
+      distance = glm::length(b.center() - origin);
+  }
+  if (!(distance > 1e-3f) || !std::isfinite(distance)) distance = 1.f;
+  orbit_.distance = distance;
+  orbit_.target = origin + forward * distance;
+}
+
+void ViewerController::start() {
+  auto job = std::make_shared<RenderJob>();
+  job->scene = scene_.scene;
+  job->settings = settings_;
+  bool wasPaused = engine_.paused();
+  engine_.start(std::move(job), limits_, threads_);
+  if (wasPaused) engine_.setPaused(true);
+  ++restarts_;
+}
+
+void ViewerController::setPaused(bool paused) { engine_.setPaused(paused); }
+
+bool ViewerController::pollSnapshot(bool wantStandardError) {
+  engine_.requestSnapshot(wantStandardError);
+  bool changed = false;
+  if (engine_.latestSnapshot(snapshot_)) {
+    snapshotRestart_ = restarts_;
+    changed = true;
+  }
+  // The engine publishes only at pass boundaries where a snapshot was requested, so the final pass of
+  // a finished accumulation may not have been published: read it from the (now idle) film.
+  RenderProgress p = engine_.progress();
+  bool needError = wantStandardError && snapshot_.standardError.empty() && p.spp >= 2;
+  if (p.finished && p.spp > 0 && (snapshot_.spp != p.spp || needError || snapshot_.mean.empty())) {
+    engine_.wait();
+    snapshot_.mean = engine_.film().mean(p.spp);
+    snapshot_.standardError = wantStandardError ? engine_.film().standardError(p.spp) : Image();
+    snapshot_.spp = p.spp;
+    snapshot_.seconds = p.seconds;
+    snapshotRestart_ = restarts_;
+    changed = true;
+  }
+  return changed;
+}
+
+static bool sameSettings(const RenderSettings& a, const RenderSettings& b) {
+  return a.camera.toWorld == b.camera.toWorld && a.camera.fovDegrees == b.camera.fovDegrees &&
+         a.camera.width == b.camera.width && a.camera.height == b.camera.height &&
+         a.camera.nearClip == b.camera.nearClip && a.camera.farClip == b.camera.farClip &&
+         std::memcmp(&a.filter, &b.filter, sizeof a.filter) == 0 && a.samplerKind == b.samplerKind &&
+         a.sampleCount == b.sampleCount && a.seed == b.seed && a.integrator.type == b.integrator.type &&
+         a.integrator.samples == b.integrator.samples && a.integrator.measure == b.integrator.measure &&
+         a.integrator.warp == b.integrator.warp;
+}
+
+void ViewerController::setSettings(const RenderSettings& s) {
+  if (sameSettings(s, settings_)) return;
+  settings_ = s;
+  start();
+}
+
+void ViewerController::setLimits(const RenderLimits& l) {
+  if (l.targetSpp == limits_.targetSpp && l.seconds == limits_.seconds) return;
+  limits_ = l;
+  useTimeBudget_ = l.seconds > 0;
+  start();
+}
+
+// ---- camera ---------------------------------------------------------------------------------------
+
+void ViewerController::applyOrbit(const Vec3& origin) {
+  RenderSettings s = settings_;
+  s.camera.toWorld = lookAt(origin, orbit_.target, orbit_.worldUp);
+  setSettings(s);
+}
+
+void ViewerController::orbit(float dx, float dy) {
+  const glm::mat4& m = settings_.camera.toWorld;
+  Vec3 origin(m[3]);
+  Vec3 offset = origin - orbit_.target;
+  const float k = 0.005f;  // radians per pixel
+  glm::mat4 yaw = glm::rotate(glm::mat4(1.f), dx * k, orbit_.worldUp);
+  offset = Vec3(yaw * glm::vec4(offset, 0.f));
+  Vec3 left = glm::normalize(glm::cross(orbit_.worldUp, -offset));
+  Vec3 pitched = Vec3(glm::rotate(glm::mat4(1.f), -dy * k, left) * glm::vec4(offset, 0.f));
+  // Stop short of the poles, where the up vector would flip.
+  if (std::abs(glm::dot(glm::normalize(pitched), orbit_.worldUp)) < 0.995f) offset = pitched;
+  applyOrbit(orbit_.target + offset);
+}
+
+void ViewerController::pan(float dx, float dy) {
+  const glm::mat4& m = settings_.camera.toWorld;
+  Vec3 left(m[0]), up(m[1]), origin(m[3]);
+  // One pixel moves the target by the size of a pixel at the target's distance.
+  float pixel = 2.f * orbit_.distance * std::tan(glm::radians(settings_.camera.fovDegrees) * 0.5f) /
+                float(std::max(settings_.camera.width, 1));
+  Vec3 shift = (left * dx + up * dy) * pixel;
+  orbit_.target += shift;
+  RenderSettings s = settings_;
+  s.camera.toWorld[3] = glm::vec4(origin + shift, 1.f);
+  setSettings(s);
+}
+
+void ViewerController::dolly(float steps) {
+  const glm::mat4& m = settings_.camera.toWorld;
+  Vec3 forward(m[2]);
+  orbit_.distance = std::clamp(orbit_.distance * std::pow(0.9f, steps), 1e-3f, 1e5f);
+  RenderSettings s = settings_;
+  s.camera.toWorld[3] = glm::vec4(orbit_.target - glm::normalize(forward) * orbit_.distance, 1.f);
+  setSettings(s);
+}
+
+void ViewerController::setFov(float degrees) {
+  RenderSettings s = settings_;
+  s.camera.fovDegrees = std::clamp(degrees, 1.f, 179.f);
+  setSettings(s);
+}
+
+void ViewerController::resetCamera() {
+  settings_.camera = scene_.settings.camera;
+  initOrbitFromCamera();
+  start();
+}
+
+// ---- scene ----------------------------------------------------------------------------------------
+
+fs::file_time_type ViewerController::mtimeOf(const std::string& path) const {
+  std::error_code ec;
+  auto t = fs::last_write_time(path, ec);
+  return ec ? fs::file_time_type{} : t;
+}
+
+void ViewerController::rememberRecent(const std::string& path) {
+  std::string abs = fs::absolute(path).lexically_normal().string();
+  recent_.erase(std::remove(recent_.begin(), recent_.end(), abs), recent_.end());
+  recent_.insert(recent_.begin(), abs);
+  if (recent_.size() > 10) recent_.resize(10);
+}
+
+bool ViewerController::openScene(const std::string& path) {
+  try {
+    LoadedScene loaded = loadScene(path, overrides_);
+    adoptScene(std::move(loaded));
+    rememberRecent(path);
+    start();
+    return true;
+  } catch (const std::exception& e) {
+    sceneError_ = e.what();
+    return false;
+  }
+}
+
+bool ViewerController::reloadScene() {
+  if (scene_.path.empty()) {
+    sceneError_.clear();
+    start();
+    return true;
+  }
+  std::string path = scene_.path;
+  bool ok = openScene(path);
+  if (!ok) sceneMtime_ = mtimeOf(path);  // do not retry until the file changes again
+  return ok;
+}
+
+bool ViewerController::checkFileChanged() {
+  if (scene_.path.empty()) return false;
+  auto now = std::chrono::steady_clock::now();
+  if (now - lastMtimeCheck_ < std::chrono::milliseconds(500)) return false;
+  lastMtimeCheck_ = now;
+  auto t = mtimeOf(scene_.path);
+  if (t == sceneMtime_ || t == fs::file_time_type{}) return false;
+  reloadScene();
+  return true;
+}
+
+std::vector<std::string> ViewerController::siblingScenes() const {
+  std::vector<std::string> out;
+  fs::path dir = scene_.path.empty() ? fs::current_path() : fs::path(scene_.path).parent_path();
+  if (dir.empty()) dir = ".";
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(dir, ec))
+    if (e.is_regular_file() && e.path().extension() == ".xml") out.push_back(e.path().string());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+// ---- output ---------------------------------------------------------------------------------------
+
+namespace {
+
+Property makeProp(const std::string& name, PropertyType type, const std::string& text) {
+  Property p;
+  if (!parsePropertyValue(type, text, p)) throw Error("internal: cannot encode " + name + " = " + text);
+  p.name = name;
+  p.used = true;
+  return p;
+}
+
+// Replaces (or adds) the named properties, dropping any alias spellings listed in `drop`.
+void replaceProps(SceneNode& node, const std::vector<Property>& props, std::vector<std::string> drop) {
+  for (const Property& p : props) drop.push_back(p.name);
+  PropertyList out;
+  out.setContext(node.file, node.tag, node.type);
+  for (const Property& p : node.props.properties())
+    if (std::find(drop.begin(), drop.end(), p.name) == drop.end()) out.add(p);
+  for (const Property& p : props) out.add(p);
+  node.props = std::move(out);
+}
+
+SceneNode& childOrNew(SceneNode& root, const std::string& tag, const std::string& type) {
+  for (SceneNode& c : root.children)
+    if (c.tag == tag) return c;
+  SceneNode n;
+  n.tag = tag;
+  n.type = type;
+  n.file = root.file;
+  n.baseDir = root.baseDir;
+  root.children.push_back(std::move(n));
+  return root.children.back();
+}
+
+std::string matrixText(const glm::mat4& m) {  // row-major, 16 numbers
+  std::string s;
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) s += (s.empty() ? "" : " ") + formatFloat(m[c][r]);
+  return s;
+}
+
+}  // namespace
+
+SceneNode ViewerController::liveDesc() const {
+  SceneNode root = scene_.desc;
+  const RenderSettings& s = settings_;
+
+  SceneNode& cam = childOrNew(root, "camera", "perspective");
+  replaceProps(cam,
+               {makeProp("toWorld", PropertyType::Transform, matrixText(s.camera.toWorld)),
+                makeProp("fov", PropertyType::Float, formatFloat(s.camera.fovDegrees)),
+                makeProp("width", PropertyType::Integer, std::to_string(s.camera.width)),
+                makeProp("height", PropertyType::Integer, std::to_string(s.camera.height))},
+               {});
+
+  SceneNode& smp = childOrNew(root, "sampler", samplerKindName(s.samplerKind));
+  smp.type = samplerKindName(s.samplerKind);
+  replaceProps(smp,
+               {makeProp("sampleCount", PropertyType::Integer, std::to_string(s.sampleCount)),
+                makeProp("seed", PropertyType::Integer, std::to_string(s.seed))},
+               {});
+
+  SceneNode& integ = childOrNew(root, "integrator", integratorTypeName(s.integrator.type));
+  integ.type = integratorTypeName(s.integrator.type);
+  integ.props = PropertyList();
+  integ.props.setContext(integ.file, integ.tag, integ.type);
+  const IntegratorDesc& d = s.integrator;
+  if (d.type == IntegratorType::Ao) {
+    integ.props.add(makeProp("shadingSamples", PropertyType::Integer, std::to_string(d.samples)));
+    integ.props.add(makeProp("warp-type", PropertyType::String, hemisphereWarpName(d.warp)));
+  } else if (d.type == IntegratorType::Direct) {
+    integ.props.add(makeProp("nSamples", PropertyType::Integer, std::to_string(d.samples)));
+    integ.props.add(makeProp("measure", PropertyType::String, directMeasureName(d.measure)));
+    if (d.measure == DirectMeasure::Hemisphere)
+      integ.props.add(makeProp("warp-type", PropertyType::String, hemisphereWarpName(d.warp)));
+  }
+  return root;
+}
+
+std::string ViewerController::liveSceneXml() const { return writeSceneXml(liveDesc()); }
+
+std::string ViewerController::saveImage(const std::string& path) const {
+  if (snapshot_.mean.empty()) throw Error(path + ": nothing rendered yet");
+  ImageMetadata meta;
+  for (auto& [k, v] : describeSettings(settings_)) meta.add(k, v);
+  meta.add("spp", std::to_string(snapshot_.spp));
+  meta.add("seconds", std::to_string(snapshot_.seconds));
+  meta.add("scene", scene_.path.empty() ? "<built-in>" : scene_.path);
+  writeImage(path, snapshot_.mean, meta, display.exposure);
+  return "saved " + path + " (" + std::to_string(snapshot_.spp) + " spp)";
+}
+
+std::string ViewerController::saveSceneAs(const std::string& path) const {
+  std::string xml = liveSceneXml();
+  writeBytesAtomically(path, xml.data(), xml.size());
+  return "saved " + path;
+}
+
+}  // namespace penumbra::ui

@@ -1,0 +1,132 @@
+// The viewer's state without any GL or ImGui: the loaded scene, the live RenderSettings, the Engine,
+// the display settings, the orbit camera, and the rules for what restarts accumulation. The ImGui
+// panels and the GL display (viewer_app.*) sit on top of it; tests drive it directly.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/render/engine.h"
+#include "core/scene/scene_builder.h"
+
+namespace penumbra::ui {
+
+enum class Tonemap : int { Srgb = 0, Gamma22 = 1 };
+enum class FalseColour : int { None = 0, RelativeError = 1, BadPixels = 2 };
+
+// Display-only state: changing it never restarts the engine.
+struct DisplaySettings {
+  float exposure = 0.f;  // stops
+  Tonemap tonemap = Tonemap::Srgb;
+  FalseColour falseColour = FalseColour::None;
+  float zoom = 1.f;         // screen pixels per image pixel
+  float panX = 0.f, panY = 0.f;  // image offset from the centred position, screen pixels
+  bool fit = true;          // zoom follows the image area until the user zooms
+};
+
+// Orbit camera state derived from a Nori toWorld (columns: left, up, forward, origin).
+struct OrbitCamera {
+  Vec3 target{0.f};
+  Vec3 worldUp{0, 1, 0};
+  float distance = 1.f;
+};
+
+class ViewerController {
+ public:
+  using Overrides = std::vector<std::pair<std::string, std::string>>;
+
+  // Takes a loaded scene; `threads` <= 0 uses all cores. Does not start rendering.
+  ViewerController(LoadedScene scene, Overrides overrides = {}, int threads = 0);
+  ~ViewerController();
+
+  // ---- rendering -------------------------------------------------------------------------------
+  void start();    // (re)starts accumulation with the live settings and limits
+  void restart() { start(); }
+  void setPaused(bool paused);
+  bool paused() const { return engine_.paused(); }
+  RenderProgress progress() const { return engine_.progress(); }
+  uint64_t restartCount() const { return restarts_; }
+  Engine& engine() { return engine_; }
+
+  // Called once per UI frame: requests a snapshot and fetches it when a newer one was published.
+  // Returns true when snapshot() changed (the texture must be re-uploaded).
+  bool pollSnapshot(bool wantStandardError);
+  const FilmSnapshot& snapshot() const { return snapshot_; }
+  // Restart counter value the current snapshot belongs to.
+  uint64_t snapshotRestart() const { return snapshotRestart_; }
+
+  // ---- live settings (any change restarts accumulation; geometry is never rebuilt) -------------
+  const RenderSettings& settings() const { return settings_; }
+  // Replaces the live settings; restarts only if they differ from the current ones.
+  void setSettings(const RenderSettings& s);
+  const RenderLimits& limits() const { return limits_; }
+  void setLimits(const RenderLimits& l);
+  bool useTimeBudget() const { return useTimeBudget_; }
+
+  // ---- camera ----------------------------------------------------------------------------------
+  void orbit(float dxPixels, float dyPixels);
+  void pan(float dxPixels, float dyPixels);
+  void dolly(float wheelSteps);
+  void setFov(float degrees);
+  void resetCamera();
+  const OrbitCamera& orbitCamera() const { return orbit_; }
+
+  // ---- display (never restarts) ----------------------------------------------------------------
+  DisplaySettings display;
+
+  // ---- scene -----------------------------------------------------------------------------------
+  const LoadedScene& scene() const { return scene_; }
+  // Loads a scene file; on failure keeps the current scene rendering, stores the error text
+  // (file:line: ...) in sceneError() and returns false.
+  bool openScene(const std::string& path);
+  bool reloadScene();
+  // Reloads when the scene file's modification time changed (checked at most twice a second).
+  bool checkFileChanged();
+  const std::string& sceneError() const { return sceneError_; }
+  const std::vector<std::string>& recentFiles() const { return recent_; }
+  // .xml files in the current scene's directory.
+  std::vector<std::string> siblingScenes() const;
+  bool sceneHasAreaLights() const { return scene_.scene && scene_.scene->hasAreaLights(); }
+
+  // ---- output ----------------------------------------------------------------------------------
+  // The scene description with the live settings written into it, as XML.
+  SceneNode liveDesc() const;
+  std::string liveSceneXml() const;
+  // PNG of the display (current exposure, sRGB), EXR/PFM of the accumulation, scene XML; all atomic.
+  // Return a status message; throw penumbra::Error on failure.
+  std::string saveImage(const std::string& path) const;
+  std::string saveSceneAs(const std::string& path) const;
+
+ private:
+  void adoptScene(LoadedScene loaded);
+  void initOrbitFromCamera();
+  void applyOrbit(const Vec3& origin);
+  std::filesystem::file_time_type mtimeOf(const std::string& path) const;
+  void rememberRecent(const std::string& path);
+
+  LoadedScene scene_;
+  Overrides overrides_;
+  int threads_;
+  RenderSettings settings_;
+  RenderLimits limits_;
+  bool useTimeBudget_ = false;
+  OrbitCamera orbit_;
+  Engine engine_;
+  FilmSnapshot snapshot_;
+  uint64_t restarts_ = 0;
+  uint64_t snapshotRestart_ = 0;
+  std::string sceneError_;
+  std::vector<std::string> recent_;
+  std::filesystem::file_time_type sceneMtime_{};
+  std::chrono::steady_clock::time_point lastMtimeCheck_{};
+};
+
+// Nori lookAt: columns (left, up, forward, origin).
+glm::mat4 lookAt(const Vec3& origin, const Vec3& target, const Vec3& up);
+
+}  // namespace penumbra::ui

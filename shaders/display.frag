@@ -1,0 +1,69 @@
+#version 330 core
+// Displays the film's mean. Pixels are fetched exactly (texelFetch, nearest), so at zoom 1 the screen
+// shows the same 8-bit values as `penumbra render -o x.png`: the tone mapping below is
+// core/image/tonemap.cpp's toSrgb8 — scale by 2^exposure, sRGB OETF, clamp, round to 1/255.
+uniform sampler2D uMean;       // RGB32F, row 0 = top image row
+uniform sampler2D uStdErr;     // RGB32F standard error of the mean (may be 1x1 when unavailable)
+uniform vec2 uTopLeft;         // framebuffer position (GL, y up) of the image's top-left corner
+uniform float uZoom;           // screen pixels per image pixel
+uniform float uExposure;       // stops
+uniform int uTonemap;          // 0: sRGB OETF, 1: gamma 2.2
+uniform int uView;             // 0: colour, 1: relative standard error, 2: NaN/Inf/negative highlight
+uniform int uHasImage;
+uniform vec3 uBackground;
+out vec4 fragColor;
+
+bool bad(float v) { return isnan(v) || isinf(v); }
+
+float oetf(float v) {
+  if (uTonemap == 1) return pow(v, 1.0 / 2.2);
+  return v <= 0.0031308 ? 12.92 * v : 1.055 * pow(v, 1.0 / 2.4) - 0.055;
+}
+
+// toSrgb8 for one channel, returned as the exact 8-bit level / 255.
+float display(float linear) {
+  if (bad(linear)) return 0.0;
+  float t = linear * exp2(uExposure);
+  if (isinf(t)) t = t > 0.0 ? 1.0 : 0.0;
+  float v = clamp(oetf(max(t, 0.0)), 0.0, 1.0);
+  return floor(v * 255.0 + 0.5) / 255.0;
+}
+
+// Blue → cyan → green → yellow → red.
+vec3 ramp(float t) {
+  t = clamp(t, 0.0, 1.0) * 4.0;
+  if (t < 1.0) return vec3(0.0, t, 1.0);
+  if (t < 2.0) return vec3(0.0, 1.0, 2.0 - t);
+  if (t < 3.0) return vec3(t - 2.0, 1.0, 0.0);
+  return vec3(1.0, 4.0 - t, 0.0);
+}
+
+void main() {
+  ivec2 size = textureSize(uMean, 0);
+  vec2 rel = vec2(gl_FragCoord.x - uTopLeft.x, uTopLeft.y - gl_FragCoord.y) / uZoom;
+  ivec2 px = ivec2(floor(rel));
+  if (uHasImage == 0 || rel.x < 0.0 || rel.y < 0.0 || px.x >= size.x || px.y >= size.y) {
+    fragColor = vec4(uBackground, 1.0);
+    return;
+  }
+  vec3 m = texelFetch(uMean, px, 0).rgb;
+  if (uView == 1) {
+    // Relative standard error of the luminance, log scale: 0.1 % (blue) … 100 % (red); black: no data.
+    vec3 e = texelFetch(uStdErr, min(px, textureSize(uStdErr, 0) - 1), 0).rgb;
+    float lm = dot(m, vec3(0.2126, 0.7152, 0.0722));
+    float le = dot(e, vec3(0.2126, 0.7152, 0.0722));
+    if (textureSize(uStdErr, 0) != size || lm <= 0.0) { fragColor = vec4(0.0, 0.0, 0.0, 1.0); return; }
+    float r = le / lm;
+    fragColor = vec4(ramp((log(max(r, 1e-3)) / log(10.0) + 3.0) / 3.0), 1.0);
+    return;
+  }
+  vec3 c = vec3(display(m.r), display(m.g), display(m.b));
+  if (uView == 2) {
+    bool nonFinite = bad(m.r) || bad(m.g) || bad(m.b);
+    bool negative = m.r < 0.0 || m.g < 0.0 || m.b < 0.0;
+    if (nonFinite) c = vec3(1.0, 0.0, 1.0);
+    else if (negative) c = vec3(0.0, 1.0, 1.0);
+    else c = vec3(dot(c, vec3(0.2126, 0.7152, 0.0722)) * 0.6);
+  }
+  fragColor = vec4(c, 1.0);
+}
