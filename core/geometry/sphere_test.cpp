@@ -147,11 +147,11 @@ TEST(Sphere, ScaleInvariance) {
     Vec3 o = s.center + randomUnit(rng) * (s.radius * 4.f);
     Vec3 target = s.center + Vec3(u(rng), u(rng), u(rng)) * s.radius;
     Vec3 d = glm::normalize(target - o);
-    float t1;
+    float t1 = 0.f;
     bool hit1 = s.intersect(Ray{o, d}, t1);
     for (float k : {1e-4f, 1e4f}) {
       Sphere sk{s.center * k, s.radius * k};
-      float tk;
+      float tk = 0.f;
       bool hitk = sk.intersect(Ray{o * k, d}, tk);
       // Rays within float noise of the silhouette may legitimately differ.
       if (hit1 != hitk) {
