@@ -7,7 +7,6 @@
 #include <filesystem>
 #include <limits>
 #include <memory>
-#include <sstream>
 
 #include "core/analysis/closed_forms.h"
 #include "core/analysis/ray_estimate.h"
@@ -313,6 +312,13 @@ CaseResult radiusZero(const CaseOptions& o) {
     if (a.pdf != 0.f || b.pdf != 0.f) r.failures.push_back("a radius-0 light returned a sample");
   }
   if (light.pdfArea() != 0.f || light.pdfSolidAngle(kReceiver, kUp) != 0.f) r.failures.push_back("non-zero pdf");
+  // No geometry: a ray from the receiver straight through the light's centre hits nothing.
+  Ray up;
+  up.o = kReceiver + Vec3(0.f, 0.f, 1e-3f);
+  up.d = kUp;
+  up.tMax = 1e3f;
+  SurfaceHit hit;
+  if (s.scene->geometry.intersect(up, hit)) r.failures.push_back("a radius-0 light was added as geometry");
   r.note = "builder keeps the light (" + std::to_string(s.scene->sphereLights.size()) +
            "), no geometry; no samples; all 4 strategies exactly 0";
   return r;
