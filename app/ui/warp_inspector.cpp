@@ -388,20 +388,20 @@ void WarpInspector::drawPanels(float width) {
   std::snprintf(hi, sizeof hi, "%.0f", panelScale_);
   std::snprintf(neg, sizeof neg, "-%.0f", panelScale_);
   float barH = ImGui::GetTextLineHeight() * 0.8f;
-  float barW = std::min(2 * slot + spacing - 160.f, 420.f);
-  colourBar(dl, ImVec2(start.x + 20, y), ImVec2(start.x + 20 + barW, y + barH), false);
+  float hiW = ImGui::CalcTextSize(hi).x, negW = ImGui::CalcTextSize(neg).x;
+  // counts: under the histogram and density panels
+  float x0 = start.x + ImGui::CalcTextSize(lo).x + 6, x1 = start.x + slot + spacing + pw - hiW - 6;
   dl->AddText(ImVec2(start.x, y), ImGui::GetColorU32(ImGuiCol_Text), lo);
-  dl->AddText(ImVec2(start.x + 26 + barW, y), ImGui::GetColorU32(ImGuiCol_Text), hi);
-  dl->AddText(ImVec2(start.x + 70 + barW, y), ImGui::GetColorU32(ImGuiCol_TextDisabled), "samples / cell");
+  colourBar(dl, ImVec2(x0, y), ImVec2(x1, y + barH), false);
+  dl->AddText(ImVec2(x1 + 6, y), ImGui::GetColorU32(ImGuiCol_Text), hi);
+  // signed difference: under the difference panel, the same scale
   float dx = start.x + 2 * (slot + spacing);
-  float dW = std::min(slot - 100.f, 260.f);
   dl->AddText(ImVec2(dx, y), ImGui::GetColorU32(ImGuiCol_Text), neg);
-  float nw = ImGui::CalcTextSize(neg).x + 6;
-  colourBar(dl, ImVec2(dx + nw, y), ImVec2(dx + nw + dW, y + barH), true);
-  dl->AddText(ImVec2(dx + nw + dW + 6, y), ImGui::GetColorU32(ImGuiCol_Text), hi);
+  colourBar(dl, ImVec2(dx + negW + 6, y), ImVec2(dx + pw - hiW - 6, y + barH), true);
+  dl->AddText(ImVec2(dx + pw - hiW, y), ImGui::GetColorU32(ImGuiCol_Text), hi);
   y += ImGui::GetTextLineHeightWithSpacing();
-  const char* axes = sphere ? "horizontal: phi 0 .. 2pi; vertical: cos theta from 1 (top) down to the cap's edge"
-                            : "horizontal: x; vertical: y (up)";
+  const char* axes = sphere ? "one colour scale: samples per cell. Horizontal: phi 0 .. 2pi; vertical: cos theta, 1 at the top"
+                            : "one colour scale: samples per cell. Horizontal: x; vertical: y (up)";
   dl->AddText(ImVec2(start.x, y), ImGui::GetColorU32(ImGuiCol_TextDisabled), axes);
   y += ImGui::GetTextLineHeightWithSpacing();
   ImGui::Dummy(ImVec2(width, y - start.y));
