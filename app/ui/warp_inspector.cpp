@@ -150,6 +150,7 @@ void WarpInspector::resetView() {
     distance_ = 4.0f;
   }
   viewInit_ = true;
+  sceneDirty_ = true;
 }
 
 void WarpInspector::uploadPoints() {
@@ -165,6 +166,7 @@ void WarpInspector::uploadPoints() {
   uploadVec4(vao_, vbo_, data);
   pointCount_ = p.points.size();
   lineVertexCount_ = p.lines.size();
+  sceneDirty_ = true;
 
   // Reference geometry of the domain.
   if (!refValid_ || refType_ != p.settings.type) {
@@ -220,7 +222,10 @@ void WarpInspector::renderScene(int w, int h) {
     glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_);
     fboW_ = w;
     fboH_ = h;
+    sceneDirty_ = true;
   }
+  if (!sceneDirty_) return;
+  sceneDirty_ = false;
   glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
   glViewport(0, 0, w, h);
   glDisable(GL_SCISSOR_TEST);
@@ -353,10 +358,15 @@ void WarpInspector::drawView(float width, float height) {
     };
     glm::vec3 a = onBall(ImVec2(io.MousePos.x - io.MouseDelta.x, io.MousePos.y - io.MouseDelta.y));
     glm::vec3 b = onBall(io.MousePos);
-    if (glm::length(a - b) > 1e-6f) rot_ = glm::normalize(glm::rotation(a, b) * rot_);
+    if (glm::length(a - b) > 1e-6f) {
+      rot_ = glm::normalize(glm::rotation(a, b) * rot_);
+      sceneDirty_ = true;
+    }
   }
-  if (ImGui::IsItemHovered() && io.MouseWheel != 0)
+  if (ImGui::IsItemHovered() && io.MouseWheel != 0) {
     distance_ = std::clamp(distance_ * std::pow(0.9f, io.MouseWheel), 1.2f, 30.f);
+    sceneDirty_ = true;
+  }
 }
 
 void WarpInspector::drawPanels(float width) {

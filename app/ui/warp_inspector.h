@@ -48,6 +48,7 @@ class WarpInspector {
   unsigned program_ = 0, vao_ = 0, vbo_ = 0, refVao_ = 0, refVbo_ = 0;
   unsigned fbo_ = 0, colour_ = 0, depth_ = 0, panelTex_[3] = {0, 0, 0};
   int fboW_ = 0, fboH_ = 0;
+  bool sceneDirty_ = true;  // the FBO is re-rendered only when the points, view or size change
   size_t pointCount_ = 0, lineVertexCount_ = 0, refVertexCount_ = 0;
   bool refSpherical_ = false;
   WarpType refType_ = WarpType::UniformSquare;
