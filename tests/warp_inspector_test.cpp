@@ -236,3 +236,18 @@ TEST(WarpInspectorCli, GuiOptionsNeedGui) {
   r = run(std::string(PENUMBRA_BINARY) + " warp cosine-hemisphere --gui --offscreen --point-set sobol");
   EXPECT_EQ(r.exitCode, 2) << r.out;
 }
+
+TEST(WarpInspectorWindow, RealWindowUnderXvfb) {
+  if (std::system("command -v xvfb-run > /dev/null 2>&1") != 0)
+    GTEST_SKIP() << "xvfb-run is not installed (apt-get install xvfb xauth): skipping the real-window test";
+  std::string shot = tempDir() + "/window.png";
+  RunResult r = run("xvfb-run -a -s '-screen 0 1024x768x24' " + std::string(PENUMBRA_BINARY) +
+                    " warp concentric-disk --gui --points 10 --grid-lines --frames 20 --window 960x640 --print-layout"
+                    " --screenshot " + shot);
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  EXPECT_NE(r.out.find("GLFW"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("panel histogram"), std::string::npos) << r.out;
+  Image img = readPng(shot);
+  EXPECT_EQ(img.width, 960);
+  EXPECT_EQ(img.height, 640);
+}
