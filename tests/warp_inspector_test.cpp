@@ -241,7 +241,8 @@ TEST(WarpInspectorWindow, RealWindowUnderXvfb) {
   if (std::system("command -v xvfb-run > /dev/null 2>&1") != 0)
     GTEST_SKIP() << "xvfb-run is not installed (apt-get install xvfb xauth): skipping the real-window test";
   std::string shot = tempDir() + "/window.png";
-  RunResult r = run("xvfb-run -a -s '-screen 0 1024x768x24' " + std::string(PENUMBRA_BINARY) +
+  // -n 170: its own display numbers, so that it never races the viewer's xvfb-run -a under ctest -j.
+  RunResult r = run("xvfb-run -a -n 170 -s '-screen 0 1024x768x24' " + std::string(PENUMBRA_BINARY) +
                     " warp concentric-disk --gui --points 10 --grid-lines --frames 20 --window 960x640 --print-layout"
                     " --screenshot " + shot);
   ASSERT_EQ(r.exitCode, 0) << r.out;
