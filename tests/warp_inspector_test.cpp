@@ -3,18 +3,20 @@
 // from the screenshot.
 #include <gtest/gtest.h>
 
+#include "tests/run_command.h"
+
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
-#include <thread>
-#include <chrono>
-#include <algorithm>
 #include <string>
+#include <thread>
 
 #include "app/ui/warp_inspector_model.h"
 #include "core/image/image_io.h"
@@ -33,21 +35,9 @@ std::string tempDir() {
   return d.string();
 }
 
-struct RunResult {
-  int exitCode = -1;
-  std::string out;
-};
-
+using RunResult = test::CommandResult;
 RunResult run(const std::string& cmd) {
-  std::string outFile = tempDir() + "/cmd-out.txt";
-  int rc = std::system((cmd + " > " + outFile + " 2>&1").c_str());
-  RunResult r;
-  r.exitCode = WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
-  std::ifstream in(outFile);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  r.out = ss.str();
-  return r;
+  return test::runCommand(cmd);
 }
 
 struct Rect {
@@ -123,7 +113,8 @@ TEST(WarpInspectorModel, GridLinesAreSubdividedAndWarped) {
   std::vector<Vec3> lines = warpedGridLines(WarpType::ConcentricDisk, 0.f, 4, 16);
   ASSERT_EQ(lines.size(), size_t(2 * 5 * 16 * 2));
   for (const Vec3& v : lines) EXPECT_LE(v.x * v.x + v.y * v.y, 1.0001f);
-  for (const Vec3& v : warpedGridLines(WarpType::UniformSphere, 0.f, 4, 16)) EXPECT_NEAR(glm::length(v), 1.f, 1e-5f);
+  for (const Vec3& v : warpedGridLines(WarpType::UniformSphere, 0.f, 4, 16))
+    EXPECT_NEAR(glm::length(v), 1.f, 1e-5f);
 }
 
 TEST(WarpInspectorModel, CosineHemisphereAcceptedPanelsCloseMismatchRejected) {
@@ -134,7 +125,8 @@ TEST(WarpInspectorModel, CosineHemisphereAcceptedPanelsCloseMismatchRejected) {
   HistogramPanels panels = makeHistogramPanels(ok->chi2);
   ASSERT_EQ(panels.width, 2 * panels.height);
   double close = meanAbsoluteDifference(panels.observed, panels.expected);
-  std::printf("panels: mean |histogram - density| %.2f / 255 (%dx%d cells)\n", close, panels.width, panels.height);
+  std::printf("panels: mean |histogram - density| %.2f / 255 (%dx%d cells)\n", close, panels.width,
+              panels.height);
   EXPECT_LT(close, 15.0) << "histogram and density panels differ";
 
   WarpInspectorSettings bad = cosine14();
@@ -183,14 +175,16 @@ TEST(WarpInspectorModel, NewRequestsCancelStaleJobs) {
 
 TEST(WarpInspectorOffscreen, CosineHemisphereRendersAcceptsAndPanelsAgree) {
   std::string shot = tempDir() + "/inspector.png";
-  RunResult r = run(std::string(PENUMBRA_OFFSCREEN_BINARY) +
-                    " warp cosine-hemisphere --gui --points 14 --window 1280x800 --print-layout --screenshot " + shot);
+  RunResult r =
+      run(std::string(PENUMBRA_OFFSCREEN_BINARY) +
+          " warp cosine-hemisphere --gui --points 14 --window 1280x800 --print-layout --screenshot " + shot);
   ASSERT_EQ(r.exitCode, 0) << r.out;
   EXPECT_NE(r.out.find("verdict accepted"), std::string::npos) << r.out;
   EXPECT_EQ(r.out.find("(stale)"), std::string::npos) << r.out;
   Image img = readPng(shot);
   ASSERT_EQ(img.width, 1280);
-  Rect hist = panelRect(r.out, "histogram"), dens = panelRect(r.out, "density"), diff = panelRect(r.out, "difference");
+  Rect hist = panelRect(r.out, "histogram"), dens = panelRect(r.out, "density"),
+       diff = panelRect(r.out, "difference");
   ASSERT_GT(hist.w, 50) << r.out;
   ASSERT_EQ(hist.w, dens.w);
   ASSERT_EQ(hist.h, dens.h);
@@ -217,8 +211,10 @@ TEST(WarpInspectorOffscreen, CosineHemisphereRendersAcceptsAndPanelsAgree) {
 
 TEST(WarpInspectorOffscreen, MismatchedPdfIsRejectedThroughPenumbraGuiOffscreen) {
   std::string shot = tempDir() + "/mismatch.png";
-  RunResult r = run(std::string(PENUMBRA_BINARY) + " warp cosine-hemisphere --gui --offscreen --mismatch --points 14"
-                    " --window 1280x800 --print-layout --screenshot " + shot);
+  RunResult r = run(std::string(PENUMBRA_BINARY) +
+                    " warp cosine-hemisphere --gui --offscreen --mismatch --points 14"
+                    " --window 1280x800 --print-layout --screenshot " +
+                    shot);
   ASSERT_EQ(r.exitCode, 0) << r.out;
   EXPECT_NE(r.out.find("verdict rejected"), std::string::npos) << r.out;
   Image img = readPng(shot);
@@ -248,7 +244,8 @@ TEST(WarpInspectorWindow, RealWindowUnderXvfb) {
     r = run("xvfb-run -a -n " + std::to_string(170 + 7 * attempt) + " -s '-screen 0 1024x768x24' " +
             std::string(PENUMBRA_BINARY) +
             " warp concentric-disk --gui --points 10 --grid-lines --frames 20 --window 960x640 --print-layout"
-            " --screenshot " + shot);
+            " --screenshot " +
+            shot);
     if (r.exitCode == 0 && r.out.find("GLFW") != std::string::npos) break;
   }
   ASSERT_EQ(r.exitCode, 0) << r.out;

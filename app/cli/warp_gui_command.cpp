@@ -1,15 +1,16 @@
 // `penumbra warp --gui`: the warp inspector in its own window, or offscreen (penumbra-offscreen,
 // OSMesa) with --offscreen or without a display, by the same re-execution as `penumbra view`.
 // Compiled into the executables with the viewer (it needs GL), like view_command.cpp.
+#include <unistd.h>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <string>
-#include <unistd.h>
 #include <vector>
 
 #include "app/cli/commands.h"
+#include "app/platform/offscreen_exec.h"
 #include "app/platform/platform.h"
 #include "app/ui/warp_inspector.h"
 #include "core/math/error.h"
@@ -20,19 +21,18 @@ namespace {
 
 constexpr const char* kFallbackScreenshot = "penumbra-warp.png";
 
-std::string siblingOffscreenBinary() {
-  std::error_code ec;
-  std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
-  if (ec) throw Error("cannot locate the penumbra executable (/proc/self/exe): " + ec.message());
-  return (self.parent_path() / "penumbra-offscreen").string();
-}
-
 [[noreturn]] void execOffscreen(const WarpGuiArgs& g) {
-  std::string bin = siblingOffscreenBinary();
   char param[32];
   std::snprintf(param, sizeof param, "%.9g", g.param);
-  std::vector<std::string> args = {bin, "warp", warpTypeName(g.type), "--gui", "--points", std::to_string(g.log2Points),
-                                   "--point-set", g.pointSet, "--seed", std::to_string(g.seed)};
+  std::vector<std::string> args = {"warp",
+                                   warpTypeName(g.type),
+                                   "--gui",
+                                   "--points",
+                                   std::to_string(g.log2Points),
+                                   "--point-set",
+                                   g.pointSet,
+                                   "--seed",
+                                   std::to_string(g.seed)};
   if (warpHasParameter(g.type)) args.insert(args.end(), {"--param", param});
   if (g.mismatch) args.push_back("--mismatch");
   if (g.gridLines) args.push_back("--grid-lines");
@@ -42,13 +42,7 @@ std::string siblingOffscreenBinary() {
   if (!g.window.empty()) args.insert(args.end(), {"--window", g.window});
   if (g.noWait) args.push_back("--no-wait");
   if (g.printLayout) args.push_back("--print-layout");
-  std::vector<char*> argv;
-  for (std::string& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  std::fflush(stdout);
-  std::fflush(stderr);
-  execv(bin.c_str(), argv.data());
-  throw Error("cannot run " + bin + " for offscreen rendering: " + std::strerror(errno));
+  platform::execOffscreen(args);
 }
 
 }  // namespace
@@ -80,9 +74,8 @@ int runWarpGui(const WarpGuiArgs& in) {
   o.frames = g.frames >= 0 ? g.frames : (offscreenBuild ? 3 : 0);
   o.waitForResult = offscreenBuild && !g.noWait;
   o.printLayout = g.printLayout;
-  if (!g.window.empty() &&
-      (std::sscanf(g.window.c_str(), "%dx%d", &o.windowWidth, &o.windowHeight) != 2 || o.windowWidth < 320 ||
-       o.windowHeight < 240))
+  if (!g.window.empty() && (std::sscanf(g.window.c_str(), "%dx%d", &o.windowWidth, &o.windowHeight) != 2 ||
+                            o.windowWidth < 320 || o.windowHeight < 240))
     throw Error("--window " + g.window + ": expected WIDTHxHEIGHT, e.g. 1280x800");
   return ui::runWarpInspector(o);
 }

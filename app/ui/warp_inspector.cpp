@@ -10,12 +10,13 @@
 #define GL_GLEXT_PROTOTYPES 1
 #include <GL/gl.h>
 #include <GL/glext.h>
-#include <glm/gtc/matrix_transform.hpp>
-#include <glm/gtx/quaternion.hpp>
 #include <imgui.h>
 #include <imgui_impl_opengl3.h>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtx/quaternion.hpp>
 
 #include "app/platform/platform.h"
+#include "app/ui/gl_program.h"
 #include "core/image/image_io.h"
 #include "core/image/tonemap.h"
 #include "core/math/error.h"
@@ -28,22 +29,9 @@ namespace {
 constexpr float kPiF = 3.14159265358979323846f;
 const char* const kPanelNames[3] = {"histogram", "density", "difference"};
 
-GLuint compileShader(GLenum type, const char* source, const char* name) {
-  GLuint s = glCreateShader(type);
-  glShaderSource(s, 1, &source, nullptr);
-  glCompileShader(s);
-  GLint ok = 0;
-  glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
-  if (!ok) {
-    char log[4096] = "";
-    glGetShaderInfoLog(s, sizeof log, nullptr, log);
-    glDeleteShader(s);
-    throw Error(std::string("shaders/") + name + ": " + log);
-  }
-  return s;
+ImTextureID texId(GLuint tex) {
+  return reinterpret_cast<ImTextureID>(static_cast<intptr_t>(tex));
 }
-
-ImTextureID texId(GLuint tex) { return reinterpret_cast<ImTextureID>(static_cast<intptr_t>(tex)); }
 
 // Points of the view as vec4 (xyz, t): t = index / (n - 1) for samples, -1 for lines.
 void uploadVec4(GLuint vao, GLuint vbo, const std::vector<float>& data) {
@@ -71,7 +59,9 @@ void pushCircle(std::vector<float>& v, int axis, float z, float radius, int segm
   for (int i = 0; i < segments; ++i) pushLine(v, at(i), at(i + 1));
 }
 
-const char* paramLabel(WarpType t) { return t == WarpType::UniformCone ? "cos(theta_max)" : "alpha"; }
+const char* paramLabel(WarpType t) {
+  return t == WarpType::UniformCone ? "cos(theta_max)" : "alpha";
+}
 
 void colourBar(ImDrawList* dl, ImVec2 p0, ImVec2 p1, bool diverging) {
   const int n = 64;
@@ -88,21 +78,7 @@ void colourBar(ImDrawList* dl, ImVec2 p0, ImVec2 p1, bool diverging) {
 }  // namespace
 
 WarpInspector::WarpInspector(const WarpInspectorSettings& initial) : settings_(initial) {
-  GLuint vs = compileShader(GL_VERTEX_SHADER, shaders::k_warp_points_vert, "warp_points.vert");
-  GLuint fs = compileShader(GL_FRAGMENT_SHADER, shaders::k_warp_points_frag, "warp_points.frag");
-  program_ = glCreateProgram();
-  glAttachShader(program_, vs);
-  glAttachShader(program_, fs);
-  glLinkProgram(program_);
-  glDeleteShader(vs);
-  glDeleteShader(fs);
-  GLint ok = 0;
-  glGetProgramiv(program_, GL_LINK_STATUS, &ok);
-  if (!ok) {
-    char log[4096] = "";
-    glGetProgramInfoLog(program_, sizeof log, nullptr, log);
-    throw Error(std::string("shaders/warp_points: link failed: ") + log);
-  }
+  program_ = linkProgram(shaders::k_warp_points_vert, shaders::k_warp_points_frag, "warp_points");
   glGenVertexArrays(1, &vao_);
   glGenBuffers(1, &vbo_);
   glGenVertexArrays(1, &refVao_);
@@ -136,14 +112,16 @@ WarpInspector::~WarpInspector() {
 }
 
 bool WarpInspector::upToDate() const {
-  return shownPoints_ && shownVerdict_ && shownPoints_->settings == settings_ && shownVerdict_->settings == settings_;
+  return shownPoints_ && shownVerdict_ && shownPoints_->settings == settings_ &&
+         shownVerdict_->settings == settings_;
 }
 
 void WarpInspector::resetView() {
   viewSpherical_ = warpIsSpherical(settings_.type);
   if (viewSpherical_) {
     // Looking at the sphere from above the equator, +z up on the screen.
-    rot_ = glm::angleAxis(glm::radians(-62.f), glm::vec3(1, 0, 0)) * glm::angleAxis(glm::radians(-30.f), glm::vec3(0, 0, 1));
+    rot_ = glm::angleAxis(glm::radians(-62.f), glm::vec3(1, 0, 0)) *
+           glm::angleAxis(glm::radians(-30.f), glm::vec3(0, 0, 1));
     distance_ = 4.2f;
   } else {
     rot_ = glm::quat(1.f, 0.f, 0.f, 0.f);  // the plane seen from +z
@@ -195,7 +173,8 @@ void WarpInspector::uploadPanels() {
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
   for (int i = 0; i < 3; ++i) {
     glBindTexture(GL_TEXTURE_2D, panelTex_[i]);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, hp.width, hp.height, 0, GL_RGBA, GL_UNSIGNED_BYTE, imgs[i]->data());
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, hp.width, hp.height, 0, GL_RGBA, GL_UNSIGNED_BYTE,
+                 imgs[i]->data());
   }
   glBindTexture(GL_TEXTURE_2D, 0);
 }
@@ -237,7 +216,8 @@ void WarpInspector::renderScene(int w, int h) {
     glm::mat4 view = glm::translate(glm::mat4(1.f), glm::vec3(0, 0, -distance_)) * glm::mat4_cast(rot_);
     glm::mat4 model(1.f);
     if (shownPoints_->settings.type == WarpType::UniformSquare)  // [0,1]^2 shown as large as [-1,1]^2
-      model = glm::scale(glm::mat4(1.f), glm::vec3(2.f)) * glm::translate(glm::mat4(1.f), glm::vec3(-0.5f, -0.5f, 0.f));
+      model = glm::scale(glm::mat4(1.f), glm::vec3(2.f)) *
+              glm::translate(glm::mat4(1.f), glm::vec3(-0.5f, -0.5f, 0.f));
     glm::mat4 mvp = proj * view * model;
     glUseProgram(program_);
     glUniformMatrix4fv(glGetUniformLocation(program_, "uMvp"), 1, GL_FALSE, &mvp[0][0]);
@@ -303,7 +283,9 @@ void WarpInspector::drawControls() {
   ImGui::Checkbox("warped grid lines", &s.gridLines);
   ImGui::Checkbox("mismatched pdf", &s.mismatch);
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("Judge the samples by a wrong density (e.g. the uniform one of the same domain)\nto see a rejection.");
+    ImGui::SetTooltip(
+        "Judge the samples by a wrong density (e.g. the uniform one of the same domain)\nto see a "
+        "rejection.");
   ImGui::TextDisabled("judged by %s", judgeDescription(s).c_str());
   if (ImGui::Button("Reset view")) resetView();
   ImGui::SameLine();
@@ -332,7 +314,8 @@ void WarpInspector::drawControls() {
     ImGui::TextColored(ImVec4(1.f, 0.35f, 0.3f, 1.f), "REJECTED");
   if (!r.message.empty()) ImGui::TextWrapped("%s", r.message.c_str());
   if (v.settings.pointSet != PointSet::Independent)
-    ImGui::TextWrapped("(%s points are not independent: the test is only indicative)", pointSetName(v.settings.pointSet));
+    ImGui::TextWrapped("(%s points are not independent: the test is only indicative)",
+                       pointSetName(v.settings.pointSet));
   if (!upToDate())
     ImGui::TextColored(ImVec4(1.f, 0.8f, 0.3f, 1.f), "computing...");
   else
@@ -344,7 +327,8 @@ void WarpInspector::drawView(float width, float height) {
   renderScene(w, h);
   ImVec2 p0 = ImGui::GetCursorScreenPos();
   ImGui::InvisibleButton("##warp-view", ImVec2(float(w), float(h)));
-  ImGui::GetWindowDrawList()->AddImage(texId(colour_), p0, ImVec2(p0.x + w, p0.y + h), ImVec2(0, 1), ImVec2(1, 0));
+  ImGui::GetWindowDrawList()->AddImage(texId(colour_), p0, ImVec2(p0.x + w, p0.y + h), ImVec2(0, 1),
+                                       ImVec2(1, 0));
   ImGuiIO& io = ImGui::GetIO();
   if (ImGui::IsItemActive() && (io.MouseDelta.x != 0 || io.MouseDelta.y != 0)) {
     // Arcball: the rotation taking the previous cursor's point on the ball to the current one.
@@ -352,8 +336,10 @@ void WarpInspector::drawView(float width, float height) {
     auto onBall = [&](ImVec2 m) {
       glm::vec3 p((m.x - cx) / radius, -(m.y - cy) / radius, 0.f);
       float d2 = p.x * p.x + p.y * p.y;
-      if (d2 < 1.f) p.z = std::sqrt(1.f - d2);
-      else p = glm::normalize(p);
+      if (d2 < 1.f)
+        p.z = std::sqrt(1.f - d2);
+      else
+        p = glm::normalize(p);
       return p;
     };
     glm::vec3 a = onBall(ImVec2(io.MousePos.x - io.MouseDelta.x, io.MousePos.y - io.MouseDelta.y));
@@ -371,7 +357,8 @@ void WarpInspector::drawView(float width, float height) {
 
 void WarpInspector::drawPanels(float width) {
   const float spacing = ImGui::GetStyle().ItemSpacing.x;
-  bool sphere = shownVerdict_ ? shownVerdict_->domain.kind == Chi2Domain::Kind::Sphere : warpIsSpherical(settings_.type);
+  bool sphere = shownVerdict_ ? shownVerdict_->domain.kind == Chi2Domain::Kind::Sphere
+                              : warpIsSpherical(settings_.type);
   float aspect = sphere ? 0.5f : 1.f;  // height / width
   float slot = (width - 2 * spacing) / 3.f;
   float ph = std::min(slot * aspect, 0.36f * ImGui::GetIO().DisplaySize.y);
@@ -410,8 +397,10 @@ void WarpInspector::drawPanels(float width) {
   colourBar(dl, ImVec2(dx + negW + 6, y), ImVec2(dx + pw - hiW - 6, y + barH), true);
   dl->AddText(ImVec2(dx + pw - hiW, y), ImGui::GetColorU32(ImGuiCol_Text), hi);
   y += ImGui::GetTextLineHeightWithSpacing();
-  const char* axes = sphere ? "one colour scale: samples per cell. Horizontal: phi 0 .. 2pi; vertical: cos theta, 1 at the top"
-                            : "one colour scale: samples per cell. Horizontal: x; vertical: y (up)";
+  const char* axes =
+      sphere
+          ? "one colour scale: samples per cell. Horizontal: phi 0 .. 2pi; vertical: cos theta, 1 at the top"
+          : "one colour scale: samples per cell. Horizontal: x; vertical: y (up)";
   dl->AddText(ImVec2(start.x, y), ImGui::GetColorU32(ImGuiCol_TextDisabled), axes);
   y += ImGui::GetTextLineHeightWithSpacing();
   ImGui::Dummy(ImVec2(width, y - start.y));
@@ -419,15 +408,18 @@ void WarpInspector::drawPanels(float width) {
 
 void WarpInspector::draw(bool* open, bool fill) {
   ImGuiIO& io = ImGui::GetIO();
-  ImGuiWindowFlags flags = ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse;
+  ImGuiWindowFlags flags =
+      ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse;
   if (fill) {
     ImGui::SetNextWindowPos(ImVec2(0, 0));
     ImGui::SetNextWindowSize(io.DisplaySize);
-    flags |= ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoTitleBar;
+    flags |= ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
+             ImGuiWindowFlags_NoTitleBar;
   } else {
     ImGui::SetNextWindowPos(ImVec2(420, 20), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowSize(ImVec2(std::min(1150.f, io.DisplaySize.x - 440), std::min(760.f, io.DisplaySize.y - 40)),
-                             ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(
+        ImVec2(std::min(1150.f, io.DisplaySize.x - 440), std::min(760.f, io.DisplaySize.y - 40)),
+        ImGuiCond_FirstUseEver);
   }
   if (!ImGui::Begin("Warp inspector", open, flags)) {
     ImGui::End();
@@ -469,8 +461,8 @@ std::string WarpInspector::layoutReport() const {
   std::string out;
   char buf[256];
   for (int i = 0; i < 3; ++i) {
-    std::snprintf(buf, sizeof buf, "panel %s %.0f %.0f %.0f %.0f\n", kPanelNames[i], panelRect_[i][0], panelRect_[i][1],
-                  panelRect_[i][2], panelRect_[i][3]);
+    std::snprintf(buf, sizeof buf, "panel %s %.0f %.0f %.0f %.0f\n", kPanelNames[i], panelRect_[i][0],
+                  panelRect_[i][1], panelRect_[i][2], panelRect_[i][3]);
     out += buf;
   }
   if (shownVerdict_) {
@@ -516,7 +508,8 @@ int runWarpInspector(const WarpGuiOptions& o) {
     };
     for (int f = 0; !p->shouldClose() && (o.frames <= 0 || f < o.frames); ++f) {
       if (o.waitForResult && o.frames > 0 && f == o.frames - 1) {
-        if (!inspector.worker().waitIdle(120.0)) std::fprintf(stderr, "warp inspector: the chi-square test did not finish in 120 s\n");
+        if (!inspector.worker().waitIdle(120.0))
+          std::fprintf(stderr, "warp inspector: the chi-square test did not finish in 120 s\n");
         frame();  // picks up the final points and verdict
       }
       frame();
