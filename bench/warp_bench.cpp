@@ -111,4 +111,3 @@ BENCHMARK_CAPTURE(BM_SamplerNext1D, stratified, SamplerKind::Stratified);
 
 }  // namespace
 }  // namespace penumbra
-

@@ -28,8 +28,9 @@ LoadedScene planeAndLight(const Vec3& c, float r, float Le, float planeHalf = 10
       << "<transform name=\"toWorld\"><scale value=\"" << planeHalf << ",1," << planeHalf << "\"/>"
       << "<rotate axis=\"1,0,0\" angle=\"90\"/></transform></shape>"
       << "<shape type=\"sphere\"><point name=\"center\" value=\"" << c.x << "," << c.y << "," << c.z << "\"/>"
-      << "<float name=\"radius\" value=\"" << r << "\"/><emitter type=\"area\"><color name=\"radiance\" value=\""
-      << Le << "\"/></emitter></shape></scene>";
+      << "<float name=\"radius\" value=\"" << r
+      << "\"/><emitter type=\"area\"><color name=\"radiance\" value=\"" << Le
+      << "\"/></emitter></shape></scene>";
   return loadSceneFromString(xml.str(), "test.xml", ".");
 }
 
@@ -46,7 +47,7 @@ struct LightCase {
   Vec3 c;
   float r;
   float Le;
-  bool hemisphereToo;  // hemisphere sampling of tiny lights has (correctly) enormous variance
+  bool hemisphereToo;   // hemisphere sampling of tiny lights has (correctly) enormous variance
   bool areaToo = true;  // so has area sampling a light 1e-6 r away: only a tiny cap of it is visible
 };
 
@@ -65,15 +66,18 @@ TEST_P(DirectClosedForm, EveryMeasureMatchesTheIrradianceClosedForm) {
   const Vec3 x(0.31f, 0.17f, 0.f);
   LoadedScene s = planeAndLight(x + lc.c, lc.r, lc.Le);
   // Lr = albedo/pi * Le * I(theta, alpha), albedo = 1.
-  double truth = lc.Le / M_PI *
-                 sphereLightIrradianceFactor(glm::dvec3(x), glm::dvec3(0, 0, 1), glm::dvec3(x + lc.c), double(lc.r));
+  double truth =
+      lc.Le / M_PI *
+      sphereLightIrradianceFactor(glm::dvec3(x), glm::dvec3(0, 0, 1), glm::dvec3(x + lc.c), double(lc.r));
   const int n = 40000;
   for (uint64_t seed : {1u, 2u}) {
     checkAgainstTruth("solid-angle", directAt<DirectStrategy::SolidAngle>(s, x, n, seed), truth);
     if (lc.areaToo) checkAgainstTruth("area", directAt<DirectStrategy::Area>(s, x, n, seed), truth);
     if (lc.hemisphereToo) {
-      checkAgainstTruth("cosine-hemisphere", directAt<DirectStrategy::CosineHemisphere>(s, x, 4 * n, seed), truth);
-      checkAgainstTruth("uniform-hemisphere", directAt<DirectStrategy::UniformHemisphere>(s, x, 4 * n, seed), truth);
+      checkAgainstTruth("cosine-hemisphere", directAt<DirectStrategy::CosineHemisphere>(s, x, 4 * n, seed),
+                        truth);
+      checkAgainstTruth("uniform-hemisphere", directAt<DirectStrategy::UniformHemisphere>(s, x, 4 * n, seed),
+                        truth);
     }
   }
 }
@@ -84,8 +88,9 @@ INSTANTIATE_TEST_SUITE_P(
                       LightCase{"overhead", Vec3(0.f, 0.f, 3.f), 1.f, 1.f, true},
                       LightCase{"straddling", Vec3(1.5f, 0.f, 0.3f), 0.6f, 5.f, true},
                       LightCase{"centreOnHorizon", Vec3(2.f, 0.f, 0.f), 0.5f, 5.f, true},
-                      LightCase{"grazing89_9", Vec3(2.f * std::cos(0.0017453f), 0.f, 2.f * std::sin(0.0017453f)), 0.3f,
-                                5.f, true},
+                      LightCase{"grazing89_9",
+                                Vec3(2.f * std::cos(0.0017453f), 0.f, 2.f * std::sin(0.0017453f)), 0.3f, 5.f,
+                                true},
                       LightCase{"tinyDistant", Vec3(300.f, 100.f, 800.f), 0.01f, 1e7f, false},
                       LightCase{"veryTinyDistant", Vec3(0.f, 3000.f, 4000.f), 0.005f, 1e9f, false},
                       LightCase{"justOutsideSurface", Vec3(0.f, 0.f, 1.000001f), 1.f, 1.f, true, false},
@@ -94,7 +99,8 @@ INSTANTIATE_TEST_SUITE_P(
 
 TEST(DirectClosedForm, LightBelowTheHorizonGivesExactlyZero) {
   LoadedScene s = planeAndLight(Vec3(0, 2, -1.5f), 1.f, 100.f);
-  for (auto e : {directAt<DirectStrategy::SolidAngle>(s, Vec3(0), 1000, 3), directAt<DirectStrategy::Area>(s, Vec3(0), 1000, 3),
+  for (auto e : {directAt<DirectStrategy::SolidAngle>(s, Vec3(0), 1000, 3),
+                 directAt<DirectStrategy::Area>(s, Vec3(0), 1000, 3),
                  directAt<DirectStrategy::UniformHemisphere>(s, Vec3(0), 1000, 3)}) {
     EXPECT_EQ(e.mean, 0.0);
     EXPECT_EQ(e.bad, 0u);
@@ -110,10 +116,11 @@ LoadedScene restingSphere(float R, float planeHalf = 2000.f) {
   std::ostringstream xml;
   xml.precision(9);
   xml << "<scene><integrator type=\"ao\"/>"
-      << "<shape type=\"plane\"><transform name=\"toWorld\"><scale value=\"" << planeHalf << ",1," << planeHalf << "\"/>"
+      << "<shape type=\"plane\"><transform name=\"toWorld\"><scale value=\"" << planeHalf << ",1,"
+      << planeHalf << "\"/>"
       << "<rotate axis=\"1,0,0\" angle=\"90\"/></transform></shape>"
-      << "<shape type=\"sphere\"><point name=\"center\" value=\"0,0," << R << "\"/><float name=\"radius\" value=\"" << R
-      << "\"/></shape></scene>";
+      << "<shape type=\"sphere\"><point name=\"center\" value=\"0,0," << R
+      << "\"/><float name=\"radius\" value=\"" << R << "\"/></shape></scene>";
   return loadSceneFromString(xml.str(), "ao.xml", ".");
 }
 

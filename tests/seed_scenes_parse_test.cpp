@@ -16,7 +16,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::vector<std::string> sceneFiles() { return test::seedSceneFiles(); }
+std::vector<std::string> sceneFiles() {
+  return test::seedSceneFiles();
+}
 
 TEST(SeedScenes, AllParseAndMeshesLoad) {
   std::vector<std::string> files = sceneFiles();

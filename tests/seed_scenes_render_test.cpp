@@ -15,7 +15,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::vector<std::string> seedScenes() { return test::seedSceneFiles(); }
+std::vector<std::string> seedScenes() {
+  return test::seedSceneFiles();
+}
 
 RenderProgress renderScene(const LoadedScene& s, uint32_t spp, Image* mean = nullptr, Image* se = nullptr,
                            uint64_t seed = 0) {

@@ -9,14 +9,16 @@
 #include <string>
 #include <vector>
 
+#include "core/analysis/ray_estimate.h"
 #include "core/render/scene.h"
 #include "core/sampling/sampler.h"
-#include "core/analysis/ray_estimate.h"
 #include "core/scene/scene_builder.h"
 
 namespace penumbra::test {
 
-inline std::string sourcePath(const std::string& relative) { return std::string(PENUMBRA_SOURCE_DIR) + "/" + relative; }
+inline std::string sourcePath(const std::string& relative) {
+  return std::string(PENUMBRA_SOURCE_DIR) + "/" + relative;
+}
 
 // The seed assignment's scene files shipped under scenes/ (hw0, hw1, hw2, dev-scenes), sorted.
 inline std::vector<std::string> seedSceneFiles() {

@@ -52,12 +52,14 @@ std::string locateScene(const std::string& given, const std::string& repoRelativ
 
 int runBench(const BenchOptions& o) {
   int all = o.threads > 0 ? o.threads : int(std::max(1u, std::thread::hardware_concurrency()));
-  std::printf("penumbra bench: median of %d runs of %.1f s; %d hardware threads\n\n", o.repeats, o.seconds, all);
+  std::printf("penumbra bench: median of %d runs of %.1f s; %d hardware threads\n\n", o.repeats, o.seconds,
+              all);
 
   LoadedScene sphere = o.sphereScene.empty()
                            ? loadSceneFromString(defaultSceneXml(), "<built-in hw2 sphere>", ".")
                            : loadScene(o.sphereScene);
-  std::printf("%-28s %14s %14s %9s\n", "direct strategy (768x768)", "1 thread M/s", "all threads", "speed-up");
+  std::printf("%-28s %14s %14s %9s\n", "direct strategy (768x768)", "1 thread M/s", "all threads",
+              "speed-up");
   struct Strategy {
     DirectMeasure measure;
     HemisphereWarp warp;
@@ -84,10 +86,12 @@ int runBench(const BenchOptions& o) {
   LoadedScene ao = loadScene(aoPath);
   const RenderSettings& s = ao.settings;
   double rays = double(s.integrator.samples);
-  std::printf("\n%-28s %14s %14s %9s\n", "AO rays (shadow + camera)", "1 thread M/s", "all threads", "speed-up");
+  std::printf("\n%-28s %14s %14s %9s\n", "AO rays (shadow + camera)", "1 thread M/s", "all threads",
+              "speed-up");
   double one = measure(ao, s, 1, o), many = measure(ao, s, all, o);
-  std::printf("%-28s %14.2f %14.2f %8.2fx\n", (std::to_string(ao.scene->geometry.triangleCount()) + " triangles").c_str(),
-              one * rays * 1e-6, many * rays * 1e-6, many / one);
+  std::printf("%-28s %14.2f %14.2f %8.2fx\n",
+              (std::to_string(ao.scene->geometry.triangleCount()) + " triangles").c_str(), one * rays * 1e-6,
+              many * rays * 1e-6, many / one);
   std::printf("(%s, %s, %d shading samples per camera sample; AO rays/s excludes camera rays)\n",
               aoPath.c_str(), strategyLabel(s.integrator).c_str(), s.integrator.samples);
   return 0;
@@ -98,11 +102,15 @@ int runBench(const BenchOptions& o) {
 void addBenchCommand(CLI::App& app, int& exitCode) {
   auto o = std::make_shared<BenchOptions>();
   CLI::App* cmd = app.add_subcommand("bench", "Measure rendering throughput (camera samples/s, AO rays/s)");
-  cmd->add_option("--sphere-scene", o->sphereScene, "Scene for the direct strategies (default: built-in hw2 sphere)");
-  cmd->add_option("--ao-scene", o->aoScene, "Scene for the AO benchmark (default: scenes/standin/rock-ao.xml)");
+  cmd->add_option("--sphere-scene", o->sphereScene,
+                  "Scene for the direct strategies (default: built-in hw2 sphere)");
+  cmd->add_option("--ao-scene", o->aoScene,
+                  "Scene for the AO benchmark (default: scenes/standin/rock-ao.xml)");
   cmd->add_option("--seconds", o->seconds, "Length of each timed run")->check(CLI::PositiveNumber);
-  cmd->add_option("--repeats", o->repeats, "Timed runs per figure (the median is reported)")->check(CLI::Range(1, 100));
-  cmd->add_option("--threads", o->threads, "Threads for the 'all threads' column")->check(CLI::Range(1, 1024));
+  cmd->add_option("--repeats", o->repeats, "Timed runs per figure (the median is reported)")
+      ->check(CLI::Range(1, 100));
+  cmd->add_option("--threads", o->threads, "Threads for the 'all threads' column")
+      ->check(CLI::Range(1, 1024));
   cmd->callback([o, &exitCode] { exitCode = runBench(*o); });
 }
 

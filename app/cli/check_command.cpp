@@ -48,7 +48,8 @@ int runCheck(const CheckOptions& o) {
   co.quick = o.quick;
   co.sceneDir = o.scenes;
 
-  std::printf("%-24s %3s %13s %26s %8s %5s  %s\n", "case", "#", "expected", "estimate ± SE", "z", "bad", "verdict");
+  std::printf("%-24s %3s %13s %26s %8s %5s  %s\n", "case", "#", "expected", "estimate ± SE", "z", "bad",
+              "verdict");
   int failed = 0;
   auto t0 = std::chrono::steady_clock::now();
   for (const StiffCase* c : selected) {
@@ -64,8 +65,8 @@ int runCheck(const CheckOptions& o) {
     std::fflush(stdout);
   }
   double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  std::printf("%zu cases, %d failed (seed %llu%s, %.1f s)\n", selected.size(), failed, (unsigned long long)o.seed,
-              o.quick ? ", quick" : "", secs);
+  std::printf("%zu cases, %d failed (seed %llu%s, %.1f s)\n", selected.size(), failed,
+              (unsigned long long)o.seed, o.quick ? ", quick" : "", secs);
   return failed ? 1 : 0;
 }
 
@@ -74,7 +75,8 @@ int runCheck(const CheckOptions& o) {
 void addCheckCommand(CLI::App& app, int& exitCode) {
   auto opts = std::make_shared<CheckOptions>();
   auto list = std::make_shared<bool>(false);
-  CLI::App* cmd = app.add_subcommand("check", "Run the stiff-case catalogue (docs/stiff-cases.md); exit 1 if any case fails");
+  CLI::App* cmd = app.add_subcommand(
+      "check", "Run the stiff-case catalogue (docs/stiff-cases.md); exit 1 if any case fails");
   cmd->add_option("--case", opts->cases, "Run only this case (repeatable)");
   cmd->add_option("--seed", opts->seed, "Random seed")->check(CLI::NonNegativeNumber);
   cmd->add_flag("--quick", opts->quick, "Fewer samples per case (a smoke run)");

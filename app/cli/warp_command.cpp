@@ -264,12 +264,13 @@ void addWarpCommand(CLI::App& app, int& exitCode, WarpGuiRunner gui) {
   mismatch->excludes(pdfOf);
 
   // The warp inspector (a window of the viewer; offscreen with --offscreen or without a display).
-  auto* guiFlag = cmd->add_flag("--gui", args->gui,
-                                "Open the warp inspector: points, histogram vs density and the chi-square verdict");
+  auto* guiFlag = cmd->add_flag(
+      "--gui", args->gui, "Open the warp inspector: points, histogram vs density and the chi-square verdict");
   cmd->add_option("--points", args->points, "--gui: number of points as a power of two, 2^K")
       ->capture_default_str()
       ->check(CLI::Range(5, 20));
-  cmd->add_option("--point-set", args->pointSet, "--gui: independent, grid or stratified")->capture_default_str();
+  cmd->add_option("--point-set", args->pointSet, "--gui: independent, grid or stratified")
+      ->capture_default_str();
   cmd->add_flag("--grid-lines", args->gridLines, "--gui: draw the warped grid lines");
   cmd->add_flag("--offscreen", args->view.offscreen, "--gui: render offscreen (OSMesa) instead of a window");
   cmd->add_option("--screenshot", args->view.screenshot, "--gui: write the last frame to this PNG");
@@ -296,8 +297,8 @@ void addWarpCommand(CLI::App& app, int& exitCode, WarpGuiRunner gui) {
       exitCode = gui(g);
       return;
     }
-    for (const char* o : {"--points", "--point-set", "--grid-lines", "--offscreen", "--screenshot", "--frames",
-                          "--window", "--no-wait"})
+    for (const char* o : {"--points", "--point-set", "--grid-lines", "--offscreen", "--screenshot",
+                          "--frames", "--window", "--no-wait"})
       if (cmd->count(o)) throw Error(std::string(o) + " is an option of the warp inspector: add --gui");
     if (a.all) {
       if (!a.type.empty() || cmd->count("--param"))

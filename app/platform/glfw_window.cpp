@@ -18,7 +18,9 @@ namespace penumbra::platform {
 namespace {
 
 std::string gGlfwError;
-void onGlfwError(int, const char* description) { gGlfwError = description ? description : "unknown"; }
+void onGlfwError(int, const char* description) {
+  gGlfwError = description ? description : "unknown";
+}
 
 class GlfwWindow final : public Platform {
  public:
@@ -80,7 +82,9 @@ class GlfwWindow final : public Platform {
 
 }  // namespace
 
-bool isOffscreenBuild() { return false; }
+bool isOffscreenBuild() {
+  return false;
+}
 
 bool displayAvailable(std::string& why) {
   const char* x = std::getenv("DISPLAY");

@@ -20,9 +20,19 @@ namespace {
 class OsMesaContext final : public Platform {
  public:
   explicit OsMesaContext(const WindowOptions& o) : width_(o.width), height_(o.height) {
-    const int attribs[] = {OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 0, OSMESA_STENCIL_BITS, 0,
-                           OSMESA_PROFILE, OSMESA_CORE_PROFILE, OSMESA_CONTEXT_MAJOR_VERSION, 3,
-                           OSMESA_CONTEXT_MINOR_VERSION, 3, 0};
+    const int attribs[] = {OSMESA_FORMAT,
+                           OSMESA_RGBA,
+                           OSMESA_DEPTH_BITS,
+                           0,
+                           OSMESA_STENCIL_BITS,
+                           0,
+                           OSMESA_PROFILE,
+                           OSMESA_CORE_PROFILE,
+                           OSMESA_CONTEXT_MAJOR_VERSION,
+                           3,
+                           OSMESA_CONTEXT_MINOR_VERSION,
+                           3,
+                           0};
     ctx_ = OSMesaCreateContextAttribs(attribs, nullptr);
     if (!ctx_) throw Error("OSMesa: cannot create an OpenGL 3.3 core context");
     buffer_.assign(size_t(width_) * height_ * 4, 0);
@@ -80,7 +90,9 @@ class OsMesaContext final : public Platform {
 
 }  // namespace
 
-bool isOffscreenBuild() { return true; }
+bool isOffscreenBuild() {
+  return true;
+}
 
 bool displayAvailable(std::string& why) {
   why = "offscreen build";

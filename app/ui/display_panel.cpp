@@ -16,10 +16,8 @@ void drawDisplayPanel(ViewerController& c, PanelState& st) {
   int fc = int(d.falseColour);
   const char* fcs[] = {"none", "relative std. error", "NaN/Inf/negative"};
   if (ImGui::Combo("false colour", &fc, fcs, 3)) d.falseColour = FalseColour(fc);
-  if (d.falseColour == FalseColour::RelativeError)
-    ImGui::TextDisabled("log scale: blue 0.1%% .. red 100%%");
-  if (d.falseColour == FalseColour::BadPixels)
-    ImGui::TextDisabled("magenta: NaN/Inf, cyan: negative");
+  if (d.falseColour == FalseColour::RelativeError) ImGui::TextDisabled("log scale: blue 0.1%% .. red 100%%");
+  if (d.falseColour == FalseColour::BadPixels) ImGui::TextDisabled("magenta: NaN/Inf, cyan: negative");
   float zoomLog = std::log2(d.zoom);
   if (ImGui::SliderFloat("zoom", &zoomLog, -4.f, 4.f, "")) {
     d.zoom = std::exp2(zoomLog);

@@ -19,7 +19,8 @@ const int kShortcutCount = int(sizeof kShortcuts / sizeof kShortcuts[0]);
 
 void drawHelpPanel(ViewerController&, PanelState& st) {
   if (!st.showHelp) return;
-  ImGui::SetNextWindowPos(ImVec2(ImGui::GetIO().DisplaySize.x * 0.5f, ImGui::GetIO().DisplaySize.y * 0.5f), ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
+  ImGui::SetNextWindowPos(ImVec2(ImGui::GetIO().DisplaySize.x * 0.5f, ImGui::GetIO().DisplaySize.y * 0.5f),
+                          ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
   if (ImGui::Begin("Help", &st.showHelp, ImGuiWindowFlags_AlwaysAutoResize)) {
     if (ImGui::BeginTable("keys", 2, ImGuiTableFlags_RowBg)) {
       for (int i = 0; i < kShortcutCount; ++i) {

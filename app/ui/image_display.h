@@ -10,8 +10,8 @@ namespace penumbra::ui {
 
 // Where the image lands in the framebuffer (top-left origin, pixels).
 struct ImageLayout {
-  float x = 0, y = 0;   // top-left corner of the image
-  float zoom = 1;       // screen pixels per image pixel
+  float x = 0, y = 0;         // top-left corner of the image
+  float zoom = 1;             // screen pixels per image pixel
   int width = 0, height = 0;  // image size in image pixels
 };
 

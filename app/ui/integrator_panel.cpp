@@ -12,12 +12,16 @@ void drawIntegratorPanel(ViewerController& c, PanelState&) {
   IntegratorDesc& d = s.integrator;
   const bool areaLights = c.sceneHasAreaLights();
 
-  int type = d.type == IntegratorType::Ao ? 0 : d.type == IntegratorType::Direct ? 1
-           : d.type == IntegratorType::Normals ? 2 : 3;
+  int type = d.type == IntegratorType::Ao        ? 0
+             : d.type == IntegratorType::Direct  ? 1
+             : d.type == IntegratorType::Normals ? 2
+                                                 : 3;
   const char* types[] = {"ao", "direct", "normals", "simple"};
   if (ImGui::Combo("integrator", &type, types, 4)) {
-    d.type = type == 0 ? IntegratorType::Ao : type == 1 ? IntegratorType::Direct
-           : type == 2 ? IntegratorType::Normals : IntegratorType::Simple;
+    d.type = type == 0   ? IntegratorType::Ao
+             : type == 1 ? IntegratorType::Direct
+             : type == 2 ? IntegratorType::Normals
+                         : IntegratorType::Simple;
     if (d.type == IntegratorType::Direct && !areaLights) d.measure = DirectMeasure::Hemisphere;
   }
 
@@ -42,7 +46,8 @@ void drawIntegratorPanel(ViewerController& c, PanelState&) {
   if (d.type == IntegratorType::Ao || d.type == IntegratorType::Direct) {
     int n = d.samples;
     const char* label = d.type == IntegratorType::Ao ? "shadingSamples" : "nSamples";
-    if (ImGui::InputInt(label, &n, 1, 8, ImGuiInputTextFlags_EnterReturnsTrue) || ImGui::IsItemDeactivatedAfterEdit())
+    if (ImGui::InputInt(label, &n, 1, 8, ImGuiInputTextFlags_EnterReturnsTrue) ||
+        ImGui::IsItemDeactivatedAfterEdit())
       d.samples = std::clamp(n, 1, 1 << 16);
   }
   c.setSettings(s);  // restarts only if something changed

@@ -16,7 +16,8 @@ void drawSamplerPanel(ViewerController& c, PanelState&) {
   if (ImGui::InputInt("sampleCount", &count, 1, 16, ImGuiInputTextFlags_EnterReturnsTrue))
     s.sampleCount = uint32_t(std::clamp(count, 1, 1 << 24));
   int seed = int(s.seed);
-  if (ImGui::InputInt("seed", &seed, 1, 10, ImGuiInputTextFlags_EnterReturnsTrue)) s.seed = uint64_t(std::max(seed, 0));
+  if (ImGui::InputInt("seed", &seed, 1, 10, ImGuiInputTextFlags_EnterReturnsTrue))
+    s.seed = uint64_t(std::max(seed, 0));
   c.setSettings(s);
 
   RenderLimits l = c.limits();
@@ -26,13 +27,15 @@ void drawSamplerPanel(ViewerController& c, PanelState&) {
   ImGui::RadioButton("time budget", &mode, 1);
   if (mode == 0) {
     int spp = int(l.targetSpp);
-    if (ImGui::InputInt("spp (0: endless)", &spp, 16, 256, ImGuiInputTextFlags_EnterReturnsTrue) || l.seconds > 0) {
+    if (ImGui::InputInt("spp (0: endless)", &spp, 16, 256, ImGuiInputTextFlags_EnterReturnsTrue) ||
+        l.seconds > 0) {
       l.targetSpp = uint32_t(std::max(spp, 0));
       l.seconds = 0;
     }
   } else {
     float sec = l.seconds > 0 ? float(l.seconds) : 10.f;
-    if (ImGui::InputFloat("seconds", &sec, 1.f, 10.f, "%.1f", ImGuiInputTextFlags_EnterReturnsTrue) || l.seconds <= 0) {
+    if (ImGui::InputFloat("seconds", &sec, 1.f, 10.f, "%.1f", ImGuiInputTextFlags_EnterReturnsTrue) ||
+        l.seconds <= 0) {
       l.seconds = std::max(sec, 0.1f);
       l.targetSpp = 0;
     }

@@ -12,7 +12,8 @@ void drawScenePanel(ViewerController& c, PanelState& st) {
   const LoadedScene& s = c.scene();
   ImGui::TextWrapped("%s", s.path.empty() ? "<built-in default scene>" : s.path.c_str());
   ImGui::SetNextItemWidth(-60);
-  bool enter = ImGui::InputText("##open", st.openPath, sizeof st.openPath, ImGuiInputTextFlags_EnterReturnsTrue);
+  bool enter =
+      ImGui::InputText("##open", st.openPath, sizeof st.openPath, ImGuiInputTextFlags_EnterReturnsTrue);
   ImGui::SameLine();
   if ((ImGui::Button("Open") || enter) && st.openPath[0]) c.openScene(st.openPath);
   if (ImGui::Button("Reload")) c.reloadScene();

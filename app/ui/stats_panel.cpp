@@ -10,8 +10,10 @@ void drawStatsPanel(ViewerController& c, PanelState&) {
   if (!ImGui::CollapsingHeader("Stats", ImGuiTreeNodeFlags_DefaultOpen)) return;
   RenderProgress p = c.progress();
   const RenderLimits& l = c.limits();
-  if (l.targetSpp > 0) ImGui::Text("spp %u / %u", p.spp, l.targetSpp);
-  else ImGui::Text("spp %u", p.spp);
+  if (l.targetSpp > 0)
+    ImGui::Text("spp %u / %u", p.spp, l.targetSpp);
+  else
+    ImGui::Text("spp %u", p.spp);
   ImGui::Text("elapsed %.2f s%s", p.seconds, c.paused() ? " (paused)" : p.finished ? " (done)" : "");
   ImGui::Text("samples/s %.3g M", p.seconds > 0 ? double(p.samples) / p.seconds * 1e-6 : 0.0);
   ImGui::Text("NaN/Inf/negative %llu", (unsigned long long)p.badSamples);
@@ -21,8 +23,8 @@ void drawStatsPanel(ViewerController& c, PanelState&) {
     static std::string xml;
     xml = c.liveSceneXml();
     if (ImGui::Button("Copy")) ImGui::SetClipboardText(xml.c_str());
-    ImGui::InputTextMultiline("##xml", xml.data(), xml.size() + 1, ImVec2(-1, ImGui::GetTextLineHeight() * 16),
-                              ImGuiInputTextFlags_ReadOnly);
+    ImGui::InputTextMultiline("##xml", xml.data(), xml.size() + 1,
+                              ImVec2(-1, ImGui::GetTextLineHeight() * 16), ImGuiInputTextFlags_ReadOnly);
     ImGui::TreePop();
   }
 }

@@ -24,9 +24,12 @@ double uniformOnSquare(const Vec3& v, double lo, double hi) {
 
 const char* pointSetName(PointSet s) {
   switch (s) {
-    case PointSet::Independent: return "independent";
-    case PointSet::Grid: return "grid";
-    case PointSet::Stratified: return "stratified";
+    case PointSet::Independent:
+      return "independent";
+    case PointSet::Grid:
+      return "grid";
+    case PointSet::Stratified:
+      return "stratified";
   }
   return "?";
 }
@@ -40,7 +43,9 @@ bool parsePointSet(const std::string& name, PointSet& out) {
   return false;
 }
 
-float defaultWarpParam(WarpType type) { return type == WarpType::Beckmann ? 0.2f : 0.5f; }
+float defaultWarpParam(WarpType type) {
+  return type == WarpType::Beckmann ? 0.2f : 0.5f;
+}
 
 int inspectorResolution(const WarpInspectorSettings& s) {
   if (s.resolution > 0) return s.resolution;
@@ -54,13 +59,18 @@ std::string judgeDescription(const WarpInspectorSettings& s) {
   if (!s.mismatch) return "its own pdf";
   char buf[96];
   switch (s.type) {
-    case WarpType::UniformSquare: return "the tent pdf";
+    case WarpType::UniformSquare:
+      return "the tent pdf";
     case WarpType::Tent:
     case WarpType::UniformDisk:
-    case WarpType::ConcentricDisk: return "uniform on [-1,1]^2";
-    case WarpType::UniformSphere: return "uniform on the upper hemisphere";
-    case WarpType::UniformHemisphere: return "the cosine-hemisphere pdf";
-    case WarpType::CosineHemisphere: return "uniform on the hemisphere";
+    case WarpType::ConcentricDisk:
+      return "uniform on [-1,1]^2";
+    case WarpType::UniformSphere:
+      return "uniform on the upper hemisphere";
+    case WarpType::UniformHemisphere:
+      return "the cosine-hemisphere pdf";
+    case WarpType::CosineHemisphere:
+      return "uniform on the hemisphere";
     case WarpType::UniformCone:
       std::snprintf(buf, sizeof buf, "a narrower cone (cos %.3g)", 0.5 * (s.param + 1.0));
       return buf;
@@ -75,15 +85,22 @@ PdfFunction judgePdf(const WarpInspectorSettings& s) {
   const float p = s.param;
   if (!s.mismatch) return warpPdfFunction(s.type, p);
   switch (s.type) {
-    case WarpType::UniformSquare: return warpPdfFunction(WarpType::Tent, 0.f);
+    case WarpType::UniformSquare:
+      return warpPdfFunction(WarpType::Tent, 0.f);
     case WarpType::Tent:
     case WarpType::UniformDisk:
-    case WarpType::ConcentricDisk: return [](const Vec3& v) { return uniformOnSquare(v, -1.0, 1.0); };
-    case WarpType::UniformSphere: return warpPdfFunction(WarpType::UniformHemisphere, 0.f);
-    case WarpType::UniformHemisphere: return warpPdfFunction(WarpType::CosineHemisphere, 0.f);
-    case WarpType::CosineHemisphere: return warpPdfFunction(WarpType::UniformHemisphere, 0.f);
-    case WarpType::UniformCone: return warpPdfFunction(WarpType::UniformCone, 0.5f * (p + 1.f));
-    case WarpType::Beckmann: return warpPdfFunction(WarpType::Beckmann, 2.f * p);
+    case WarpType::ConcentricDisk:
+      return [](const Vec3& v) { return uniformOnSquare(v, -1.0, 1.0); };
+    case WarpType::UniformSphere:
+      return warpPdfFunction(WarpType::UniformHemisphere, 0.f);
+    case WarpType::UniformHemisphere:
+      return warpPdfFunction(WarpType::CosineHemisphere, 0.f);
+    case WarpType::CosineHemisphere:
+      return warpPdfFunction(WarpType::UniformHemisphere, 0.f);
+    case WarpType::UniformCone:
+      return warpPdfFunction(WarpType::UniformCone, 0.5f * (p + 1.f));
+    case WarpType::Beckmann:
+      return warpPdfFunction(WarpType::Beckmann, 2.f * p);
   }
   return warpPdfFunction(s.type, p);
 }
@@ -108,7 +125,8 @@ std::vector<Vec2> makePointSet(PointSet set, int log2Points, uint64_t seed) {
         jx = rng.nextFloat();
         jy = rng.nextFloat();
       }
-      pts[size_t(j) * nx + i] = Vec2(std::min((i + jx) / nx, kOneMinusEpsilon), std::min((j + jy) / ny, kOneMinusEpsilon));
+      pts[size_t(j) * nx + i] =
+          Vec2(std::min((i + jx) / nx, kOneMinusEpsilon), std::min((j + jy) / ny, kOneMinusEpsilon));
     }
   return pts;
 }
@@ -160,7 +178,8 @@ std::array<uint8_t, 3> divergingColour(double t) {
   const double* end = t < 0 ? neg : pos;
   double a = std::fabs(t);
   std::array<uint8_t, 3> rgb;
-  for (int ch = 0; ch < 3; ++ch) rgb[ch] = static_cast<uint8_t>(std::lround(255.0 * (mid[ch] + a * (end[ch] - mid[ch]))));
+  for (int ch = 0; ch < 3; ++ch)
+    rgb[ch] = static_cast<uint8_t>(std::lround(255.0 * (mid[ch] + a * (end[ch] - mid[ch]))));
   return rgb;
 }
 

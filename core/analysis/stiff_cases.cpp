@@ -58,9 +58,15 @@ constexpr double kPiD = 3.14159265358979323846;
 const Vec3 kUp(0.f, 0.f, 1.f);
 const Vec3 kReceiver(0.31f, 0.17f, 0.f);  // the receiver point of the plane scenes (generate.py: X)
 
-std::string sceneDir(const CaseOptions& o) { return o.sceneDir.empty() ? defaultStiffSceneDir() : o.sceneDir; }
-LoadedScene load(const CaseOptions& o, const std::string& file) { return loadScene(sceneDir(o) + "/" + file); }
-int count(const CaseOptions& o, int n) { return o.quick ? std::max(1000, n / 8) : n; }
+std::string sceneDir(const CaseOptions& o) {
+  return o.sceneDir.empty() ? defaultStiffSceneDir() : o.sceneDir;
+}
+LoadedScene load(const CaseOptions& o, const std::string& file) {
+  return loadScene(sceneDir(o) + "/" + file);
+}
+int count(const CaseOptions& o, int n) {
+  return o.quick ? std::max(1000, n / 8) : n;
+}
 
 std::string num(double v) {
   char buf[32];
@@ -74,7 +80,8 @@ void merge(CaseResult& acc, const CaseResult& sub, const std::string& label, boo
   acc.bad += sub.bad;
   for (const std::string& f : sub.failures) acc.failures.push_back(label + ": " + f);
   if (!acc.note.empty()) acc.note += "; ";
-  acc.note += label + " " + (sub.statistical ? num(sub.estimate) + "±" + num(sub.standardError) : "finite-only") +
+  acc.note += label + " " +
+              (sub.statistical ? num(sub.estimate) + "±" + num(sub.standardError) : "finite-only") +
               (sub.bad ? " (" + std::to_string(sub.bad) + " bad)" : "");
   if (!sub.statistical) return;
   bool worse = first || (!sub.passed() && acc.passed()) ||
@@ -121,7 +128,8 @@ double directTruth(const Scene& scene, const Vec3& x, const Vec3& n = kUp) {
   double sum = 0;
   for (const SphereLight& l : scene.sphereLights)
     sum += double(l.radiance.x) / kPiD *
-           sphereLightIrradianceFactor(glm::dvec3(x), glm::dvec3(n), glm::dvec3(l.sphere.center), double(l.sphere.radius));
+           sphereLightIrradianceFactor(glm::dvec3(x), glm::dvec3(n), glm::dvec3(l.sphere.center),
+                                       double(l.sphere.radius));
   return sum;
 }
 
@@ -154,13 +162,20 @@ CaseResult directCase(const CaseOptions& o, const std::string& file, unsigned st
   double truth = directTruth(scene, hit.p);
   bool first = true;
   n = count(o, n);
-  if (strategies & kSolid) merge(acc, fromEstimate(direct<DirectStrategy::SolidAngle>(scene, ray, n, o.seed), truth), "solid-angle", first);
-  if (strategies & kArea) merge(acc, fromEstimate(direct<DirectStrategy::Area>(scene, ray, n, o.seed + 1), truth), "area", first);
+  if (strategies & kSolid)
+    merge(acc, fromEstimate(direct<DirectStrategy::SolidAngle>(scene, ray, n, o.seed), truth), "solid-angle",
+          first);
+  if (strategies & kArea)
+    merge(acc, fromEstimate(direct<DirectStrategy::Area>(scene, ray, n, o.seed + 1), truth), "area", first);
   if (strategies & kCosine)
-    merge(acc, fromEstimate(direct<DirectStrategy::CosineHemisphere>(scene, ray, hemisphereFactor * n, o.seed + 2), truth),
+    merge(acc,
+          fromEstimate(direct<DirectStrategy::CosineHemisphere>(scene, ray, hemisphereFactor * n, o.seed + 2),
+                       truth),
           "cosine", first);
   if (strategies & kUniform)
-    merge(acc, fromEstimate(direct<DirectStrategy::UniformHemisphere>(scene, ray, hemisphereFactor * n, o.seed + 3), truth),
+    merge(acc,
+          fromEstimate(
+              direct<DirectStrategy::UniformHemisphere>(scene, ray, hemisphereFactor * n, o.seed + 3), truth),
           "uniform", first);
   return acc;
 }
@@ -171,7 +186,8 @@ CaseResult exactlyZeroCase(const CaseOptions& o, const std::string& file, int n)
   acc.absSlack = 0;
   acc.relSlack = 0;
   if (acc.failures.empty() && !(acc.expected == 0.0 && acc.estimate == 0.0 && acc.standardError == 0.0))
-    acc.failures.push_back("expected exactly 0, got " + num(acc.estimate) + " (truth " + num(acc.expected) + ")");
+    acc.failures.push_back("expected exactly 0, got " + num(acc.estimate) + " (truth " + num(acc.expected) +
+                           ")");
   return acc;
 }
 
@@ -230,7 +246,8 @@ CaseResult diskAndCosineRim(const CaseOptions& o) {
   CaseResult r;
   const float top = 1.f - 0x1p-24f;
   Vec2 centre = Warp::squareToConcentricDisk(Vec2(0.5f, 0.5f));
-  if (!(glm::length(centre) < 1e-6f)) r.failures.push_back("concentric disk centre maps to " + num(glm::length(centre)));
+  if (!(glm::length(centre) < 1e-6f))
+    r.failures.push_back("concentric disk centre maps to " + num(glm::length(centre)));
   for (Vec2 u : {Vec2(0.f, 0.f), Vec2(top, 0.f), Vec2(0.f, top), Vec2(top, top)}) {
     Vec2 p = Warp::squareToConcentricDisk(u);
     float len = glm::length(p);
@@ -296,7 +313,9 @@ CaseResult coneCase(const CaseOptions& o, const std::string& tag) {
     float back = light.pdfSolidAngle(kReceiver, ls.wi);
     if (std::fabs(ls.pdf / pdfTruth - 1.0) > 1e-5 || !(std::fabs(back / ls.pdf - 1.f) < 1e-5f)) ++mismatched;
   }
-  if (mismatched) acc.failures.push_back(std::to_string(mismatched) + " samples whose pdf disagrees with the closed form or pdfSolidAngle");
+  if (mismatched)
+    acc.failures.push_back(std::to_string(mismatched) +
+                           " samples whose pdf disagrees with the closed form or pdfSolidAngle");
   acc.note += "; pdf = 1/(2pi(1-cos)) = " + num(pdfTruth) + " for all samples";
   return acc;
 }
@@ -311,7 +330,8 @@ CaseResult radiusZero(const CaseOptions& o) {
     LightSample a = light.sampleArea(kReceiver, u), b = light.sampleSolidAngle(kReceiver, u);
     if (a.pdf != 0.f || b.pdf != 0.f) r.failures.push_back("a radius-0 light returned a sample");
   }
-  if (light.pdfArea() != 0.f || light.pdfSolidAngle(kReceiver, kUp) != 0.f) r.failures.push_back("non-zero pdf");
+  if (light.pdfArea() != 0.f || light.pdfSolidAngle(kReceiver, kUp) != 0.f)
+    r.failures.push_back("non-zero pdf");
   // No geometry: a ray from the receiver straight through the light's centre hits nothing.
   Ray up;
   up.o = kReceiver + Vec3(0.f, 0.f, 1e-3f);
@@ -342,7 +362,8 @@ CaseResult sin2Underflow(const CaseOptions& o) {
 // ---- 5: on, next to and inside the light's surface ------------------------------------------------------
 
 // Unoccluded irradiance factor I at x (normal n) by solid-angle (and area) sampling of `light`.
-Estimate irradianceByApi(const SphereLight& light, const Vec3& x, const Vec3& n, bool area, int count, uint64_t seed) {
+Estimate irradianceByApi(const SphereLight& light, const Vec3& x, const Vec3& n, bool area, int count,
+                         uint64_t seed) {
   Sampler sampler(SamplerKind::Independent, 1, seed);
   double sum = 0, sumSq = 0;
   Estimate e;
@@ -371,12 +392,14 @@ CaseResult onSurface(const CaseOptions& o) {
   light.sphere.radius = 5.f;
   light.radiance = Color3(1.f);
   const Vec3 x(0.25f, 0.5f, 0.f);
-  double truth = sphereLightIrradianceFactor(glm::dvec3(x), glm::dvec3(kUp), glm::dvec3(light.sphere.center), 5.0);
+  double truth =
+      sphereLightIrradianceFactor(glm::dvec3(x), glm::dvec3(kUp), glm::dvec3(light.sphere.center), 5.0);
   CaseResult r = fromEstimate(irradianceByApi(light, x, kUp, false, count(o, 20000), o.seed), truth);
   // Area sampling sees only the back of every point (a one-sided emitter from its own surface): 0.
   Estimate area = irradianceByApi(light, x, kUp, true, count(o, 2000), o.seed + 1);
   r.bad += area.bad;
-  if (area.mean != 0.0) r.failures.push_back("area sampling from the surface gave " + num(area.mean) + ", expected 0");
+  if (area.mean != 0.0)
+    r.failures.push_back("area sampling from the surface gave " + num(area.mean) + ", expected 0");
   r.note = "I = (pi/2)(1+cos theta) by solid angle; area: exactly 0 (every point faces away)";
   return r;
 }
@@ -409,7 +432,8 @@ CaseResult outside1e8(const CaseOptions& o) {
   const double gap = glm::length(glm::dvec3(best) - glm::dvec3(x)) - 1.0;
   double truth = sphereLightIrradianceFactor(glm::dvec3(x), glm::dvec3(kUp), glm::dvec3(best), 1.0);
   CaseResult r = fromEstimate(irradianceByApi(light, x, kUp, false, count(o, 20000), o.seed), truth);
-  if (!(gap > 0.5e-8 && gap < 2e-8)) r.failures.push_back("could not place the light 1e-8 r away (gap " + num(gap) + ")");
+  if (!(gap > 0.5e-8 && gap < 2e-8))
+    r.failures.push_back("could not place the light 1e-8 r away (gap " + num(gap) + ")");
   r.note = "gap (d-r)/r = " + num(gap) + " (double from float positions), solid angle";
   return r;
 }
@@ -422,12 +446,14 @@ CaseResult inside(const CaseOptions& o) {
   CaseResult acc;
   bool first = true;
   int n = count(o, 4000);
-  merge(acc, fromEstimate(direct<DirectStrategy::SolidAngle>(*s.scene, ray, n, o.seed), 0.0), "solid-angle", first);
+  merge(acc, fromEstimate(direct<DirectStrategy::SolidAngle>(*s.scene, ray, n, o.seed), 0.0), "solid-angle",
+        first);
   merge(acc, fromEstimate(direct<DirectStrategy::Area>(*s.scene, ray, n, o.seed), 0.0), "area", first);
-  merge(acc, fromEstimate(direct<DirectStrategy::CosineHemisphere>(*s.scene, ray, n, o.seed), 0.0), "cosine", first);
+  merge(acc, fromEstimate(direct<DirectStrategy::CosineHemisphere>(*s.scene, ray, n, o.seed), 0.0), "cosine",
+        first);
   acc.relSlack = 0;
-  double truth = sphereLightIrradianceFactor(glm::dvec3(kReceiver), glm::dvec3(kUp), glm::dvec3(light.sphere.center),
-                                             light.sphere.radius);
+  double truth = sphereLightIrradianceFactor(glm::dvec3(kReceiver), glm::dvec3(kUp),
+                                             glm::dvec3(light.sphere.center), light.sphere.radius);
   if (truth != 0.0) acc.failures.push_back("closed form inside a one-sided light is " + num(truth));
   return acc;
 }
@@ -490,7 +516,8 @@ CaseResult scaleCase(const CaseOptions& o, const std::string& kind) {
       if (std::fabs(a - b) > 4.0 * s + 1e-3 * std::max(1.0, std::fabs(b))) ++outliers;
     }
     if (outliers > n / 100)
-      sub.failures.push_back(std::to_string(outliers) + " of " + std::to_string(n) + " pixels differ from scale 1");
+      sub.failures.push_back(std::to_string(outliers) + " of " + std::to_string(n) +
+                             " pixels differ from scale 1");
     merge(acc, sub, std::string("scale ") + tag + " (" + std::to_string(outliers) + " px off)", first);
   }
   return acc;
@@ -507,7 +534,8 @@ CaseResult aoOnSphereNearContact(const CaseOptions& o) {
     Vec3 n(float(std::sin(psi)), 0.f, float(std::cos(psi)));
     Vec3 p = Vec3(0, 0, 1) + n;
     Ray ray = rayOnto(p, n, 1e-3f);
-    CaseResult sub = fromEstimate(ao<HemisphereWarp::Cosine>(*s.scene, ray, count(o, 60000), o.seed), aoOnRestingConvexBody(psi));
+    CaseResult sub = fromEstimate(ao<HemisphereWarp::Cosine>(*s.scene, ray, count(o, 60000), o.seed),
+                                  aoOnRestingConvexBody(psi));
     merge(acc, sub, "psi " + num(psiDeg), first);
   }
   acc.note += " (-> (pi-psi)^2/4)";
@@ -520,7 +548,8 @@ CaseResult aoOnPlaneNearContact(const CaseOptions& o) {
   bool first = true;
   for (float rho : {0.05f, 0.1f}) {
     Ray ray = rayOnto(Vec3(rho, 0, 0), kUp, 5e-4f);
-    CaseResult sub = fromEstimate(ao<HemisphereWarp::Cosine>(*s.scene, ray, count(o, 60000), o.seed), aoPlaneNearRestingSphere(rho, 1.0));
+    CaseResult sub = fromEstimate(ao<HemisphereWarp::Cosine>(*s.scene, ray, count(o, 60000), o.seed),
+                                  aoPlaneNearRestingSphere(rho, 1.0));
     merge(acc, sub, "rho " + num(rho), first);
   }
   acc.note += " (~ 1.5 rho^2/R^2)";
@@ -582,11 +611,13 @@ CaseResult brightOccluded(const CaseOptions& o) {
   CaseResult acc;
   bool first = true;
   int n = count(o, 40000);
-  merge(acc, fromEstimate(direct<DirectStrategy::SolidAngle>(scene, ray, n, o.seed), truth), "solid-angle", first);
+  merge(acc, fromEstimate(direct<DirectStrategy::SolidAngle>(scene, ray, n, o.seed), truth), "solid-angle",
+        first);
   merge(acc, fromEstimate(direct<DirectStrategy::Area>(scene, ray, n, o.seed + 1), truth), "area", first);
   // Hemisphere sampling finds the visible ring with probability ~2e-4: 400k samples (~80 hits) even
   // in --quick, so the standard error is itself estimated well enough for a z-test.
-  merge(acc, fromEstimate(direct<DirectStrategy::CosineHemisphere>(scene, ray, 400000, o.seed + 2), truth), "cosine", first);
+  merge(acc, fromEstimate(direct<DirectStrategy::CosineHemisphere>(scene, ray, 400000, o.seed + 2), truth),
+        "cosine", first);
   return acc;
 }
 
@@ -609,21 +640,24 @@ CaseResult rejectAll(const CaseOptions& o, std::initializer_list<Rejection> list
 }
 
 CaseResult badValues(const CaseOptions& o) {
-  CaseResult acc = rejectAll(o, {{"bad-nan.xml", "expected a finite number, got \"nan\""},
-                                 {"bad-inf.xml", "expected a finite number, got \"inf\""},
-                                 {"bad-1e999.xml", "expected a finite number, got \"1e999\""},
-                                 {"bad-sampleCount-0.xml", "sampleCount must be an integer in [1, 16777216], got 0"},
-                                 {"bad-sampleCount--4.xml", "sampleCount must be an integer in [1, 16777216], got -4"},
-                                 {"bad-sampleCount-4294967296.xml",
-                                  "sampleCount must be an integer in [1, 16777216], got 4294967296"},
-                                 {"bad-sampleCount-3.5.xml", "expected an integer"}});
+  CaseResult acc = rejectAll(
+      o,
+      {{"bad-nan.xml", "expected a finite number, got \"nan\""},
+       {"bad-inf.xml", "expected a finite number, got \"inf\""},
+       {"bad-1e999.xml", "expected a finite number, got \"1e999\""},
+       {"bad-sampleCount-0.xml", "sampleCount must be an integer in [1, 16777216], got 0"},
+       {"bad-sampleCount--4.xml", "sampleCount must be an integer in [1, 16777216], got -4"},
+       {"bad-sampleCount-4294967296.xml", "sampleCount must be an integer in [1, 16777216], got 4294967296"},
+       {"bad-sampleCount-3.5.xml", "expected an integer"}});
   // -0 is accepted and read as +0: a radius-0 light (kept, no geometry).
   acc.expected += 1;
   try {
     LoadedScene s = load(o, "minus-zero.xml");
     float r = s.scene->sphereLights.at(0).sphere.radius;
-    if (r == 0.f && !std::signbit(r)) acc.estimate += 1;
-    else acc.failures.push_back("-0 radius read as " + num(r));
+    if (r == 0.f && !std::signbit(r))
+      acc.estimate += 1;
+    else
+      acc.failures.push_back("-0 radius read as " + num(r));
   } catch (const std::exception& e) {
     acc.failures.push_back(std::string("-0 rejected: ") + e.what());
   }
@@ -634,7 +668,8 @@ CaseResult badValues(const CaseOptions& o) {
 CaseResult degenerateMesh(const CaseOptions& o) {
   LoadedScene s = load(o, "degenerate-mesh.xml");
   bool warned = false;
-  for (const std::string& w : s.warnings) warned = warned || w.find("dropped 3 degenerate") != std::string::npos;
+  for (const std::string& w : s.warnings)
+    warned = warned || w.find("dropped 3 degenerate") != std::string::npos;
   Render img = render(s, o.quick ? 4 : 16, o.seed);
   double m, se;
   imageMean(img, m, se);
@@ -671,7 +706,8 @@ CaseResult accumulation(const CaseOptions& o) {
   if (!std::isfinite(se.rgb[0]) || !(se.rgb[0] >= 0.f) || se.rgb[0] > 1e-6f * a)
     r.failures.push_back("standard error of a constant pixel is " + num(se.rgb[0]));
   double seBig = 0.5 * (double(big) - double(small)) / std::sqrt(double(n - 1));
-  if (!(std::fabs(se.rgb[3] / seBig - 1.0) < 1e-4)) r.failures.push_back("standard error " + num(se.rgb[3]) + " vs " + num(seBig));
+  if (!(std::fabs(se.rgb[3] / seBig - 1.0) < 1e-4))
+    r.failures.push_back("standard error " + num(se.rgb[3]) + " vs " + num(seBig));
   r.note = "10^6 samples: 0.1 -> " + num(mean.rgb[0]) + " (a float sum gives " + num(naive0 / n) +
            "); alternating 1e4/1e-3";
   return r;
@@ -681,16 +717,19 @@ CaseResult accumulation(const CaseOptions& o) {
 void equalPowerTruths(const CaseOptions& o, const std::string& file, CaseResult& r) {
   double t1 = directTruth(*load(o, "equal-power-r1.xml").scene, kReceiver);
   double t = directTruth(*load(o, file).scene, kReceiver);
-  if (std::fabs(t / t1 - 1.0) > 1e-6) r.failures.push_back("closed form " + num(t) + " differs from r = 1: " + num(t1));
+  if (std::fabs(t / t1 - 1.0) > 1e-6)
+    r.failures.push_back("closed form " + num(t) + " differs from r = 1: " + num(t1));
 }
 
 std::vector<StiffCase> makeCases() {
   std::vector<StiffCase> v;
-  auto add = [&](std::string name, int item, std::string description, std::function<CaseResult(const CaseOptions&)> f) {
+  auto add = [&](std::string name, int item, std::string description,
+                 std::function<CaseResult(const CaseOptions&)> f) {
     v.push_back(StiffCase{std::move(name), item, std::move(description), std::move(f)});
   };
   add("warp-extremes", 1, "every warp at u in {0, 0.5, 1-2^-24}^2; samplers never return 1.0", warpExtremes);
-  add("disk-corners-cosine-rim", 2, "concentric disk centre and corners; cosine hemisphere at the rim", diskAndCosineRim);
+  add("disk-corners-cosine-rim", 2, "concentric disk centre and corners; cosine hemisphere at the rim",
+      diskAndCosineRim);
   for (const char* tag : {"1e-4", "1e-6", "1e-8", "1e-12"})
     add(std::string("cone-sin2-") + tag, 3, std::string("solid-angle sampling, sin^2 theta_max = ") + tag,
         [tag](const CaseOptions& o) { return coneCase(o, tag); });
@@ -698,36 +737,48 @@ std::vector<StiffCase> makeCases() {
   add("light-sin2-underflow", 4, "r = 1e-25 at distance 1: finite, no infinite pdf", sin2Underflow);
   add("light-on-surface", 5, "shading point exactly on the light's surface", onSurface);
   add("light-outside-1e-6r", 5, "receiver 1e-6 r outside an overhead light (integrator)",
-      [](const CaseOptions& o) { return directCase(o, "light-touching.xml", kSolid | kCosine, 20000, kReceiver, 1e-5f, 1); });
+      [](const CaseOptions& o) {
+        return directCase(o, "light-touching.xml", kSolid | kCosine, 20000, kReceiver, 1e-5f, 1);
+      });
   add("light-outside-1e-8r", 5, "shading point 1e-8 r outside the light", outside1e8);
   add("light-inside", 5, "receiver inside a one-sided light: exactly 0", inside);
   add("light-below-horizon", 6, "light entirely below the horizon: exactly 0",
       [](const CaseOptions& o) { return exactlyZeroCase(o, "light-below-horizon.xml", 4000); });
-  add("light-straddling", 6, "light straddling the horizon",
-      [](const CaseOptions& o) { return directCase(o, "light-straddling.xml", kSolid | kArea | kCosine, 20000); });
-  add("light-centre-on-horizon", 6, "light centre exactly on the horizon",
-      [](const CaseOptions& o) { return directCase(o, "light-centre-on-horizon.xml", kSolid | kArea | kCosine, 20000); });
-  add("light-grazing-89.9", 7, "light centre 89.9 degrees from the normal",
-      [](const CaseOptions& o) { return directCase(o, "light-grazing.xml", kSolid | kArea | kCosine, 20000); });
+  add("light-straddling", 6, "light straddling the horizon", [](const CaseOptions& o) {
+    return directCase(o, "light-straddling.xml", kSolid | kArea | kCosine, 20000);
+  });
+  add("light-centre-on-horizon", 6, "light centre exactly on the horizon", [](const CaseOptions& o) {
+    return directCase(o, "light-centre-on-horizon.xml", kSolid | kArea | kCosine, 20000);
+  });
+  add("light-grazing-89.9", 7, "light centre 89.9 degrees from the normal", [](const CaseOptions& o) {
+    return directCase(o, "light-grazing.xml", kSolid | kArea | kCosine, 20000);
+  });
   add("equal-power-r1", 8, "equal power, r = 1 (all strategies)",
       [](const CaseOptions& o) { return directCase(o, "equal-power-r1.xml", kAll, 20000); });
-  add("equal-power-r1e-3", 8, "equal power, r = 1e-3 (light sampling; hemisphere finite)", [](const CaseOptions& o) {
-    CaseResult r = directCase(o, "equal-power-r1e-3.xml", kSolid | kArea, 20000);
-    equalPowerTruths(o, "equal-power-r1e-3.xml", r);
-    return r;
-  });
-  add("equal-power-r1e-6", 8, "equal power, r = 1e-6 (light sampling; hemisphere finite)", [](const CaseOptions& o) {
-    CaseResult r = directCase(o, "equal-power-r1e-6.xml", kSolid | kArea, 20000);
-    LoadedScene s = load(o, "equal-power-r1e-6.xml");
-    bool first = false;
-    Ray ray = shallowRayOnto(kReceiver);
-    merge(r, finiteOnly(direct<DirectStrategy::CosineHemisphere>(*s.scene, ray, count(o, 20000), o.seed)), "cosine", first);
-    merge(r, finiteOnly(direct<DirectStrategy::UniformHemisphere>(*s.scene, ray, count(o, 20000), o.seed)), "uniform", first);
-    equalPowerTruths(o, "equal-power-r1e-3.xml", r);
-    return r;
-  });
-  add("scale-ao", 9, "AO image at scales 1e-4 and 1e4 vs 1", [](const CaseOptions& o) { return scaleCase(o, "ao"); });
-  add("scale-direct", 9, "direct image at scales 1e-4 and 1e4 vs 1", [](const CaseOptions& o) { return scaleCase(o, "direct"); });
+  add("equal-power-r1e-3", 8, "equal power, r = 1e-3 (light sampling; hemisphere finite)",
+      [](const CaseOptions& o) {
+        CaseResult r = directCase(o, "equal-power-r1e-3.xml", kSolid | kArea, 20000);
+        equalPowerTruths(o, "equal-power-r1e-3.xml", r);
+        return r;
+      });
+  add("equal-power-r1e-6", 8, "equal power, r = 1e-6 (light sampling; hemisphere finite)",
+      [](const CaseOptions& o) {
+        CaseResult r = directCase(o, "equal-power-r1e-6.xml", kSolid | kArea, 20000);
+        LoadedScene s = load(o, "equal-power-r1e-6.xml");
+        bool first = false;
+        Ray ray = shallowRayOnto(kReceiver);
+        merge(r, finiteOnly(direct<DirectStrategy::CosineHemisphere>(*s.scene, ray, count(o, 20000), o.seed)),
+              "cosine", first);
+        merge(r,
+              finiteOnly(direct<DirectStrategy::UniformHemisphere>(*s.scene, ray, count(o, 20000), o.seed)),
+              "uniform", first);
+        equalPowerTruths(o, "equal-power-r1e-3.xml", r);
+        return r;
+      });
+  add("scale-ao", 9, "AO image at scales 1e-4 and 1e4 vs 1",
+      [](const CaseOptions& o) { return scaleCase(o, "ao"); });
+  add("scale-direct", 9, "direct image at scales 1e-4 and 1e4 vs 1",
+      [](const CaseOptions& o) { return scaleCase(o, "direct"); });
   add("ao-sphere-near-contact", 10, "AO on a resting sphere near its contact point", aoOnSphereNearContact);
   add("ao-plane-near-contact", 10, "AO on the plane next to the contact point", aoOnPlaneNearContact);
   add("area-far-side", 11, "area sampling: far-side samples add exactly 0, unbiased", areaFarSide);
@@ -735,7 +786,8 @@ std::vector<StiffCase> makeCases() {
   add("radiance-0", 12, "radiance 0: exactly 0",
       [](const CaseOptions& o) { return exactlyZeroCase(o, "radiance-0.xml", 4000); });
   add("bad-values", 13, "nan, inf, 1e999, sampleCount 0/-4/2^32/3.5 rejected; -0 read as 0", badValues);
-  add("degenerate-mesh", 14, "zero-area and repeated-vertex triangles, a mesh without normals", degenerateMesh);
+  add("degenerate-mesh", 14, "zero-area and repeated-vertex triangles, a mesh without normals",
+      degenerateMesh);
   add("camera-fov-0-180", 14, "camera fov 0 and 180 rejected", cameraFov);
   add("film-1e6-samples", 15, "10^6 samples in one pixel without drift", accumulation);
   return v;
@@ -754,10 +806,12 @@ CaseResult checkRejected(const CaseOptions& o, const std::string& file, const st
     size_t at = msg.find(file + ":");
     bool hasLine = at != std::string::npos && at + file.size() + 1 < msg.size() &&
                    std::isdigit(static_cast<unsigned char>(msg[at + file.size() + 1]));
-    if (!hasLine) r.failures.push_back(file + ": message has no file:line: " + msg);
+    if (!hasLine)
+      r.failures.push_back(file + ": message has no file:line: " + msg);
     else if (msg.find(expectedMessage) == std::string::npos)
       r.failures.push_back(file + ": expected \"" + expectedMessage + "\", got: " + msg);
-    else r.estimate = 1.0;
+    else
+      r.estimate = 1.0;
   }
   return r;
 }

@@ -25,10 +25,10 @@ struct CaseOptions {
 
 struct CaseResult {
   double expected = 0, estimate = 0, standardError = 0;
-  uint64_t bad = 0;           // NaN / Inf / negative samples (or values that must be finite and >= 0)
-  double absSlack = 0;        // absolute tolerance for deterministic cases (float rounding)
-  double relSlack = 1e-5;     // relative tolerance (float rounding of Le·cos/pdf when SE ≈ 0)
-  bool statistical = true;    // false: only bad == 0 and no failures are required (finite-only checks)
+  uint64_t bad = 0;         // NaN / Inf / negative samples (or values that must be finite and >= 0)
+  double absSlack = 0;      // absolute tolerance for deterministic cases (float rounding)
+  double relSlack = 1e-5;   // relative tolerance (float rounding of Le·cos/pdf when SE ≈ 0)
+  bool statistical = true;  // false: only bad == 0 and no failures are required (finite-only checks)
   std::vector<std::string> failures;  // violated invariants, each a readable sentence
   std::string note;                   // what was compared (sub-checks)
 
@@ -55,6 +55,7 @@ std::string defaultStiffSceneDir();
 
 // Exposed for the test of the test: loads `file` (relative to the scene directory) and requires a
 // penumbra::Error whose message contains "file:LINE" and `expectedMessage`.
-CaseResult checkRejected(const CaseOptions& options, const std::string& file, const std::string& expectedMessage);
+CaseResult checkRejected(const CaseOptions& options, const std::string& file,
+                         const std::string& expectedMessage);
 
 }  // namespace penumbra::analysis

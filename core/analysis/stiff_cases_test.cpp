@@ -65,14 +65,16 @@ TEST(StiffCasesCanFail, APdfOffByTwoFailsTheZTest) {
   const Vec3 x(0.31f, 0.17f, 0.f);
   const SphereLight& l = s.scene->sphereLights[0];
   double truth = l.radiance.x / M_PI *
-                 sphereLightIrradianceFactor(glm::dvec3(x), glm::dvec3(0, 0, 1), glm::dvec3(l.sphere.center), l.sphere.radius);
+                 sphereLightIrradianceFactor(glm::dvec3(x), glm::dvec3(0, 0, 1), glm::dvec3(l.sphere.center),
+                                             l.sphere.radius);
   Estimate e = estimateRay(*s.scene, HalvedSolidAngle{}, shallowRayOnto(x), 4000, 3);
   CaseResult r;
   r.expected = truth;
   r.estimate = e.mean;
   r.standardError = e.standardError;
   r.bad = e.bad;
-  EXPECT_FALSE(r.passed()) << "a pdf off by 2x passed: " << e.mean << " ± " << e.standardError << " vs " << truth;
+  EXPECT_FALSE(r.passed()) << "a pdf off by 2x passed: " << e.mean << " ± " << e.standardError << " vs "
+                           << truth;
   EXPECT_GT(r.zScore(), 4.0);
   // The same estimate with the right expectation passes (the failure above is the pdf's).
   r.expected = truth / 2;

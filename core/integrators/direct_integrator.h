@@ -32,7 +32,8 @@ struct DirectIntegrator {
 
     ShadingPoint sp(scene, ray, hit);
     Color3 E = deltaIrradiance(scene, sp);
-    if constexpr (kStrategy == DirectStrategy::UniformHemisphere || kStrategy == DirectStrategy::CosineHemisphere) {
+    if constexpr (kStrategy == DirectStrategy::UniformHemisphere ||
+                  kStrategy == DirectStrategy::CosineHemisphere) {
       if (scene.hasAreaLights()) E += hemisphereIrradiance(scene, sp, sampler);
     } else if constexpr (kStrategy == DirectStrategy::Area || kStrategy == DirectStrategy::SolidAngle) {
       E += lightSamplingIrradiance(scene, sp, sampler);

@@ -4,19 +4,26 @@ namespace penumbra {
 
 const char* integratorTypeName(IntegratorType type) {
   switch (type) {
-    case IntegratorType::Normals: return "normals";
-    case IntegratorType::Simple: return "simple";
-    case IntegratorType::Ao: return "ao";
-    case IntegratorType::Direct: return "direct";
+    case IntegratorType::Normals:
+      return "normals";
+    case IntegratorType::Simple:
+      return "simple";
+    case IntegratorType::Ao:
+      return "ao";
+    case IntegratorType::Direct:
+      return "direct";
   }
   return "?";
 }
 
 const char* directMeasureName(DirectMeasure measure) {
   switch (measure) {
-    case DirectMeasure::Hemisphere: return "hemisphere";
-    case DirectMeasure::Area: return "area";
-    case DirectMeasure::SolidAngle: return "solid-angle";
+    case DirectMeasure::Hemisphere:
+      return "hemisphere";
+    case DirectMeasure::Area:
+      return "area";
+    case DirectMeasure::SolidAngle:
+      return "solid-angle";
   }
   return "?";
 }
@@ -37,17 +44,24 @@ bool parseIntegratorType(const std::string& name, IntegratorType& out) {
 }
 
 bool parseDirectMeasure(const std::string& name, DirectMeasure& out) {
-  if (name == "hemisphere") out = DirectMeasure::Hemisphere;
-  else if (name == "area") out = DirectMeasure::Area;
-  else if (name == "solid-angle" || name == "solidAngle") out = DirectMeasure::SolidAngle;
-  else return false;
+  if (name == "hemisphere")
+    out = DirectMeasure::Hemisphere;
+  else if (name == "area")
+    out = DirectMeasure::Area;
+  else if (name == "solid-angle" || name == "solidAngle")
+    out = DirectMeasure::SolidAngle;
+  else
+    return false;
   return true;
 }
 
 bool parseHemisphereWarp(const std::string& name, HemisphereWarp& out) {
-  if (name == "uniform" || name == "uniform-hemisphere") out = HemisphereWarp::Uniform;
-  else if (name == "cosine" || name == "cosine-hemisphere") out = HemisphereWarp::Cosine;
-  else return false;
+  if (name == "uniform" || name == "uniform-hemisphere")
+    out = HemisphereWarp::Uniform;
+  else if (name == "cosine" || name == "cosine-hemisphere")
+    out = HemisphereWarp::Cosine;
+  else
+    return false;
   return true;
 }
 

@@ -87,7 +87,8 @@ float SphereLight::pdfAreaAsSolidAngle(const Vec3& x, const Vec3& p, const Vec3&
   if (!(d2 > 0.0)) return 0.f;
   const double cosP = glm::dot(DVec3(n), toX) / std::sqrt(d2);
   if (cosP == 0.0) return 0.f;
-  const double pdf = d2 / (4.0 * 3.14159265358979323846 * double(sphere.radius) * sphere.radius * std::abs(cosP));
+  const double pdf =
+      d2 / (4.0 * 3.14159265358979323846 * double(sphere.radius) * sphere.radius * std::abs(cosP));
   return pdf <= kMaxPdf ? static_cast<float>(pdf) : 0.f;
 }
 

@@ -387,7 +387,8 @@ TEST(SphereLight, AreaPdfOfAnUnderflowingLightIsNeverInfinite) {
     LightSample s = light.sampleArea(Vec3(0.f), u);
     EXPECT_TRUE(std::isfinite(s.pdf)) << s.pdf;
     EXPECT_EQ(s.pdf, 0.f);
-    EXPECT_EQ(light.pdfAreaAsSolidAngle(Vec3(0.f), light.sphere.center - Vec3(0, 0, 1e-25f), Vec3(0, 0, -1)), 0.f);
+    EXPECT_EQ(light.pdfAreaAsSolidAngle(Vec3(0.f), light.sphere.center - Vec3(0, 0, 1e-25f), Vec3(0, 0, -1)),
+              0.f);
   }
 }
 

@@ -8,16 +8,30 @@
 
 namespace penumbra {
 
-inline float safeSqrt(float x) { return std::sqrt(std::max(x, 0.f)); }
-inline double safeSqrt(double x) { return std::sqrt(std::max(x, 0.0)); }
-inline float safeAcos(float x) { return std::acos(std::clamp(x, -1.f, 1.f)); }
-inline float safeAsin(float x) { return std::asin(std::clamp(x, -1.f, 1.f)); }
+inline float safeSqrt(float x) {
+  return std::sqrt(std::max(x, 0.f));
+}
+inline double safeSqrt(double x) {
+  return std::sqrt(std::max(x, 0.0));
+}
+inline float safeAcos(float x) {
+  return std::acos(std::clamp(x, -1.f, 1.f));
+}
+inline float safeAsin(float x) {
+  return std::asin(std::clamp(x, -1.f, 1.f));
+}
 
 // 1 - sqrt(1 - s2) without cancellation for small s2 (= s2 / (1 + sqrt(1 - s2))).
-inline float oneMinusSqrtOneMinus(float s2) { return s2 / (1.f + safeSqrt(1.f - s2)); }
-inline double oneMinusSqrtOneMinus(double s2) { return s2 / (1.0 + safeSqrt(1.0 - s2)); }
+inline float oneMinusSqrtOneMinus(float s2) {
+  return s2 / (1.f + safeSqrt(1.f - s2));
+}
+inline double oneMinusSqrtOneMinus(double s2) {
+  return s2 / (1.0 + safeSqrt(1.0 - s2));
+}
 
-inline bool isFinite(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+inline bool isFinite(const Vec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
 
 // Relative offset used to move ray origins off surfaces: 16 ulps of the magnitude of the numbers the
 // hit point came from, so the same scene at 1e-4 and 1e4 units behaves identically. Small enough for

@@ -22,8 +22,14 @@ inline constexpr float kPiOver4 = 0.78539816339744830962f;
 // Largest float below 1: samplers never hand out 1.0 (1 - 2^-24).
 inline constexpr float kOneMinusEpsilon = 0x1.fffffep-1f;
 
-inline float maxComponent(const Vec3& v) { return glm::max(v.x, glm::max(v.y, v.z)); }
-inline float luminance(const Color3& c) { return 0.212671f * c.x + 0.715160f * c.y + 0.072169f * c.z; }
-inline bool isBlack(const Color3& c) { return c.x == 0.f && c.y == 0.f && c.z == 0.f; }
+inline float maxComponent(const Vec3& v) {
+  return glm::max(v.x, glm::max(v.y, v.z));
+}
+inline float luminance(const Color3& c) {
+  return 0.212671f * c.x + 0.715160f * c.y + 0.072169f * c.z;
+}
+inline bool isBlack(const Color3& c) {
+  return c.x == 0.f && c.y == 0.f && c.z == 0.f;
+}
 
 }  // namespace penumbra

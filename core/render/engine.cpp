@@ -6,15 +6,19 @@
 
 namespace penumbra {
 
-Engine::~Engine() { cancel(); }
+Engine::~Engine() {
+  cancel();
+}
 
 void Engine::start(std::shared_ptr<const RenderJob> job, RenderLimits limits, int threads) {
   cancel();
   job_ = std::move(job);
   limits_ = limits;
   const CameraDesc& cam = job_->settings.camera;
-  if (film_.width() != cam.width || film_.height() != cam.height) film_.reset(cam.width, cam.height);
-  else film_.clear();
+  if (film_.width() != cam.width || film_.height() != cam.height)
+    film_.reset(cam.width, cam.height);
+  else
+    film_.clear();
 
   if (threads <= 0) threads = int(std::max(1u, std::thread::hardware_concurrency()));
   nextRow_ = 0;
@@ -51,7 +55,8 @@ void Engine::spawnWorkers(bool preview) {
     preview_ = Image(cam.width, cam.height);
   }
   workers_.reserve(threadCount_);
-  for (int i = 0; i < threadCount_; ++i) workers_.emplace_back([this, i, preview] { workerLoop(i, preview); });
+  for (int i = 0; i < threadCount_; ++i)
+    workers_.emplace_back([this, i, preview] { workerLoop(i, preview); });
 }
 
 bool Engine::extend(RenderLimits limits) {
@@ -69,9 +74,9 @@ bool Engine::extend(RenderLimits limits) {
   if (limits_.targetSpp > 0 && spp_ >= limits_.targetSpp) return true;  // nothing more to do
   stopRequested_ = false;
   // Resume the clock where it stopped.
-  startTime_ = std::chrono::steady_clock::now() -
-               std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                   std::chrono::duration<double>(finalSeconds_.load()));
+  startTime_ =
+      std::chrono::steady_clock::now() - std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                             std::chrono::duration<double>(finalSeconds_.load()));
   pausedSeconds_ = 0.0;
   nextRow_ = 0;
   finished_ = false;
@@ -105,8 +110,10 @@ void Engine::setPaused(bool paused) {
   std::lock_guard lk(passMutex_);
   if (paused == paused_.load()) return;
   auto now = std::chrono::steady_clock::now();
-  if (paused) pauseBegan_ = now;
-  else if (!finished_) pausedSeconds_ = pausedSeconds_ + std::chrono::duration<double>(now - pauseBegan_).count();
+  if (paused)
+    pauseBegan_ = now;
+  else if (!finished_)
+    pausedSeconds_ = pausedSeconds_ + std::chrono::duration<double>(now - pauseBegan_).count();
   paused_ = paused;
   passCv_.notify_all();
 }

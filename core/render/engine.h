@@ -34,10 +34,10 @@ struct RenderLimits {
 inline constexpr int kPreviewBlock = 4;
 
 struct RenderProgress {
-  uint32_t spp = 0;           // completed passes
-  double seconds = 0.0;       // rendering time, pauses excluded
-  uint64_t samples = 0;       // camera samples accumulated
-  uint64_t badSamples = 0;    // NaN, Inf or negative values (dropped and counted)
+  uint32_t spp = 0;         // completed passes
+  double seconds = 0.0;     // rendering time, pauses excluded
+  uint64_t samples = 0;     // camera samples accumulated
+  uint64_t badSamples = 0;  // NaN, Inf or negative values (dropped and counted)
   bool finished = false;
 };
 

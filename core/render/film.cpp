@@ -11,7 +11,9 @@ void Film::reset(int width, int height) {
   sums_.assign(size_t(width) * height * 6, 0.0);
 }
 
-void Film::clear() { std::fill(sums_.begin(), sums_.end(), 0.0); }
+void Film::clear() {
+  std::fill(sums_.begin(), sums_.end(), 0.0);
+}
 
 void Film::resolveMean(uint32_t spp, Image& out, int y0, int y1) const {
   double inv = spp > 0 ? 1.0 / spp : 0.0;

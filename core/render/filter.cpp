@@ -11,10 +11,14 @@ constexpr int kSubsamples = 16;  // per bin, to integrate |f| accurately
 
 const char* filterTypeName(FilterType type) {
   switch (type) {
-    case FilterType::Box: return "box";
-    case FilterType::Tent: return "tent";
-    case FilterType::Gaussian: return "gaussian";
-    case FilterType::Mitchell: return "mitchell";
+    case FilterType::Box:
+      return "box";
+    case FilterType::Tent:
+      return "tent";
+    case FilterType::Gaussian:
+      return "gaussian";
+    case FilterType::Mitchell:
+      return "mitchell";
   }
   return "?";
 }
@@ -31,9 +35,12 @@ bool parseFilterType(const std::string& name, FilterType& out) {
 
 float defaultFilterRadius(FilterType type) {
   switch (type) {
-    case FilterType::Box: return 0.5f;
-    case FilterType::Tent: return 1.f;
-    default: return 2.f;
+    case FilterType::Box:
+      return 0.5f;
+    case FilterType::Tent:
+      return 1.f;
+    default:
+      return 2.f;
   }
 }
 
@@ -42,8 +49,10 @@ float evalFilter1D(const FilterDesc& desc, float x) {
   x = std::fabs(x);
   if (x > r) return 0.f;
   switch (desc.type) {
-    case FilterType::Box: return 1.f;
-    case FilterType::Tent: return std::max(0.f, 1.f - x / r);
+    case FilterType::Box:
+      return 1.f;
+    case FilterType::Tent:
+      return std::max(0.f, 1.f - x / r);
     case FilterType::Gaussian: {
       float alpha = -1.f / (2.f * desc.stddev * desc.stddev);
       return std::max(0.f, std::exp(alpha * x * x) - std::exp(alpha * r * r));

@@ -15,10 +15,10 @@ enum class FilterType : uint8_t { Box, Tent, Gaussian, Mitchell };
 
 struct FilterDesc {
   FilterType type = FilterType::Gaussian;
-  float radius = 2.f;     // box default 0.5, tent 1, gaussian 2, mitchell 2
-  float stddev = 0.5f;    // gaussian
-  float B = 1.f / 3.f;    // mitchell
-  float C = 1.f / 3.f;    // mitchell
+  float radius = 2.f;   // box default 0.5, tent 1, gaussian 2, mitchell 2
+  float stddev = 0.5f;  // gaussian
+  float B = 1.f / 3.f;  // mitchell
+  float C = 1.f / 3.f;  // mitchell
 };
 
 const char* filterTypeName(FilterType type);
@@ -43,7 +43,7 @@ class FilterSampler {
   const FilterDesc& desc() const { return desc_; }
 
  private:
-  static constexpr int kBins = 512;   // signed-weight bins over [-radius, radius]
+  static constexpr int kBins = 512;    // signed-weight bins over [-radius, radius]
   static constexpr int kTable = 1024;  // inverse-CDF entries, uniform in u
 
   // Inverse-CDF lookup with linear interpolation: the sampled density is |f| approximated by
@@ -62,9 +62,9 @@ class FilterSampler {
   }
 
   FilterDesc desc_;
-  bool signed_ = false;          // the filter has negative lobes
+  bool signed_ = false;  // the filter has negative lobes
   float invBinWidth_ = 1.f;
-  std::vector<float> invCdf_;    // kTable + 1 entries: x with CDF(x) = k / kTable
+  std::vector<float> invCdf_;     // kTable + 1 entries: x with CDF(x) = k / kTable
   std::vector<float> binWeight_;  // per bin: sign(f) * integral|f| / integral f
 };
 

@@ -36,8 +36,12 @@ double quadrature(const FilterDesc& d, double (*g)(double)) {
   return num / den;
 }
 
-double square(double x) { return x * x; }
-double bump(double x) { return std::cos(x) + 0.3 * x; }
+double square(double x) {
+  return x * x;
+}
+double bump(double x) {
+  return std::cos(x) + 0.3 * x;
+}
 
 TEST(FilterSampler, ReproducesTheFilterForEveryType) {
   for (FilterType t : {FilterType::Box, FilterType::Tent, FilterType::Gaussian, FilterType::Mitchell}) {

@@ -56,18 +56,22 @@ RowRenderer rowsFor(const RenderJob& job, Integrator integrator) {
 RowRenderer makeRowRenderer(const RenderJob& job) {
   const IntegratorDesc& d = job.settings.integrator;
   switch (d.type) {
-    case IntegratorType::Normals: return rowsFor(job, NormalsIntegrator{});
+    case IntegratorType::Normals:
+      return rowsFor(job, NormalsIntegrator{});
     case IntegratorType::Ao:
-      if (d.warp == HemisphereWarp::Uniform) return rowsFor(job, AoIntegrator<HemisphereWarp::Uniform>{d.samples});
+      if (d.warp == HemisphereWarp::Uniform)
+        return rowsFor(job, AoIntegrator<HemisphereWarp::Uniform>{d.samples});
       return rowsFor(job, AoIntegrator<HemisphereWarp::Cosine>{d.samples});
-    case IntegratorType::Simple: return rowsFor(job, DirectIntegrator<DirectStrategy::DeltaOnly>{d.samples});
+    case IntegratorType::Simple:
+      return rowsFor(job, DirectIntegrator<DirectStrategy::DeltaOnly>{d.samples});
     case IntegratorType::Direct:
       switch (d.measure) {
         case DirectMeasure::Hemisphere:
           if (d.warp == HemisphereWarp::Uniform)
             return rowsFor(job, DirectIntegrator<DirectStrategy::UniformHemisphere>{d.samples});
           return rowsFor(job, DirectIntegrator<DirectStrategy::CosineHemisphere>{d.samples});
-        case DirectMeasure::Area: return rowsFor(job, DirectIntegrator<DirectStrategy::Area>{d.samples});
+        case DirectMeasure::Area:
+          return rowsFor(job, DirectIntegrator<DirectStrategy::Area>{d.samples});
         case DirectMeasure::SolidAngle:
           return rowsFor(job, DirectIntegrator<DirectStrategy::SolidAngle>{d.samples});
       }

@@ -14,7 +14,7 @@
 namespace penumbra {
 
 struct SurfaceMaterial {
-  Color3 albedo{0.5f};    // diffuse reflectance
+  Color3 albedo{0.5f};       // diffuse reflectance
   int32_t sphereLight = -1;  // index into Scene::sphereLights when the object emits
 };
 

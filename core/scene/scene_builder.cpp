@@ -38,8 +38,8 @@ float getPositiveFloat(const SceneNode& node, std::initializer_list<std::string_
                        const char* what, bool allowZero = false) {
   float v = node.props.getFloat(names, def);
   if (!std::isfinite(v) || v < 0.f || (!allowZero && v == 0.f))
-    fail(node, names, std::string(what) + (allowZero ? " must be >= 0" : " must be > 0") + ", got " +
-                          std::to_string(v));
+    fail(node, names,
+         std::string(what) + (allowZero ? " must be >= 0" : " must be > 0") + ", got " + std::to_string(v));
   return v;
 }
 
@@ -113,7 +113,8 @@ void buildIntegrator(const SceneNode& node, RenderSettings& s) {
       fail(node, {"measure"},
            "unknown measure \"" + measure + "\" (expected hemisphere, area or solid-angle)");
     if (d.measure == DirectMeasure::Hemisphere) {
-      std::string warp = node.props.getString({"warp-type", "sampling", "sampler", "warp"}, "cosine-hemisphere");
+      std::string warp =
+          node.props.getString({"warp-type", "sampling", "sampler", "warp"}, "cosine-hemisphere");
       if (!parseHemisphereWarp(warp, d.warp))
         fail(node, {"warp-type", "sampling", "sampler", "warp"},
              "unknown warp-type \"" + warp + "\" (expected uniform-hemisphere or cosine-hemisphere)");
@@ -133,8 +134,9 @@ Color3 buildBsdf(const SceneNode* bsdf, std::vector<std::string>& warnings) {
     float ks = getPositiveFloat(*bsdf, {"specularCoef"}, 0.f, "specularCoef", true);
     bsdf->props.markUsed({"shininess"});
     if (ks > 0.f)
-      warnings.push_back(bsdf->file + ":" + std::to_string(bsdf->line) +
-                         ": warning: phong specular lobe is not implemented; rendering the diffuse part only");
+      warnings.push_back(
+          bsdf->file + ":" + std::to_string(bsdf->line) +
+          ": warning: phong specular lobe is not implemented; rendering the diffuse part only");
     return albedo * kd;
   }
   unknownType(*bsdf, "diffuse, phong (diffuse part)");
@@ -146,8 +148,10 @@ TriangleMesh buildMesh(const SceneNode& node, std::vector<std::string>& warnings
     if (!node.props.has({"filename"})) throw Error(node.file, node.line, "obj shape needs a \"filename\"");
     std::string file = node.props.getString({"filename"}, "");
     ObjLoadStats stats;
-    TriangleMesh mesh = loadObjMesh(resolveScenePath(node, file), toWorld, node.file, node.props.lineOf({"filename"}), &stats);
-    for (std::string& w : stats.warnings) warnings.push_back(std::move(w));  // e.g. dropped degenerate triangles
+    TriangleMesh mesh = loadObjMesh(resolveScenePath(node, file), toWorld, node.file,
+                                    node.props.lineOf({"filename"}), &stats);
+    for (std::string& w : stats.warnings)
+      warnings.push_back(std::move(w));  // e.g. dropped degenerate triangles
     return mesh;
   }
   TriangleMesh mesh;
@@ -211,7 +215,8 @@ void buildEmitter(const SceneNode& node, Scene& scene) {
   } else if (node.type == "directional") {
     // `direction` points toward the light (see DirectionalLight).
     Vec3 dir = node.props.getVector({"direction"}, Vec3(0, 0, 1));
-    if (!isFinite(dir) || glm::length(dir) == 0.f) fail(node, {"direction"}, "direction must be a non-zero vector");
+    if (!isFinite(dir) || glm::length(dir) == 0.f)
+      fail(node, {"direction"}, "direction must be a non-zero vector");
     Color3 irradiance = getNonNegativeColor(node, {"radiance", "irradiance"}, Color3(1.f), "radiance");
     scene.directionalLights.push_back(DirectionalLight::make(dir, irradiance));
   } else if (node.type == "area") {
@@ -227,8 +232,10 @@ RenderSettings buildSettings(const SceneNode& desc, std::vector<std::string>* wa
   RenderSettings s;
   if (const SceneNode* cam = desc.child("camera")) buildCamera(*cam, s);
   if (const SceneNode* smp = desc.child("sampler")) buildSampler(*smp, s);
-  if (const SceneNode* integ = desc.child("integrator")) buildIntegrator(*integ, s);
-  else if (warnings) warnings->push_back(desc.file + ": warning: no <integrator>; using direct/solid-angle");
+  if (const SceneNode* integ = desc.child("integrator"))
+    buildIntegrator(*integ, s);
+  else if (warnings)
+    warnings->push_back(desc.file + ": warning: no <integrator>; using direct/solid-angle");
   return s;
 }
 
@@ -237,8 +244,10 @@ LoadedScene buildScene(SceneNode desc) {
   if (desc.tag != "scene") throw Error(desc.file, desc.line, "the root element must be <scene>");
   auto scene = std::make_shared<Scene>();
   for (const SceneNode& node : desc.children) {
-    if (node.tag == "shape") buildShape(node, *scene, out.warnings);
-    else if (node.tag == "emitter") buildEmitter(node, *scene);
+    if (node.tag == "shape")
+      buildShape(node, *scene, out.warnings);
+    else if (node.tag == "emitter")
+      buildEmitter(node, *scene);
   }
   out.settings = buildSettings(desc, &out.warnings);
   scene->geometry.build();

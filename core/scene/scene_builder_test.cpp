@@ -65,8 +65,10 @@ TEST(SceneBuilder, BadValuesAreRejectedWithTheirLine) {
               "measure");
   expectError("\n<shape type=\"obj\"><string name=\"filename\" value=\"missing.obj\"/></shape>", 3,
               "cannot open mesh file 'missing.obj'");
-  expectError("<shape type=\"sphere\">\n<emitter type=\"area\"><color name=\"radiance\" value=\"-1\"/></emitter></shape>",
-              3, "radiance");
+  expectError(
+      "<shape type=\"sphere\">\n<emitter type=\"area\"><color name=\"radiance\" "
+      "value=\"-1\"/></emitter></shape>",
+      3, "radiance");
 }
 
 TEST(SceneBuilder, NegativeZeroRadiusIsAZeroRadiusLightWithoutGeometry) {
@@ -77,8 +79,9 @@ TEST(SceneBuilder, NegativeZeroRadiusIsAZeroRadiusLightWithoutGeometry) {
 }
 
 TEST(SceneBuilder, UnusedPropertiesBecomeWarningsWithLines) {
-  auto s = fromXml("<integrator type=\"direct\">\n<string name=\"measure\" value=\"area\"/>\n"
-                   "<string name=\"warp-type\" value=\"cosine-hemisphere\"/></integrator>");
+  auto s = fromXml(
+      "<integrator type=\"direct\">\n<string name=\"measure\" value=\"area\"/>\n"
+      "<string name=\"warp-type\" value=\"cosine-hemisphere\"/></integrator>");
   ASSERT_EQ(s.warnings.size(), 1u);
   EXPECT_NE(s.warnings[0].find("t.xml:4"), std::string::npos) << s.warnings[0];
   EXPECT_NE(s.warnings[0].find("warp-type"), std::string::npos);
