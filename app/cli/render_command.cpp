@@ -81,7 +81,7 @@ int runRender(const RenderOptions& o) {
               o.output.c_str(), cam.width, cam.height, p.spp, p.seconds,
               p.seconds > 0 ? double(p.samples) / p.seconds * 1e-6 : 0.0,
               (unsigned long long)p.badSamples, strategyLabel(job->settings.integrator).c_str(),
-              engine.threadCount() > 0 ? engine.threadCount() : o.threads,
+              engine.threadCount(),
               gInterrupted ? " (interrupted)" : "");
   return 0;
 }

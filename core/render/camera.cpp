@@ -7,10 +7,12 @@ namespace penumbra {
 PerspectiveCamera::PerspectiveCamera(const CameraDesc& desc) : desc_(desc) {
   const glm::mat4& m = desc.toWorld;
   origin_ = Vec3(m[3]);
-  // Columns may carry scale; directions are normalised so the camera stays a pinhole.
-  right_ = glm::normalize(Vec3(m[0]));
-  up_ = glm::normalize(Vec3(m[1]));
+  // Columns may carry scale or shear: Gram-Schmidt them (keeping their orientation) so the basis is
+  // orthonormal, which generateRay relies on.
   forward_ = glm::normalize(Vec3(m[2]));
+  right_ = glm::normalize(Vec3(m[0]) - forward_ * glm::dot(Vec3(m[0]), forward_));
+  up_ = glm::normalize(Vec3(m[1]) - forward_ * glm::dot(Vec3(m[1]), forward_) -
+                       right_ * glm::dot(Vec3(m[1]), right_));
   float aspect = float(desc.width) / float(desc.height);
   tanHalfX_ = std::tan(glm::radians(desc.fovDegrees) * 0.5f);
   tanHalfY_ = tanHalfX_ / aspect;

@@ -4,6 +4,8 @@
 
 #include <glm/mat4x4.hpp>
 
+#include <cmath>
+
 #include "core/geometry/ray.h"
 #include "core/math/vec.h"
 
@@ -26,14 +28,14 @@ class PerspectiveCamera {
   // Ray through image position `pixelPos` (continuous, in pixels: (0,0) top-left corner).
   Ray generateRay(Vec2 pixelPos) const {
     float sx = pixelPos.x * invWidth_, sy = pixelPos.y * invHeight_;
-    Vec3 dCam((1.f - 2.f * sx) * tanHalfX_, (1.f - 2.f * sy) * tanHalfY_, 1.f);
-    float invLen = 1.f / glm::length(dCam);
-    dCam *= invLen;  // dCam.z = invLen
+    float x = (1.f - 2.f * sx) * tanHalfX_, y = (1.f - 2.f * sy) * tanHalfY_;
+    // The camera basis is orthonormal: |x right + y up + forward| = |(x, y, 1)|.
+    float len = std::sqrt(x * x + y * y + 1.f);
     Ray ray;
     ray.o = origin_;
-    ray.d = glm::normalize(right_ * dCam.x + up_ * dCam.y + forward_ * dCam.z);
-    ray.tMin = desc_.nearClip / dCam.z;
-    ray.tMax = desc_.farClip / dCam.z;
+    ray.d = (right_ * x + up_ * y + forward_) * (1.f / len);
+    ray.tMin = desc_.nearClip * len;  // clip planes are perpendicular to the view axis
+    ray.tMax = desc_.farClip * len;
     return ray;
   }
 

@@ -81,7 +81,7 @@ class Engine {
   // Valid once the render has stopped (after wait() or cancel()).
   const Film& film() const { return film_; }
   std::shared_ptr<const RenderJob> job() const { return job_; }
-  int threadCount() const { return int(workers_.size()); }
+  int threadCount() const { return threadCount_; }  // of the current or last render
 
  private:
   void spawnWorkers(bool preview);
