@@ -190,12 +190,12 @@ std::string strategyTitle(const ConvergenceRun& r) { return strategyShortName(r.
 
 void writeConvergenceCsv(const std::string& path, const std::vector<ConvergenceRun>& runs) {
   std::ostringstream out;
-  out << "strategy,seconds,spp,samples,mse,rmse,rel_mse,mse_stderr,ref_variance,"
+  out << "strategy,seconds,cpu_seconds,spp,samples,mse,rmse,rel_mse,mse_stderr,ref_variance,"
          "mse_nolight,rmse_nolight,rel_mse_nolight,mse_stderr_nolight\n";
   out.precision(9);
   for (const ConvergenceRun& r : runs)
     for (const ConvergencePoint& p : r.points)
-      out << strategyShortName(r.integrator) << ',' << p.seconds << ',' << p.spp << ',' << p.samples << ','
+      out << strategyShortName(r.integrator) << ',' << p.seconds << ',' << p.cpuSeconds << ',' << p.spp << ',' << p.samples << ','
           << p.error.all.mse << ',' << p.error.all.rmse << ',' << p.error.all.relMse << ',' << p.error.all.mseStdErr
           << ',' << p.error.all.refVariance << ',' << p.error.noLight.mse << ',' << p.error.noLight.rmse << ','
           << p.error.noLight.relMse << ',' << p.error.noLight.mseStdErr << '\n';

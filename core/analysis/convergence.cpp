@@ -4,11 +4,20 @@
 #include <cmath>
 #include <sstream>
 #include <thread>
+#include <ctime>
 
 #include "core/math/error.h"
 #include "core/render/engine.h"
 
 namespace penumbra {
+
+namespace {
+double cpuClock(clockid_t id) {
+  timespec ts;
+  clock_gettime(id, &ts);
+  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+}
+}  // namespace
 
 std::string strategyShortName(const IntegratorDesc& d) {
   if (d.type == IntegratorType::Ao) return std::string("ao-") + (d.warp == HemisphereWarp::Cosine ? "cosine" : "uniform");
@@ -96,9 +105,12 @@ ConvergenceRun runConvergence(const LoadedScene& scene, const IntegratorDesc& st
   ConvergenceRun run;
   run.strategy = strategyLabel(strategy);
   run.integrator = strategy;
-  auto record = [&](const Image& mean, uint32_t spp, double seconds) {
+  // This polling thread's CPU (snapshot copies, metrics) is not part of the render's cost.
+  double pollerCpuStart = 0;
+  auto record = [&](const Image& mean, uint32_t spp, double seconds, double cpu) {
     ConvergencePoint p;
     p.seconds = seconds;
+    p.cpuSeconds = cpu - (cpuClock(CLOCK_THREAD_CPUTIME_ID) - pollerCpuStart);
     p.spp = spp;
     p.samples = uint64_t(spp) * pixels;
     p.error = computeErrors(mean, ref.mean, ref.standardError, seesLight);
@@ -109,6 +121,8 @@ ConvergenceRun runConvergence(const LoadedScene& scene, const IntegratorDesc& st
   RenderLimits limits;
   if (sppMode) limits.targetSpp = o.spp;
   else limits.seconds = o.seconds;
+  double cpuStart = cpuClock(CLOCK_PROCESS_CPUTIME_ID);
+  pollerCpuStart = cpuClock(CLOCK_THREAD_CPUTIME_ID);
   engine.start(job, limits, o.threads);
   std::size_t next = 0;
   bool requested = false;
@@ -116,7 +130,7 @@ ConvergenceRun runConvergence(const LoadedScene& scene, const IntegratorDesc& st
   while (true) {
     RenderProgress p = engine.progress();
     if (engine.latestSnapshot(snap) && snap.spp > 0 && !snap.mean.empty()) {
-      if (run.points.empty() || snap.spp > run.points.back().spp) record(snap.mean, snap.spp, snap.seconds);
+      if (run.points.empty() || snap.spp > run.points.back().spp) record(snap.mean, snap.spp, snap.seconds, snap.cpuSeconds);
       requested = false;
       double reached = sppMode ? double(snap.spp) : snap.seconds;
       while (next < targets.size() && targets[next] <= reached) ++next;
@@ -132,11 +146,12 @@ ConvergenceRun runConvergence(const LoadedScene& scene, const IntegratorDesc& st
     std::this_thread::sleep_for(std::chrono::microseconds(500));
   }
   engine.wait();
+  double cpuEnd = cpuClock(CLOCK_PROCESS_CPUTIME_ID) - cpuStart;
   RenderProgress p = engine.progress();
   run.finalImage = engine.film().mean(p.spp);
   run.seconds = p.seconds;
   run.spp = p.spp;
-  if (p.spp > 0 && (run.points.empty() || run.points.back().spp < p.spp)) record(run.finalImage, p.spp, p.seconds);
+  if (p.spp > 0 && (run.points.empty() || run.points.back().spp < p.spp)) record(run.finalImage, p.spp, p.seconds, cpuEnd);
   return run;
 }
 

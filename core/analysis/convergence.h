@@ -18,7 +18,10 @@
 namespace penumbra {
 
 struct ConvergencePoint {
-  double seconds = 0;
+  double seconds = 0;     // wall-clock rendering time (pauses excluded)
+  // CPU time the render used (process CPU since start minus this polling thread's own CPU, which
+  // computes the metrics): immune to other processes competing for the cores.
+  double cpuSeconds = 0;
   uint32_t spp = 0;
   uint64_t samples = 0;  // camera samples (spp * pixels)
   ErrorReport error;

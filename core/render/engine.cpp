@@ -1,10 +1,19 @@
 #include "core/render/engine.h"
 
 #include <algorithm>
+#include <ctime>
 
 #include "core/render/row_renderer.h"
 
 namespace penumbra {
+
+namespace {
+double processCpuSeconds() {
+  timespec ts;
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+}
+}  // namespace
 
 Engine::~Engine() { cancel(); }
 
@@ -30,11 +39,13 @@ void Engine::start(std::shared_ptr<const RenderJob> job, RenderLimits limits, in
   pausedSeconds_ = 0.0;
   finalSeconds_ = 0.0;
   startTime_ = std::chrono::steady_clock::now();
+  cpuAtStart_ = processCpuSeconds();
   pauseBegan_ = startTime_;
   {
     std::lock_guard lk(snapshotMutex_);
     snapshot_.spp = 0;
     snapshot_.seconds = 0;
+    snapshot_.cpuSeconds = 0;
     ++snapshot_.version;  // viewers see the restart at once
     snapshot_.mean = Image();
     snapshot_.standardError = Image();
@@ -113,6 +124,7 @@ void Engine::publishSnapshot() {
   snapshot_.standardError = std::move(err);
   snapshot_.spp = spp;
   snapshot_.seconds = elapsedNow();
+  snapshot_.cpuSeconds = processCpuSeconds() - cpuAtStart_;
   ++snapshot_.version;
 }
 
