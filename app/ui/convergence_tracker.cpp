@@ -21,17 +21,24 @@ LoadedScene liveScene(const ViewerController& c) {
 }  // namespace
 
 void ConvergenceTracker::rekey(const ViewerController& c) {
+  // Scene, camera or settings changes all restart the accumulation, so the (costly: XML + files)
+  // content hash is recomputed only on a restart or a new scene.
+  if (c.restartCount() == lastRestart_ && c.scene().scene == lastScene_ && !key_.empty()) return;
+  lastRestart_ = c.restartCount();
+  lastScene_ = c.scene().scene;
   LoadedScene live = liveScene(c);
   std::string key = sceneContentHash(live.desc) + "/" + std::to_string(live.settings.integrator.type == IntegratorType::Ao);
   if (key == key_) return;
   key_ = key;
+  curves_.clear();  // errors against another reference (camera, scene) are not comparable
   reference_ = Reference();
   mask_.clear();
   userReference_ = false;
   error_.clear();
   cachePath_ = referenceCachePath(live);
   try {
-    if (hasClosedFormReference(live)) reference_ = closedFormReference(live);
+    // 8x8 filter samples per pixel (not 16): computed on the UI thread when the camera changes.
+    if (hasClosedFormReference(live)) reference_ = closedFormReference(live, 8);
     else if (std::filesystem::exists(cachePath_)) reference_ = readReference(cachePath_);
     const auto& cam = live.settings.camera;
     if (!reference_.mean.empty() && (reference_.mean.width != cam.width || reference_.mean.height != cam.height)) {
@@ -54,6 +61,7 @@ bool ConvergenceTracker::loadReference(const ViewerController& c, const std::str
                   ", the camera renders " + std::to_string(cam.width) + "x" + std::to_string(cam.height));
     rekey(c);
     reference_ = std::move(ref);
+    reference_.source = "file " + path;
     mask_ = emitterMask(liveScene(c));
     userReference_ = true;
     error_.clear();
@@ -71,10 +79,15 @@ void ConvergenceTracker::update(const ViewerController& c) {
   rekey(c);
   if (reference_.mean.empty()) return;
   const FilmSnapshot& snap = c.snapshot();
-  if (snap.version == lastVersion_ || snap.spp == 0 || snap.mean.empty()) return;
+  // The controller reads the last pass of a finished accumulation from the film without a new
+  // version, so a change of spp also counts as new.
+  if ((snap.version == lastVersion_ && snap.spp == lastSpp_) || snap.spp == 0 || snap.mean.empty()) return;
   if (snap.mean.width != reference_.mean.width || snap.mean.height != reference_.mean.height) return;
   lastVersion_ = snap.version;
+  lastSpp_ = snap.spp;
   if (curves_.empty() || curves_.back().restart != c.snapshotRestart()) {
+    // Accumulations cut short after a point (e.g. while dragging a slider) would only clutter the plot.
+    if (!curves_.empty() && curves_.back().seconds.size() < 2) curves_.pop_back();
     ConvergenceCurve curve;
     curve.label = strategyLabel(c.settings().integrator);
     curve.restart = c.snapshotRestart();

@@ -2,10 +2,12 @@
 // current scene and camera (closed form for scenes/analytic, the cached reference that
 // `penumbra render --reference` writes, or a file the user loads), and turns every new snapshot of the
 // accumulation into a point (seconds, RMSE). Each accumulation (restart) is one curve; curves of
-// strategies tried earlier in the session are kept so they can be compared side by side.
+// strategies tried earlier in the session are kept so they can be compared side by side (until the
+// scene or camera changes: errors against another reference are not comparable).
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -52,9 +54,12 @@ class ConvergenceTracker {
   std::vector<uint8_t> mask_;
   std::vector<ConvergenceCurve> curves_;
   uint64_t lastVersion_ = 0;
+  uint32_t lastSpp_ = 0;
   ErrorReport latest_;
   std::string error_;
   bool userReference_ = false;
+  uint64_t lastRestart_ = ~0ull;
+  std::shared_ptr<const Scene> lastScene_;
 };
 
 }  // namespace penumbra::ui
