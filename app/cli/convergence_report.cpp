@@ -105,6 +105,7 @@ void drawAxes(cairo_t* cr, const Axes& a, const std::string& xLabel, const std::
           cairo_line_to(cr, x, a.y0 + a.h + (major ? 6 : 3));
           cairo_stroke(cr);
           if (major) powerLabel(cr, x, a.y0 + a.h + 9, k, 13, 0.5, 0);
+          else if ((m == 2 || m == 5) && hi - lo <= 2.01) text(cr, x, a.y0 + a.h + 9, fmt("%g", v), 11, 0.5, 0);
         } else {
           double y = a.py(v);
           cairo_move_to(cr, a.x0, y);
@@ -115,6 +116,7 @@ void drawAxes(cairo_t* cr, const Axes& a, const std::string& xLabel, const std::
           cairo_line_to(cr, a.x0 - (major ? 6 : 3), y);
           cairo_stroke(cr);
           if (major) powerLabel(cr, a.x0 - 9, y, k, 13, 1, 0.5);
+          else if ((m == 2 || m == 5) && hi - lo <= 2.01) text(cr, a.x0 - 9, y, fmt("%g", v), 11, 1, 0.5);
         }
       }
   }
@@ -220,7 +222,7 @@ void plotConvergence(const std::string& path, const std::vector<ConvergenceRun>&
         xmin = std::min(xmin, x), xmax = std::max(xmax, x), ymin = std::min(ymin, y), ymax = std::max(ymax, y);
       }
     if (!(xmax > 0)) xmin = 1e-3, xmax = 1, ymin = 1e-3, ymax = 1;
-    Axes a{95.0 + panel * 590.0, 50.0, 470.0, double(H) - 150.0,
+    Axes a{95.0 + panel * 590.0, 50.0, 470.0, double(H) - 190.0,
            std::floor(std::log10(xmin) * 2) / 2, std::ceil(std::log10(xmax) * 2) / 2,
            std::floor(std::log10(ymin) * 2) / 2, std::ceil(std::log10(ymax) * 2) / 2};
     if (a.lx1 - a.lx0 < 1) a.lx1 = a.lx0 + 1;
@@ -331,6 +333,7 @@ void writeEqualTimeImage(const std::string& path, const std::vector<ConvergenceR
     lo = pool[std::size_t(0.01 * (pool.size() - 1))];
     hi = pool[std::size_t(0.995 * (pool.size() - 1))];
     if (hi - lo < 1) lo = hi - 1;
+    lo = std::max(lo, hi - 8);  // 8 decades: below that, black
   }
   const int w = ref.mean.width, h = ref.mean.height;
   for (int i = 0; i < n; ++i) {
@@ -377,7 +380,9 @@ void writeEqualTimeImage(const std::string& path, const std::vector<ConvergenceR
   }
   cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
   text(cr, bx + bw / 2, by - 6, "squared error (log scale)", 12, 0.5, 1);
+  int step = std::max(1, int(std::ceil(36.0 / (bw / (hi - lo)))));  // labels >= 36 px apart
   for (int k = int(std::ceil(lo)); k <= int(std::floor(hi)); ++k) {
+    if (k % step != 0) continue;
     double px = bx + (k - lo) / (hi - lo) * bw;
     cairo_move_to(cr, px, by + bh);
     cairo_line_to(cr, px, by + bh + 5);
@@ -403,25 +408,32 @@ void writeSummary(const std::string& path, const std::vector<ConvergenceRun>& ru
   out << "- reference: " << info.referenceSource << "\n";
   out << "- efficiency = 1 / (MSE x seconds), from the geometric mean of MSE x seconds over the last decade of "
          "each run; speed-up = efficiency / efficiency of uniform hemisphere sampling (the time uniform "
-         "hemisphere sampling needs to reach the same MSE, divided by this strategy's).\n\n";
+         "hemisphere sampling needs to reach the same MSE, divided by this strategy's).\n";
+  out << "- wall: wall-clock seconds (what a user waits); CPU: the render's CPU seconds, which do not grow while "
+         "other processes hold the cores, so the CPU speed-ups are the stable ones on a shared machine.\n";
+  out << "- no-light: only pixels that see no emitter directly (the emitter's silhouette pixels have a large "
+         "variance from the pixel filter alone, the same for every strategy, and dominate the all-pixel MSE).\n\n";
   const ConvergenceRun* base = nullptr;
   for (const ConvergenceRun& r : runs)
     if ((r.integrator.type == IntegratorType::Direct && r.integrator.measure == DirectMeasure::Hemisphere &&
          r.integrator.warp == HemisphereWarp::Uniform) ||
         (r.integrator.type == IntegratorType::Ao && r.integrator.warp == HemisphereWarp::Uniform))
       base = &r;
-  out << "| strategy | spp | seconds | MSE | RMSE | relMSE | efficiency | speed-up | MSE (no-light px) | "
-         "efficiency (no-light) | speed-up (no-light) |\n";
-  out << "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+  out << "| strategy | spp | wall s | CPU s | MSE | RMSE | relMSE | efficiency (wall) | speed-up (wall) | "
+         "speed-up (CPU) | MSE no-light | efficiency no-light (wall) | speed-up no-light (wall) | "
+         "speed-up no-light (CPU) |\n";
+  out << "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+  auto ratio = [&](double e, double eb) { return base && eb > 0 ? fmt("%.3gx", e / eb) : std::string("n/a"); };
   for (const ConvergenceRun& r : runs) {
     const ConvergencePoint& p = r.points.back();
-    double e = efficiency(r), en = efficiency(r, true);
-    std::string su = base ? fmt("%.2fx", e / efficiency(*base)) : "n/a";
-    std::string sun = base ? fmt("%.2fx", en / efficiency(*base, true)) : "n/a";
+    double e = efficiency(r), en = efficiency(r, true), ec = efficiency(r, false, true), enc = efficiency(r, true, true);
+    double b = base ? efficiency(*base) : 0, bn = base ? efficiency(*base, true) : 0;
+    double bc = base ? efficiency(*base, false, true) : 0, bnc = base ? efficiency(*base, true, true) : 0;
     out << "| " << strategyShortName(r.integrator) << " | " << r.spp << " | " << fmt("%.2f", r.seconds) << " | "
-        << fmt("%.3e", p.error.all.mse) << " | " << fmt("%.3e", p.error.all.rmse) << " | "
-        << fmt("%.3e", p.error.all.relMse) << " | " << fmt("%.4g", e) << " | " << su << " | "
-        << fmt("%.3e", p.error.noLight.mse) << " | " << fmt("%.4g", en) << " | " << sun << " |\n";
+        << fmt("%.2f", p.cpuSeconds) << " | " << fmt("%.3e", p.error.all.mse) << " | "
+        << fmt("%.3e", p.error.all.rmse) << " | " << fmt("%.3e", p.error.all.relMse) << " | " << fmt("%.4g", e)
+        << " | " << ratio(e, b) << " | " << ratio(ec, bc) << " | " << fmt("%.3e", p.error.noLight.mse) << " | "
+        << fmt("%.4g", en) << " | " << ratio(en, bn) << " | " << ratio(enc, bnc) << " |\n";
   }
   if (!base) out << "\n(uniform hemisphere sampling was not run, so there is no speed-up column.)\n";
   out << "\nFiles: convergence.csv (every measurement), convergence.png (RMSE against "

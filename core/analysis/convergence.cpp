@@ -155,7 +155,7 @@ ConvergenceRun runConvergence(const LoadedScene& scene, const IntegratorDesc& st
   return run;
 }
 
-double efficiency(const ConvergenceRun& run, bool noLight) {
+double efficiency(const ConvergenceRun& run, bool noLight, bool cpuTime) {
   if (run.points.empty()) return 0;
   double tEnd = run.points.back().seconds;
   double sumLog = 0;
@@ -163,8 +163,9 @@ double efficiency(const ConvergenceRun& run, bool noLight) {
   for (const ConvergencePoint& p : run.points) {
     if (p.seconds < tEnd / 10) continue;
     double mse = noLight ? p.error.noLight.mse : p.error.all.mse;
-    if (!(mse > 0) || !(p.seconds > 0)) continue;
-    sumLog += std::log(mse * p.seconds);
+    double t = cpuTime ? p.cpuSeconds : p.seconds;
+    if (!(mse > 0) || !(t > 0)) continue;
+    sumLog += std::log(mse * t);
     ++n;
   }
   if (n == 0) return 0;

@@ -58,6 +58,7 @@ ConvergenceRun runConvergence(const LoadedScene& scene, const IntegratorDesc& st
 // Efficiency 1 / (MSE * seconds) of a run, from the geometric mean of MSE * seconds over the points of
 // its last decade of time (MSE * t is constant for an unbiased estimator; averaging several points
 // damps the noise of a single one). noLight selects the metric over pixels that see no light.
-double efficiency(const ConvergenceRun& run, bool noLight = false);
+// cpuTime: use ConvergencePoint::cpuSeconds instead of wall seconds.
+double efficiency(const ConvergenceRun& run, bool noLight = false, bool cpuTime = false);
 
 }  // namespace penumbra
