@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
   penumbra::cli::addRenderCommand(app, exitCode);
   penumbra::cli::addBenchCommand(app, exitCode);
   penumbra::cli::addConvergeCommand(app, exitCode);
+  penumbra::cli::addCheckCommand(app, exitCode);
   penumbra::cli::addViewCommand(app, exitCode);
 
   // `penumbra` with no arguments opens the viewer on the built-in scene.

@@ -33,14 +33,7 @@ LoadedScene planeAndLight(const Vec3& c, float r, float Le, float planeHalf = 10
   return loadSceneFromString(xml.str(), "test.xml", ".");
 }
 
-// Reaches x on the plane z = 0 at a shallow angle (slope 1e-4), so the camera ray passes under a
-// light that nearly touches the plane instead of through it.
-Ray shallowRayOnto(const Vec3& x) {
-  Ray r;
-  r.o = x + Vec3(-1.f, 0.f, 1e-4f);
-  r.d = glm::normalize(x - r.o);
-  return r;
-}
+using analysis::shallowRayOnto;
 
 template <DirectStrategy S>
 Estimate directAt(const LoadedScene& s, const Vec3& x, int n, uint64_t seed) {

@@ -11,6 +11,7 @@
 
 #include "core/render/scene.h"
 #include "core/sampling/sampler.h"
+#include "core/analysis/ray_estimate.h"
 #include "core/scene/scene_builder.h"
 
 namespace penumbra::test {
@@ -27,40 +28,9 @@ inline std::vector<std::string> seedSceneFiles() {
   return out;
 }
 
-struct Estimate {
-  double mean = 0, standardError = 0;
-  uint64_t bad = 0;  // NaN / Inf / negative values seen
-};
-
-// Runs `integrator.Li(ray)` n times with independent sample streams and returns the mean (of the
-// red channel) and its standard error.
-template <class Integrator>
-Estimate estimateRay(const Scene& scene, const Integrator& integrator, const Ray& ray, int n, uint64_t seed) {
-  Sampler sampler(SamplerKind::Independent, 1, seed);
-  double sum = 0, sumSq = 0;
-  Estimate e;
-  for (int i = 0; i < n; ++i) {
-    sampler.startPixelSample(IVec2(7, 11), uint32_t(i));
-    Color3 L = integrator.Li(scene, ray, sampler);
-    if (!(L.x >= 0.f) || !std::isfinite(L.x)) {
-      ++e.bad;
-      continue;
-    }
-    sum += L.x;
-    sumSq += double(L.x) * L.x;
-  }
-  e.mean = sum / n;
-  double var = std::max(0.0, sumSq / n - e.mean * e.mean) * n / (n - 1.0);
-  e.standardError = std::sqrt(var / n);
-  return e;
-}
-
-// A ray that hits point `x` coming straight down the normal `n` from a little above.
-inline Ray rayOnto(const Vec3& x, const Vec3& n, float height) {
-  Ray r;
-  r.o = x + n * height;
-  r.d = -n;
-  return r;
-}
+// The estimator helpers live in core/analysis/ray_estimate.h (shared with `penumbra check`).
+using analysis::Estimate;
+using analysis::estimateRay;
+using analysis::rayOnto;
 
 }  // namespace penumbra::test

@@ -10,6 +10,7 @@ void addWarpCommand(CLI::App& app, int& exitCode);
 void addRenderCommand(CLI::App& app, int& exitCode);
 void addBenchCommand(CLI::App& app, int& exitCode);
 void addConvergeCommand(CLI::App& app, int& exitCode);
+void addCheckCommand(CLI::App& app, int& exitCode);
 // Compiled into the penumbra and penumbra-offscreen executables only (it needs GL).
 void addViewCommand(CLI::App& app, int& exitCode);
 

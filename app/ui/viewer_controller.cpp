@@ -70,7 +70,9 @@ void ViewerController::start() {
   job->scene = scene_.scene;
   job->settings = settings_;
   bool wasPaused = engine_.paused();
-  engine_.start(std::move(job), limits_, threads_);
+  RenderLimits limits = limits_;
+  limits.preview = true;  // a coarse first frame within milliseconds of any change
+  engine_.start(std::move(job), limits, threads_);
   if (wasPaused) engine_.setPaused(true);
   ++restarts_;
 }
@@ -120,7 +122,7 @@ void ViewerController::setLimits(const RenderLimits& l) {
   if (l.targetSpp == limits_.targetSpp && l.seconds == limits_.seconds) return;
   limits_ = l;
   useTimeBudget_ = l.seconds > 0;
-  start();
+  if (!engine_.extend(limits_)) start();  // a new target continues the accumulation
 }
 
 // ---- camera ---------------------------------------------------------------------------------------

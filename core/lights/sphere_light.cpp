@@ -10,6 +10,13 @@ namespace {
 constexpr double kTwoPiD = 6.28318530717958647692;
 // Below this 1 − cos θmax the cone pdf 1 / (2π (1 − cos θmax)) would not fit in a float.
 constexpr double kMinOneMinusCos = 0x1p-120;
+// Largest density returned as a float; an area pdf beyond it (a light so small that 4π r² underflows)
+// marks the sample invalid rather than returning +inf.
+constexpr double kMaxPdf = 3.4028234663852886e38;
+// Float directions carry ~2^-24 relative error per component: a sampled direction at the cone's edge
+// may round up to a few 2^-24 outside it. pdfSolidAngle accepts sin θ up to sin θmax + 2^-22, so it
+// never returns 0 for a direction sampleSolidAngle produced (matters for cones of sin²θmax ≲ 1e-8).
+constexpr double kDirectionSlack = 0x1p-22;
 
 // Orthonormal basis around a unit double vector (Duff et al. 2017).
 void basis(const DVec3& n, DVec3& s, DVec3& t) {
@@ -63,10 +70,12 @@ LightSample SphereLight::sampleArea(const Vec3& x, Vec2 u) const {
   const DVec3 wi = toP / dist;
   const double cosP = -glm::dot(DVec3(n), wi);  // cos θp: light normal vs direction back to x
   if (cosP == 0.0) return ls;
+  const double pdf =
+      dist * dist / (4.0 * 3.14159265358979323846 * double(sphere.radius) * sphere.radius * std::abs(cosP));
+  if (!(pdf <= kMaxPdf)) return ls;  // beyond float: invalid, never an infinite pdf
   ls.wi = Vec3(wi);
   ls.dist = static_cast<float>(dist);
-  ls.pdf = static_cast<float>(
-      dist * dist / (4.0 * 3.14159265358979323846 * double(sphere.radius) * sphere.radius * std::abs(cosP)));
+  ls.pdf = static_cast<float>(pdf);
   ls.Le = eval(ls.p, ls.n, ls.wi);  // far side (cos θp ≤ 0): 0
   return ls;
 }
@@ -78,8 +87,8 @@ float SphereLight::pdfAreaAsSolidAngle(const Vec3& x, const Vec3& p, const Vec3&
   if (!(d2 > 0.0)) return 0.f;
   const double cosP = glm::dot(DVec3(n), toX) / std::sqrt(d2);
   if (cosP == 0.0) return 0.f;
-  return static_cast<float>(
-      d2 / (4.0 * 3.14159265358979323846 * double(sphere.radius) * sphere.radius * std::abs(cosP)));
+  const double pdf = d2 / (4.0 * 3.14159265358979323846 * double(sphere.radius) * sphere.radius * std::abs(cosP));
+  return pdf <= kMaxPdf ? static_cast<float>(pdf) : 0.f;
 }
 
 LightSample SphereLight::sampleSolidAngle(const Vec3& x, Vec2 u) const {
@@ -128,7 +137,8 @@ float SphereLight::pdfSolidAngle(const Vec3& x, const Vec3& wi) const {
   // Inside the cone iff sin² of the angle to the axis ≤ sin²θmax (accurate for narrow cones).
   const DVec3 c = glm::cross(w, cone.wc);
   const double sin2W = glm::dot(c, c) / glm::dot(w, w);
-  if (sin2W > cone.sin2Max) return 0.f;
+  const double sinMax = std::sqrt(cone.sin2Max) + kDirectionSlack;
+  if (sin2W > sinMax * sinMax) return 0.f;
   return static_cast<float>(1.0 / (kTwoPiD * cone.oneMinusCos));
 }
 

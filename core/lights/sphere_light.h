@@ -19,7 +19,8 @@ struct SphereLight {
   // Uniform point on the whole sphere. sample.pdf is the SOLID-ANGLE density at x of the sampled
   // direction, pdfArea · d² / |cos θp| (θp between n and the direction back to x). Far-side points
   // (n·(x − p) ≤ 0) are returned with Le = 0: they are genuine samples that contribute nothing.
-  // pdf = 0 (invalid) for a radius-0 light or when cos θp == 0 exactly (a measure-zero tangent).
+  // pdf = 0 (invalid) for a radius-0 light, when cos θp == 0 exactly (a measure-zero tangent), or when
+  // the density would not fit in a float (4π r² underflowing: r ≲ 1e-19 d); never +inf.
   LightSample sampleArea(const Vec3& x, Vec2 u) const;
   // Solid-angle density at x of sampleArea producing point p with normal n: pdfArea · d² / |cos θp|
   // (0 when cos θp == 0 or p == x).
@@ -36,7 +37,9 @@ struct SphereLight {
   // a float unit vector does not carry for narrow cones (sin²θmax down to 1e-12 and below).
   LightSample sampleSolidAngle(const Vec3& x, Vec2 u) const;
   // Density of sampleSolidAngle: 1 / (2π (1 − cos θmax)) for wi inside the cone, 0 outside or when
-  // sampleSolidAngle would return an invalid sample. wi must be unit length.
+  // sampleSolidAngle would return an invalid sample. wi must be unit length. The cone test allows
+  // sin θ up to sin θmax + 2^-22 (the rounding of a float direction), so every direction that
+  // sampleSolidAngle returns gets its density back, even for sin²θmax = 1e-12.
   float pdfSolidAngle(const Vec3& x, const Vec3& wi) const;
 
   // Radiance leaving p (normal n) toward a point that sees it along wi (from that point toward p):

@@ -376,5 +376,40 @@ TEST(DeltaLights, PointAndDirectional) {
   EXPECT_EQ(ds.Li, Color3(2));
 }
 
+// Found by `penumbra check` (light-sin2-underflow): 4π r² underflows for r = 1e-25 at distance 1 and
+// the area pdf (computed in double) used to be returned as +inf. It is now an invalid sample.
+TEST(SphereLight, AreaPdfOfAnUnderflowingLightIsNeverInfinite) {
+  SphereLight light;
+  light.sphere.center = Vec3(0.f, 0.f, 1.f);
+  light.sphere.radius = 1e-25f;
+  light.radiance = Color3(1e30f);
+  for (Vec2 u : {Vec2(0.f), Vec2(0.25f, 0.5f), Vec2(0.5f), Vec2(1.f - 0x1p-24f)}) {
+    LightSample s = light.sampleArea(Vec3(0.f), u);
+    EXPECT_TRUE(std::isfinite(s.pdf)) << s.pdf;
+    EXPECT_EQ(s.pdf, 0.f);
+    EXPECT_EQ(light.pdfAreaAsSolidAngle(Vec3(0.f), light.sphere.center - Vec3(0, 0, 1e-25f), Vec3(0, 0, -1)), 0.f);
+  }
+}
+
+// Found by `penumbra check` (cone-sin2-1e-12): directions sampled at the rim of a very narrow cone
+// round (as floats) to just outside it, and pdfSolidAngle returned 0 for them.
+TEST(SphereLight, PdfSolidAngleAcceptsEveryDirectionItSampled) {
+  for (double sin2 : {1e-8, 1e-12}) {
+    SphereLight light;
+    light.sphere.center = Vec3(2822.47265625f, 1881.6116943359375f, 9407.208984375f);
+    light.sphere.radius = float(1e4 * std::sqrt(sin2));
+    light.radiance = Color3(1.f);
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> uni(0.f, 1.f);
+    for (int i = 0; i < 20000; ++i) {
+      Vec2 u(uni(rng), uni(rng));
+      if (i < 4) u = Vec2(1.f - 0x1p-24f, 0.25f * float(i));  // exactly at the rim
+      LightSample s = light.sampleSolidAngle(Vec3(0.f), u);
+      ASSERT_GT(s.pdf, 0.f);
+      ASSERT_EQ(light.pdfSolidAngle(Vec3(0.f), s.wi), s.pdf) << sin2 << " u " << u.x << "," << u.y;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace penumbra

@@ -50,8 +50,44 @@ void Engine::start(std::shared_ptr<const RenderJob> job, RenderLimits limits, in
     snapshot_.mean = Image();
     snapshot_.standardError = Image();
   }
-  workers_.reserve(threads);
-  for (int i = 0; i < threads; ++i) workers_.emplace_back([this, i] { workerLoop(i); });
+  spawnWorkers(limits.preview);
+}
+
+void Engine::spawnWorkers(bool preview) {
+  arrived_ = 0;
+  stopAll_ = false;
+  nextPreviewRow_ = 0;
+  if (preview) {
+    const CameraDesc& cam = job_->settings.camera;
+    preview_ = Image(cam.width, cam.height);
+  }
+  workers_.reserve(threadCount_);
+  for (int i = 0; i < threadCount_; ++i) workers_.emplace_back([this, i, preview] { workerLoop(i, preview); });
+}
+
+bool Engine::extend(RenderLimits limits) {
+  if (!job_) return false;
+  limits.preview = false;
+  std::unique_lock lk(passMutex_);
+  if (!finished_) {
+    limits_ = limits;  // read by passBoundary() under passMutex_
+    return true;
+  }
+  if (cancel_ || spp_ == 0) return false;  // a cancelled pass left the film incomplete
+  lk.unlock();
+  wait();  // join the idle workers
+  limits_ = limits;
+  if (limits_.targetSpp > 0 && spp_ >= limits_.targetSpp) return true;  // nothing more to do
+  stopRequested_ = false;
+  // Resume the clock where it stopped.
+  startTime_ = std::chrono::steady_clock::now() -
+               std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                   std::chrono::duration<double>(finalSeconds_.load()));
+  pausedSeconds_ = 0.0;
+  nextRow_ = 0;
+  finished_ = false;
+  spawnWorkers(false);
+  return true;
 }
 
 void Engine::cancel() {
@@ -134,14 +170,14 @@ bool Engine::passBoundary() {
   spp_ = spp_ + 1;
   ++pass_;
   nextRow_ = 0;
-  if (snapshotRequested_.exchange(false)) publishSnapshot();
-  if (stopRequested_) return true;
-  if (limits_.targetSpp > 0 && spp_ >= limits_.targetSpp) return true;
-  if (limits_.seconds > 0 && elapsedNow() >= limits_.seconds) return true;
-  return false;
+  bool stop = stopRequested_ || (limits_.targetSpp > 0 && spp_ >= limits_.targetSpp) ||
+              (limits_.seconds > 0 && elapsedNow() >= limits_.seconds);
+  // The last pass is always published, so viewers see the finished image.
+  if (snapshotRequested_.exchange(false) || stop) publishSnapshot();
+  return stop;
 }
 
-void Engine::workerLoop(int /*workerIndex*/) {
+void Engine::workerLoop(int /*workerIndex*/, bool preview) {
   const RenderJob& job = *job_;
   const RenderSettings& s = job.settings;
   RowRenderer renderRow = makeRowRenderer(job);
@@ -149,11 +185,36 @@ void Engine::workerLoop(int /*workerIndex*/) {
   const int height = s.camera.height;
   const int threadCount = threadCount_;
 
-  uint32_t pass = 0;
+  if (preview) {
+    // One sample per block, written over the whole block; the film is untouched.
+    const int blockRows = (height + kPreviewBlock - 1) / kPreviewBlock;
+    for (int b; !cancel_.load(std::memory_order_relaxed) && (b = nextPreviewRow_.fetch_add(1)) < blockRows;)
+      renderRow.preview(b * kPreviewBlock, kPreviewBlock, sampler, preview_);
+    std::unique_lock lk(passMutex_);
+    if (++arrived_ == threadCount) {
+      arrived_ = 0;
+      if (!cancel_) {
+        std::lock_guard sl(snapshotMutex_);
+        snapshot_.mean = preview_;
+        snapshot_.standardError = Image();
+        snapshot_.spp = 0;
+        snapshot_.seconds = elapsedNow();
+        snapshot_.cpuSeconds = processCpuSeconds() - cpuAtStart_;
+        ++snapshot_.version;
+      }
+      ++generation_;
+      passCv_.notify_all();
+    } else {
+      uint64_t generation = generation_;
+      passCv_.wait(lk, [&] { return generation_ != generation || cancel_.load(); });
+    }
+  }
+
+  uint32_t pass = pass_;
   for (;;) {
     uint64_t bad = 0;
     for (int y; !cancel_.load(std::memory_order_relaxed) && (y = nextRow_.fetch_add(1)) < height;)
-      renderRow(y, pass, sampler, film_, bad);
+      renderRow.row(y, pass, sampler, film_, bad);
     if (bad) badSamples_ += bad;
 
     std::unique_lock lk(passMutex_);

@@ -26,7 +26,12 @@ struct RenderJob {
 struct RenderLimits {
   uint32_t targetSpp = 0;  // 0: no limit
   double seconds = 0.0;    // 0: no limit; checked at pass boundaries
+  // Before the first pass, render one sample per kPreviewBlock^2 block and publish it (upscaled) as
+  // a snapshot with spp 0, so an interactive view shows the new estimate within milliseconds.
+  bool preview = false;
 };
+
+inline constexpr int kPreviewBlock = 4;
 
 struct RenderProgress {
   uint32_t spp = 0;           // completed passes
@@ -62,6 +67,10 @@ class Engine {
   void cancel();
   // Finishes the current pass, then stops (what Ctrl-C in `penumbra render` does).
   void requestStop();
+  // New limits for the current accumulation, without restarting it: a running render adopts them at
+  // its next pass boundary; a render that stopped at its old limits resumes where it left off.
+  // Returns false (and changes nothing) when there is no accumulation to extend.
+  bool extend(RenderLimits limits);
   // Blocks until the limits are reached or the render is stopped.
   void wait();
   void setPaused(bool paused);
@@ -79,7 +88,8 @@ class Engine {
   int threadCount() const { return int(workers_.size()); }
 
  private:
-  void workerLoop(int workerIndex);
+  void spawnWorkers(bool preview);
+  void workerLoop(int workerIndex, bool preview);
   bool passBoundary();  // run by the last worker to finish a pass; returns true to stop
   void publishSnapshot();
   double elapsedNow() const;
@@ -98,6 +108,8 @@ class Engine {
   std::atomic<uint32_t> spp_{0};
   std::atomic<uint64_t> badSamples_{0};
   uint32_t pass_ = 0;
+  std::atomic<int> nextPreviewRow_{0};
+  Image preview_;
   int arrived_ = 0;
   uint64_t generation_ = 0;
   bool stopAll_ = false;

@@ -125,3 +125,37 @@ TEST(Engine, TimeLimitStopsTheRender) {
 
 }  // namespace
 }  // namespace penumbra
+
+namespace penumbra {
+namespace {
+
+TEST(Engine, ExtendingTheTargetContinuesTheSameAccumulation) {
+  auto job = smallJob();
+  Engine engine;
+  engine.start(job, RenderLimits{3, 0.0}, 2);
+  engine.wait();
+  ASSERT_EQ(engine.progress().spp, 3u);
+  ASSERT_TRUE(engine.extend(RenderLimits{7, 0.0}));
+  engine.wait();
+  EXPECT_EQ(engine.progress().spp, 7u);
+  // Passes 3..6 continued the same streams: identical to rendering 7 passes at once.
+  EXPECT_EQ(engine.film().mean(7).rgb, render(job, 7, 2).rgb);
+}
+
+TEST(Engine, PreviewIsPublishedBeforeTheFirstPass) {
+  auto job = smallJob();
+  Engine engine;
+  RenderLimits limits{1, 0.0};
+  limits.preview = true;
+  engine.requestSnapshot();
+  engine.start(job, limits, 2);
+  engine.wait();
+  FilmSnapshot snap;
+  ASSERT_TRUE(engine.latestSnapshot(snap));
+  EXPECT_EQ(snap.spp, 1u);  // the final pass is always published, after the preview
+  EXPECT_EQ(snap.mean.width, 48);
+  EXPECT_EQ(engine.film().mean(1).rgb, render(job, 1, 1).rgb);  // the preview never touches the film
+}
+
+}  // namespace
+}  // namespace penumbra

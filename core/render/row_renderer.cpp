@@ -1,5 +1,6 @@
 #include "core/render/row_renderer.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/integrators/ao_integrator.h"
@@ -15,8 +16,9 @@ RowRenderer rowsFor(const RenderJob& job, Integrator integrator) {
   PerspectiveCamera camera(job.settings.camera);
   FilterSampler filter(job.settings.filter);
   const Scene* scene = job.scene.get();
-  return [camera, filter, scene, integrator](int y, uint32_t pass, Sampler& sampler, Film& film,
-                                             uint64_t& badSamples) {
+  RowRenderer r;
+  r.row = [camera, filter, scene, integrator](int y, uint32_t pass, Sampler& sampler, Film& film,
+                                              uint64_t& badSamples) {
     const int width = camera.width();
     for (int x = 0; x < width; ++x) {
       sampler.startPixelSample(IVec2(x, y), pass);
@@ -32,6 +34,21 @@ RowRenderer rowsFor(const RenderJob& job, Integrator integrator) {
       film.add(x, y, L * weight);
     }
   };
+  r.preview = [camera, scene, integrator](int y0, int block, Sampler& sampler, Image& image) {
+    const int width = camera.width(), height = camera.height();
+    const int y1 = std::min(y0 + block, height);
+    for (int x0 = 0; x0 < width; x0 += block) {
+      const int x1 = std::min(x0 + block, width);
+      IVec2 centre((x0 + x1) / 2, (y0 + y1) / 2);
+      sampler.startPixelSample(centre, 0);
+      sampler.next2D();  // keep the dimension layout of a regular camera sample
+      Color3 L = integrator.Li(*scene, camera.generateRay(Vec2(centre) + Vec2(0.5f)), sampler);
+      if (!(L.x >= 0.f && L.y >= 0.f && L.z >= 0.f && std::isfinite(L.x + L.y + L.z))) L = Color3(0.f);
+      for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x) image.set(x, y, L);
+    }
+  };
+  return r;
 }
 
 }  // namespace

@@ -10,8 +10,13 @@
 
 namespace penumbra {
 
-using RowRenderer =
-    std::function<void(int y, uint32_t pass, Sampler& sampler, Film& film, uint64_t& badSamples)>;
+struct RowRenderer {
+  // Row y of pass `pass` into the film.
+  std::function<void(int y, uint32_t pass, Sampler& sampler, Film& film, uint64_t& badSamples)> row;
+  // A preview of the rows [y, y + block): one sample (index 0) per block x block square, written to
+  // every pixel of the square in `image`.
+  std::function<void(int y, int block, Sampler& sampler, Image& image)> preview;
+};
 
 RowRenderer makeRowRenderer(const RenderJob& job);
 

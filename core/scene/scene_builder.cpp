@@ -140,12 +140,15 @@ Color3 buildBsdf(const SceneNode* bsdf, std::vector<std::string>& warnings) {
   unknownType(*bsdf, "diffuse, phong (diffuse part)");
 }
 
-TriangleMesh buildMesh(const SceneNode& node) {
+TriangleMesh buildMesh(const SceneNode& node, std::vector<std::string>& warnings) {
   glm::mat4 toWorld = node.props.getTransform({"toWorld"}, glm::mat4(1.f));
   if (node.type == "obj") {
     if (!node.props.has({"filename"})) throw Error(node.file, node.line, "obj shape needs a \"filename\"");
     std::string file = node.props.getString({"filename"}, "");
-    return loadObjMesh(resolveScenePath(node, file), toWorld, node.file, node.props.lineOf({"filename"}));
+    ObjLoadStats stats;
+    TriangleMesh mesh = loadObjMesh(resolveScenePath(node, file), toWorld, node.file, node.props.lineOf({"filename"}), &stats);
+    for (std::string& w : stats.warnings) warnings.push_back(std::move(w));  // e.g. dropped degenerate triangles
+    return mesh;
   }
   TriangleMesh mesh;
   if (node.type == "plane") {
@@ -191,7 +194,7 @@ void buildShape(const SceneNode& node, Scene& scene, std::vector<std::string>& w
     if (emitter)
       throw Error(emitter->file, emitter->line,
                   "area emitters are supported on sphere shapes only (this one is on a mesh)");
-    scene.geometry.addMesh(buildMesh(node), objectId);
+    scene.geometry.addMesh(buildMesh(node, warnings), objectId);
   } else {
     unknownType(node, "sphere, obj, plane, rock");
   }
