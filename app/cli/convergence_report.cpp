@@ -346,7 +346,14 @@ void writeEqualTimeImage(const std::string& path, const std::vector<ConvergenceR
     cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
     if (isRef) {
       text(cr, x + tile / 2, top + tile + 6, "reference", 14, 0.5, 0, true);
-      text(cr, x + tile / 2, top + tile + 26, info.referenceSource.substr(0, 34), 11, 0.5, 0);
+      // "cache scenes/x/y.xml.ref-HASH.exr (rendered ...)": the file name only, then how it was made.
+      std::string src = info.referenceSource, how;
+      if (size_t open = src.find(" ("); open != std::string::npos) how = src.substr(open + 2, src.size() - open - 3), src.resize(open);
+      if (size_t sp = src.find(' '); sp != std::string::npos)
+        src = src.substr(0, sp + 1) + fs::path(src.substr(sp + 1)).filename().string();
+      if (src.size() > 40) src = src.substr(0, 18) + "..." + src.substr(src.size() - 19);
+      text(cr, x + tile / 2, top + tile + 24, src, 11, 0.5, 0);
+      if (!how.empty()) text(cr, x + tile / 2, top + tile + 38, how, 11, 0.5, 0);
       continue;
     }
     const ConvergenceRun& r = runs[i];

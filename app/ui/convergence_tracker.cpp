@@ -87,7 +87,7 @@ void ConvergenceTracker::update(const ViewerController& c) {
   lastSpp_ = snap.spp;
   if (curves_.empty() || curves_.back().restart != c.snapshotRestart()) {
     // Accumulations cut short after a point (e.g. while dragging a slider) would only clutter the plot.
-    if (!curves_.empty() && curves_.back().seconds.size() < 2) curves_.pop_back();
+    if (!curves_.empty() && curves_.back().seconds.size() < 2 && curves_.back().spp.back() < 4) curves_.pop_back();
     ConvergenceCurve curve;
     curve.label = strategyLabel(c.settings().integrator);
     curve.restart = c.snapshotRestart();

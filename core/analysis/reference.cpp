@@ -124,7 +124,9 @@ void writeReference(const std::string& path, const Reference& ref, const ImageMe
 
 Reference readReference(const std::string& path) {
   Reference ref;
-  ref.mean = readImage(path);
+  ImageMetadata meta;
+  bool exr = imageFormatFromPath(path) == ImageFormat::Exr;
+  ref.mean = exr ? readExr(path, &meta) : readImage(path);
   std::string se = standardErrorPath(path);
   if (fs::exists(se)) {
     ref.standardError = readImage(se);
@@ -132,6 +134,7 @@ Reference readReference(const std::string& path) {
       throw Error(se + ": standard error image does not match " + path);
   }
   ref.source = "file " + path;
+  if (const std::string* how = meta.find("reference")) ref.source += " (" + *how + ")";
   return ref;
 }
 
@@ -237,7 +240,7 @@ Reference obtainReference(const LoadedScene& scene, const ReferenceRequest& requ
   if (fs::exists(cache)) {
     Reference ref = readReference(cache);
     checkSize(ref, "cached reference " + cache);
-    ref.source = "cache " + cache;
+    ref.source = "cache " + ref.source.substr(5);  // "file PATH (how)" -> "cache PATH (how)"
     say("reference: cached " + cache);
     return ref;
   }
