@@ -23,6 +23,7 @@ struct ConvergeOptions {
   std::string outDir;
   int threads = 0;
   uint64_t seed = 0;
+  std::string timeAxis = "wall";
 };
 
 void logLine(const std::string& s) { std::fprintf(stderr, "%s\n", s.c_str()); }
@@ -57,6 +58,7 @@ int runConverge(const ConvergeOptions& o) {
   info.sceneName = loaded.path.empty() ? "built-in scene" : std::filesystem::path(loaded.path).filename().string();
   info.referenceSource = ref.source;
   info.sppMode = o.spp > 0;
+  info.cpuAxis = o.timeAxis == "cpu";
   info.budget = o.spp > 0 ? double(o.spp) : o.seconds;
   info.threads = o.threads;
   info.width = ref.mean.width;
@@ -93,6 +95,10 @@ void addConvergeCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("-o,--output", opts->outDir, "Output directory")->required();
   cmd->add_option("--threads", opts->threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 1024));
   cmd->add_option("--seed", opts->seed, "Random seed");
+  cmd->add_option("--time-axis", opts->timeAxis,
+                  "x axis of convergence.png in time mode: wall (default) or cpu (the render's CPU seconds, "
+                  "stable when other processes compete for the cores)")
+      ->check(CLI::IsMember({"wall", "cpu"}));
   cmd->callback([opts, &exitCode] { exitCode = runConverge(*opts); });
 }
 

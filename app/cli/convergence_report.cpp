@@ -132,7 +132,9 @@ void drawAxes(cairo_t* cr, const Axes& a, const std::string& xLabel, const std::
   text(cr, a.x0 + a.w / 2, a.y0 - 10, title, 15, 0.5, 1, true);
 }
 
-double xOf(const ConvergencePoint& p, bool sppMode) { return sppMode ? double(p.spp) : p.seconds; }
+double xOf(const ConvergencePoint& p, const ReportInfo& info) {
+  return info.sppMode ? double(p.spp) : info.cpuAxis ? p.cpuSeconds : p.seconds;
+}
 
 // Per-pixel squared error (mean over channels) of an image against the reference.
 std::vector<double> squaredErrors(const Image& v, const Image& ref) {
@@ -217,7 +219,7 @@ void plotConvergence(const std::string& path, const std::vector<ConvergenceRun>&
     double xmin = INFINITY, xmax = 0, ymin = INFINITY, ymax = 0;
     for (const ConvergenceRun& r : runs)
       for (const ConvergencePoint& p : r.points) {
-        double x = xOf(p, info.sppMode), y = rmseOf(p);
+        double x = xOf(p, info), y = rmseOf(p);
         if (!(x > 0) || !(y > 0)) continue;
         xmin = std::min(xmin, x), xmax = std::max(xmax, x), ymin = std::min(ymin, y), ymax = std::max(ymax, y);
       }
@@ -229,7 +231,11 @@ void plotConvergence(const std::string& path, const std::vector<ConvergenceRun>&
     if (a.ly1 - a.ly0 < 1) a.ly1 = a.ly0 + 1;
     std::string title = noLight ? "pixels that see no light directly (" + std::to_string(info.noLightPixels) + " px)"
                                 : "all pixels (" + std::to_string(info.pixels) + " px)";
-    drawAxes(cr, a, info.sppMode ? "samples per pixel" : "render time (seconds, all cores)", "RMSE", title);
+    drawAxes(cr, a,
+             info.sppMode ? "samples per pixel"
+             : info.cpuAxis ? "CPU time of the render (seconds, summed over threads)"
+                            : "render time (wall-clock seconds, all cores)",
+             "RMSE", title);
 
     cairo_save(cr);
     cairo_rectangle(cr, a.x0, a.y0, a.w, a.h);
@@ -255,7 +261,7 @@ void plotConvergence(const std::string& path, const std::vector<ConvergenceRun>&
       cairo_set_line_width(cr, 2.2);
       bool started = false;
       for (const ConvergencePoint& p : runs[i].points) {
-        double x = xOf(p, info.sppMode), y = rmseOf(p);
+        double x = xOf(p, info), y = rmseOf(p);
         if (!(x > 0) || !(y > 0)) continue;
         if (!started) cairo_move_to(cr, a.px(x), a.py(y));
         else cairo_line_to(cr, a.px(x), a.py(y));
@@ -265,7 +271,7 @@ void plotConvergence(const std::string& path, const std::vector<ConvergenceRun>&
       // Markers with ±1 standard error bars (RMSE error from the MSE's: se/(2 RMSE)).
       cairo_set_line_width(cr, 1.2);
       for (const ConvergencePoint& p : runs[i].points) {
-        double x = xOf(p, info.sppMode), y = rmseOf(p);
+        double x = xOf(p, info), y = rmseOf(p);
         if (!(x > 0) || !(y > 0)) continue;
         const ErrorStats& s = noLight ? p.error.noLight : p.error.all;
         double se = s.mseStdErr / (2 * y);
@@ -377,7 +383,7 @@ void writeEqualTimeImage(const std::string& path, const std::vector<ConvergenceR
     text(cr, x + tile / 2, y2 + tile + 6, "no-light RMSE " + fmt("%.3g", last.error.noLight.rmse), 12, 0.5, 0);
   }
   // Colour bar under the reference column.
-  double bx = gap + (n - 1) * (tile + gap), by = top + tile + labelH + 20, bw = tile, bh = 18;
+  double bx = gap + (n - 1) * (tile + gap), by = top + tile + labelH + 40, bw = tile, bh = 18;
   for (int k = 0; k < int(bw); ++k) {
     double r, g, b;
     falseColour(k / bw, r, g, b);

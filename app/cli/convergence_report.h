@@ -13,6 +13,7 @@ struct ReportInfo {
   std::string sceneName;
   std::string referenceSource;
   bool sppMode = false;  // x axis: spp instead of seconds
+  bool cpuAxis = false;  // x axis: the render's CPU seconds instead of wall seconds
   double budget = 0;     // seconds (or spp) per strategy
   int threads = 0;
   int width = 0, height = 0;
