@@ -273,3 +273,24 @@ TEST(ConvergenceTracker, KeepsOneCurvePerStrategy) {
 
 }  // namespace
 }  // namespace penumbra
+
+namespace penumbra {
+namespace {
+
+TEST(ConvergeCli, RenderReferenceWritesMeanAndStandardError) {
+  fs::path dir = fs::temp_directory_path() / ("penumbra-renderref-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  std::string out = (dir / "ref.exr").string();
+  CliRun r = penumbraCli("render --reference '" + test::sourcePath("scenes/hw2/Tests/sphere-area.xml") +
+                         "' --set camera.width=24 --set camera.height=16 --spp 8 -o '" + out + "'");
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  EXPECT_NE(r.out.find("direct/solid-angle"), std::string::npos) << r.out;  // the lowest-variance estimator
+  Reference ref = readReference(out);
+  EXPECT_EQ(ref.mean.width, 24);
+  ASSERT_EQ(ref.standardError.width, 24);
+  EXPECT_NE(ref.source.find("rendered direct/solid-angle 8 spp"), std::string::npos) << ref.source;
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace penumbra
