@@ -32,6 +32,7 @@ int runConverge(const ConvergeOptions& o) {
   LoadedScene loaded = o.scene.load();
   if (o.spp == 0 && o.seconds <= 0) throw Error("converge: give --time SECONDS or --spp N");
   std::vector<IntegratorDesc> strategies = parseStrategies(loaded.settings.integrator, o.strategies);
+  if (o.seed == kReferenceSeed) throw Error("converge: --seed must differ from the reference's seed");
   ReferenceRequest rq;
   rq.path = o.reference;
   rq.cacheDir = o.cacheDir;

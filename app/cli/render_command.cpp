@@ -50,6 +50,7 @@ int runRender(const RenderOptions& o) {
   std::string output = o.output;
   if (o.reference) {
     job->settings.integrator = referenceEstimator(job->settings.integrator);
+    if (o.seed < 0) job->settings.seed = kReferenceSeed;  // independent of the runs measured against it
     if (output.empty()) output = referenceCachePath(loaded);  // where `penumbra converge` looks for it
   }
   if (output.empty()) throw Error("render: -o/--output is required (optional only with --reference)");

@@ -45,8 +45,14 @@ std::string referenceCachePath(const LoadedScene& scene, const std::string& cach
 // <path without .exr/.pfm>.stderr.exr
 std::string standardErrorPath(const std::string& referencePath);
 
+// Seed of rendered references. It must differ from the seeds of the runs measured against the
+// reference: with the same seed, the reference estimator's run would repeat the reference's own
+// samples and its error would be grossly underestimated. Scenes and `converge` default to small seeds.
+inline constexpr uint64_t kReferenceSeed = 0x5EEDF00D12345678ull;
+
 // (a) Renders a reference (limits as in Engine::start; at least one of them must be set).
-Reference renderReference(const LoadedScene& scene, RenderLimits limits, int threads = 0, uint64_t seed = 1);
+Reference renderReference(const LoadedScene& scene, RenderLimits limits, int threads = 0,
+                          uint64_t seed = kReferenceSeed);
 void writeReference(const std::string& path, const Reference& ref, const ImageMetadata& metadata = {});
 // (b) Reads a reference image and, if present, its sibling standard error. Throws Error.
 Reference readReference(const std::string& path);
