@@ -10,7 +10,7 @@ int main(int argc, char** argv) {
   CLI::App app{"Penumbra: an interactive, progressive Monte Carlo renderer for studying light sampling"};
   app.require_subcommand(0, 1);
   int exitCode = 0;
-  penumbra::cli::addWarpCommand(app, exitCode);
+  penumbra::cli::addWarpCommand(app, exitCode, penumbra::cli::runWarpGui);
   penumbra::cli::addRenderCommand(app, exitCode);
   penumbra::cli::addBenchCommand(app, exitCode);
   penumbra::cli::addConvergeCommand(app, exitCode);

@@ -2,6 +2,8 @@
 // `penumbra render`: exit codes, the table, and no image written for rejected scenes.
 #include <gtest/gtest.h>
 
+#include "tests/run_command.h"
+
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -13,21 +15,11 @@
 
 namespace {
 
-struct CliRun {
-  int exitCode;
-  std::string out;
-};
+using CliRun = penumbra::test::CommandResult;
 
+// Runs `penumbra <args>` through the shell (stderr merged into the output).
 CliRun penumbra(const std::string& args) {
-  std::string cmd = "'" PENUMBRA_BINARY "' " + args + " 2>&1";
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) return {-1, ""};
-  std::string out;
-  char buf[4096];
-  size_t n;
-  while ((n = fread(buf, 1, sizeof buf, p)) > 0) out.append(buf, n);
-  int status = pclose(p);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+  return penumbra::test::runCommand("'" PENUMBRA_BINARY "' " + args);
 }
 
 const std::string kScenes = std::string(PENUMBRA_SOURCE_DIR) + "/scenes/stiff";
@@ -74,9 +66,9 @@ TEST(CheckCli, SelectsCasesAndRejectsUnknownOnes) {
 TEST(CheckCli, BadValueScenesAreRejectedAndWriteNoImage) {
   namespace fs = std::filesystem;
   fs::path out = fs::temp_directory_path() / ("penumbra-bad-" + std::to_string(::getpid()) + ".pfm");
-  for (const char* file : {"bad-nan.xml", "bad-inf.xml", "bad-1e999.xml", "bad-sampleCount-0.xml",
-                           "bad-sampleCount--4.xml", "bad-sampleCount-4294967296.xml", "bad-sampleCount-3.5.xml",
-                           "bad-fov-0.xml", "bad-fov-180.xml"}) {
+  for (const char* file :
+       {"bad-nan.xml", "bad-inf.xml", "bad-1e999.xml", "bad-sampleCount-0.xml", "bad-sampleCount--4.xml",
+        "bad-sampleCount-4294967296.xml", "bad-sampleCount-3.5.xml", "bad-fov-0.xml", "bad-fov-180.xml"}) {
     fs::remove(out);
     CliRun r = penumbra("render '" + kScenes + "/" + file + "' -o '" + out.string() + "' --spp 1");
     EXPECT_EQ(r.exitCode, 2) << file << ": " << r.out;

@@ -3,6 +3,8 @@
 // compared with `penumbra render` of the same scene, spp and seed.
 #include <gtest/gtest.h>
 
+#include "tests/run_command.h"
+
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -38,21 +40,9 @@ std::string defaultSceneFile() {
   return p;
 }
 
-struct RunResult {
-  int exitCode = -1;
-  std::string out;
-};
-
+using RunResult = test::CommandResult;
 RunResult run(const std::string& cmd) {
-  std::string outFile = tempDir() + "/cmd-out.txt";
-  int rc = std::system((cmd + " > " + outFile + " 2>&1").c_str());
-  RunResult r;
-  r.exitCode = WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
-  std::ifstream in(outFile);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  r.out = ss.str();
-  return r;
+  return test::runCommand(cmd);
 }
 
 struct Layout {
@@ -63,11 +53,14 @@ struct Layout {
 Layout parseLayout(const std::string& out) {
   Layout l;
   size_t p = out.find("image-rect ");
-  if (p != std::string::npos) std::sscanf(out.c_str() + p, "image-rect %f %f %d %d %f", &l.x, &l.y, &l.w, &l.h, &l.zoom);
+  if (p != std::string::npos)
+    std::sscanf(out.c_str() + p, "image-rect %f %f %d %d %f", &l.x, &l.y, &l.w, &l.h, &l.zoom);
   return l;
 }
 
-uint8_t byteAt(const Image& img, int x, int y, int c) { return toSrgb8(img.rgb[img.index(x, y) + c]); }
+uint8_t byteAt(const Image& img, int x, int y, int c) {
+  return toSrgb8(img.rgb[img.index(x, y) + c]);
+}
 
 // Checks a UI screenshot: panels drawn in the sidebar, background around the image, and the image area
 // equal to the headless render after the same tone mapping (within 1/255).
@@ -110,15 +103,17 @@ std::string headlessReference() {
   static std::string path;
   if (!path.empty()) return path;
   std::string p = tempDir() + "/reference.png";
-  RunResult r = run(std::string(PENUMBRA_BINARY) + " render " + defaultSceneFile() + " " + kSets + " --spp 4 --seed 3 -o " + p);
+  RunResult r = run(std::string(PENUMBRA_BINARY) + " render " + defaultSceneFile() + " " + kSets +
+                    " --spp 4 --seed 3 -o " + p);
   EXPECT_EQ(r.exitCode, 0) << r.out;
   path = p;
   return path;
 }
 
 LoadedScene smallDefaultScene() {
-  return loadSceneFromString(defaultSceneXml(), "<built-in scene>", ".",
-                             {{"camera.width", "48"}, {"camera.height", "32"}, {"sampler.sampleCount", "100000"}});
+  return loadSceneFromString(
+      defaultSceneXml(), "<built-in scene>", ".",
+      {{"camera.width", "48"}, {"camera.height", "32"}, {"sampler.sampleCount", "100000"}});
 }
 
 void waitForSpp(ui::ViewerController& c, uint32_t spp) {
@@ -202,8 +197,9 @@ TEST(ViewerController, CameraAndSamplerChangesRestartAndLiveXmlRoundTrips) {
 
 TEST(ViewerController, InvalidSceneKeepsTheLastGoodOneAndShowsFileAndLine) {
   std::string bad = tempDir() + "/bad.xml";
-  std::ofstream(bad) << "<scene>\n  <integrator type=\"direct\">\n    <integer name=\"nSamples\" value=\"x\"/>\n"
-                        "  </integrator>\n</scene>\n";
+  std::ofstream(bad)
+      << "<scene>\n  <integrator type=\"direct\">\n    <integer name=\"nSamples\" value=\"x\"/>\n"
+         "  </integrator>\n</scene>\n";
   ui::ViewerController c(smallDefaultScene(), {}, 1);
   c.start();
   auto scene = c.scene().scene;
@@ -233,7 +229,8 @@ TEST(ViewerOffscreen, ViewOffscreenFlagRunsTheOffscreenBinary) {
 TEST(ViewerOffscreen, NoDisplayFallsBackToOffscreenScreenshot) {
   std::string dir = tempDir() + "/nodisplay";
   fs::create_directories(dir);
-  RunResult r = run("cd " + dir + " && env -u DISPLAY -u WAYLAND_DISPLAY " + PENUMBRA_BINARY + " view " + defaultSceneFile() + " " + kSets);
+  RunResult r = run("cd " + dir + " && env -u DISPLAY -u WAYLAND_DISPLAY " + PENUMBRA_BINARY + " view " +
+                    defaultSceneFile() + " " + kSets);
   ASSERT_EQ(r.exitCode, 0) << r.out;
   EXPECT_NE(r.out.find("no display"), std::string::npos) << r.out;
   EXPECT_TRUE(fs::exists(dir + "/penumbra-view.png")) << r.out;
@@ -249,14 +246,22 @@ TEST(ViewerWindow, RealWindowUnderXvfb) {
   if (std::system("command -v xvfb-run > /dev/null 2>&1") != 0)
     GTEST_SKIP() << "xvfb-run is not installed (apt-get install xvfb xauth): skipping the real-window test";
   std::string shot = tempDir() + "/window.png";
-  RunResult r = run("xvfb-run -a -s '-screen 0 1024x768x24' " + std::string(PENUMBRA_BINARY) + " view " + defaultSceneFile() + " " + kSets +
-                    " --frames 30 --window 720x560 --print-layout --screenshot " + shot);
+  // xvfb-run -a can race another X server starting at the same moment; the viewer then falls back to
+  // offscreen. Retry a couple of times before judging.
+  RunResult r;
+  for (int attempt = 0; attempt < 3; ++attempt) {
+    r = run("xvfb-run -a -n " + std::to_string(140 + 7 * attempt) + " -s '-screen 0 1024x768x24' " +
+            std::string(PENUMBRA_BINARY) + " view " + defaultSceneFile() + " " + kSets +
+            " --frames 30 --window 720x560 --print-layout --screenshot " + shot);
+    if (r.exitCode == 0 && r.out.find("GLFW") != std::string::npos) break;
+  }
   ASSERT_EQ(r.exitCode, 0) << r.out;
   ASSERT_NE(r.out.find("GLFW"), std::string::npos) << r.out;
   Layout l = parseLayout(r.out);
   // The window shows whatever spp it reached in 30 frames; the panels must be there, and the image
   // equals the headless render once the (tiny) accumulation finished.
-  if (r.out.find("spp 4") != std::string::npos) checkScreenshot(shot, l, headlessReference());
+  if (r.out.find("spp 4") != std::string::npos)
+    checkScreenshot(shot, l, headlessReference());
   else {
     Image ui = readPng(shot);
     EXPECT_EQ(ui.width, 720);

@@ -1,6 +1,8 @@
 // End-to-end tests of `penumbra warp`: runs the built binary and checks exit codes and output.
 #include <gtest/gtest.h>
 
+#include "tests/run_command.h"
+
 #include <sys/wait.h>
 
 #include <cmath>
@@ -10,22 +12,11 @@
 
 namespace {
 
-struct CliRun {
-  int exitCode;
-  std::string out;
-};
+using CliRun = penumbra::test::CommandResult;
 
 // Runs `penumbra <args>` through the shell (stderr merged into the output).
 CliRun penumbra(const std::string& args, const std::string& prefix = "") {
-  std::string cmd = prefix + "'" PENUMBRA_BINARY "' " + args + " 2>&1";
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) return {-1, ""};
-  std::string out;
-  char buf[4096];
-  size_t n;
-  while ((n = fread(buf, 1, sizeof buf, p)) > 0) out.append(buf, n);
-  int status = pclose(p);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+  return penumbra::test::runCommand(prefix + "'" PENUMBRA_BINARY "' " + args);
 }
 
 TEST(WarpCli, AcceptsConsistentWarp) {

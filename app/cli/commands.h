@@ -4,9 +4,30 @@
 
 #include <CLI/CLI.hpp>
 
+#include <cstdint>
+#include <string>
+
+#include "core/sampling/warp.h"
+
 namespace penumbra::cli {
 
-void addWarpCommand(CLI::App& app, int& exitCode);
+// `penumbra warp --gui` (the warp inspector) needs GL: the executables pass runWarpGui, which lives
+// in app/cli/warp_gui_command.cpp with the viewer; without it --gui reports that it is unavailable.
+struct WarpGuiArgs {
+  WarpType type = WarpType::CosineHemisphere;
+  float param = 0.f;
+  int log2Points = 14;
+  std::string pointSet = "independent";
+  bool mismatch = false, gridLines = false;
+  uint64_t seed = 1;
+  int res = 0;  // 0: automatic
+  bool offscreen = false, noWait = false, printLayout = false;
+  int frames = -1;
+  std::string screenshot, window;
+};
+using WarpGuiRunner = int (*)(const WarpGuiArgs&);
+int runWarpGui(const WarpGuiArgs& args);
+void addWarpCommand(CLI::App& app, int& exitCode, WarpGuiRunner gui = nullptr);
 void addRenderCommand(CLI::App& app, int& exitCode);
 void addBenchCommand(CLI::App& app, int& exitCode);
 void addConvergeCommand(CLI::App& app, int& exitCode);

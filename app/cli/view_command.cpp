@@ -5,16 +5,17 @@
 // wrong library). `penumbra view --offscreen`, and `penumbra view` on a machine without a display,
 // re-execute the sibling penumbra-offscreen with the same options, so users see one command.
 // This file is compiled into each executable (not into penumbra_cli, which the tests link without GL).
-#include <cstdio>
+#include <unistd.h>
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <string>
-#include <unistd.h>
 #include <vector>
 
 #include "app/cli/commands.h"
 #include "app/cli/scene_options.h"
+#include "app/platform/offscreen_exec.h"
 #include "app/platform/platform.h"
 #include "app/ui/viewer_app.h"
 #include "core/math/error.h"
@@ -37,34 +38,21 @@ struct ViewOptions {
 
 constexpr const char* kFallbackScreenshot = "penumbra-view.png";
 
-std::string offscreenBinary() {
-  std::error_code ec;
-  std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
-  if (ec) throw Error("cannot locate the penumbra executable (/proc/self/exe): " + ec.message());
-  return (self.parent_path() / "penumbra-offscreen").string();
-}
-
 // Re-runs this command in penumbra-offscreen; returns only on failure.
 [[noreturn]] void execOffscreen(const ViewOptions& o) {
-  std::string bin = offscreenBinary();
-  std::vector<std::string> args = {bin, "view"};
+  std::vector<std::string> args = {"view"};
   if (!o.scene.scenePath.empty()) args.push_back(o.scene.scenePath);
   for (const std::string& s : o.scene.sets) args.insert(args.end(), {"--set", s});
   if (o.frames >= 0) args.insert(args.end(), {"--frames", std::to_string(o.frames)});
-  args.insert(args.end(), {"--screenshot", o.screenshot.empty() && !o.bench ? kFallbackScreenshot : o.screenshot});
+  args.insert(args.end(),
+              {"--screenshot", o.screenshot.empty() && !o.bench ? kFallbackScreenshot : o.screenshot});
   if (args.back().empty()) args.resize(args.size() - 2);
   if (o.bench) args.push_back("--bench");
   if (o.noWait) args.push_back("--no-wait");
   if (o.printLayout) args.push_back("--print-layout");
   if (o.threads > 0) args.insert(args.end(), {"--threads", std::to_string(o.threads)});
   if (!o.window.empty()) args.insert(args.end(), {"--window", o.window});
-  std::vector<char*> argv;
-  for (std::string& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  std::fflush(stdout);
-  std::fflush(stderr);
-  execv(bin.c_str(), argv.data());
-  throw Error("cannot run " + bin + " for offscreen rendering: " + std::strerror(errno));
+  platform::execOffscreen(args);
 }
 
 int runView(ViewOptions o) {
@@ -72,8 +60,8 @@ int runView(ViewOptions o) {
   if (!offscreenBuild) {
     std::string why;
     if (!o.offscreen && !platform::displayAvailable(why)) {
-      std::fprintf(stderr, "penumbra view: %s; rendering offscreen instead (OSMesa) and writing %s\n", why.c_str(),
-                   o.screenshot.empty() ? kFallbackScreenshot : o.screenshot.c_str());
+      std::fprintf(stderr, "penumbra view: %s; rendering offscreen instead (OSMesa) and writing %s\n",
+                   why.c_str(), o.screenshot.empty() ? kFallbackScreenshot : o.screenshot.c_str());
       o.offscreen = true;
     }
     if (o.offscreen) execOffscreen(o);
@@ -89,8 +77,8 @@ int runView(ViewOptions o) {
   vo.frames = o.frames >= 0 ? o.frames : (offscreenBuild ? 3 : 0);
   vo.waitForTarget = offscreenBuild && !o.noWait && !vo.screenshot.empty();
   if (!o.window.empty()) {
-    if (std::sscanf(o.window.c_str(), "%dx%d", &vo.windowWidth, &vo.windowHeight) != 2 || vo.windowWidth < 64 ||
-        vo.windowHeight < 64)
+    if (std::sscanf(o.window.c_str(), "%dx%d", &vo.windowWidth, &vo.windowHeight) != 2 ||
+        vo.windowWidth < 64 || vo.windowHeight < 64)
       throw Error("--window " + o.window + ": expected WIDTHxHEIGHT, e.g. 1280x800");
   }
   return ui::runViewer(std::move(loaded), o.scene.overrides(), vo);
@@ -100,14 +88,20 @@ int runView(ViewOptions o) {
 
 void addViewCommand(CLI::App& app, int& exitCode) {
   auto opts = std::make_shared<ViewOptions>();
-  CLI::App* cmd = app.add_subcommand("view", "Open the interactive progressive viewer (default: the built-in scene)");
+  CLI::App* cmd =
+      app.add_subcommand("view", "Open the interactive progressive viewer (default: the built-in scene)");
   opts->scene.addTo(*cmd, /*sceneRequired=*/false);
-  cmd->add_flag("--offscreen", opts->offscreen, "Render the UI offscreen (OSMesa) instead of opening a window");
-  cmd->add_option("--frames", opts->frames, "Stop after N UI frames (offscreen default: 3)")->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--offscreen", opts->offscreen,
+                "Render the UI offscreen (OSMesa) instead of opening a window");
+  cmd->add_option("--frames", opts->frames, "Stop after N UI frames (offscreen default: 3)")
+      ->check(CLI::NonNegativeNumber);
   cmd->add_option("--screenshot", opts->screenshot, "Write the last frame, panels included, to this PNG");
-  cmd->add_flag("--no-wait", opts->noWait, "Offscreen: take the screenshot without waiting for the target spp");
-  cmd->add_flag("--bench", opts->bench, "Measure UI frame time, restart latency and throughput lost to the UI");
-  cmd->add_option("--threads", opts->threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 1024));
+  cmd->add_flag("--no-wait", opts->noWait,
+                "Offscreen: take the screenshot without waiting for the target spp");
+  cmd->add_flag("--bench", opts->bench,
+                "Measure UI frame time, restart latency and throughput lost to the UI");
+  cmd->add_option("--threads", opts->threads, "Worker threads (default: all cores)")
+      ->check(CLI::Range(1, 1024));
   cmd->add_option("--window", opts->window, "Window / offscreen buffer size, e.g. 1280x800");
   cmd->add_flag("--print-layout", opts->printLayout, "Print where the image is drawn (for tests)")->group("");
   cmd->callback([opts, &exitCode] { exitCode = runView(*opts); });

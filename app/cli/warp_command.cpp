@@ -30,6 +30,12 @@ struct WarpArgs {
   double pdfParam = 0.0;
   double pdfScale = 1.0;
   bool mismatch = false;
+  // --gui: the warp inspector
+  bool gui = false;
+  int points = 14;
+  std::string pointSet = "independent";
+  bool gridLines = false;
+  WarpGuiArgs view;
 };
 
 std::string typeList() {
@@ -226,7 +232,7 @@ int runAll(const WarpArgs& a) {
 
 }  // namespace
 
-void addWarpCommand(CLI::App& app, int& exitCode) {
+void addWarpCommand(CLI::App& app, int& exitCode, WarpGuiRunner gui) {
   auto args = std::make_shared<WarpArgs>();
   CLI::App* cmd = app.add_subcommand(
       "warp", "Chi-square test a sample warp against its pdf; dump samples; evaluate pdfs");
@@ -257,8 +263,42 @@ void addWarpCommand(CLI::App& app, int& exitCode) {
   pdf->excludes(pdfOf)->excludes(mismatch)->excludes(scale);
   mismatch->excludes(pdfOf);
 
-  cmd->callback([args, cmd, &exitCode]() {
+  // The warp inspector (a window of the viewer; offscreen with --offscreen or without a display).
+  auto* guiFlag = cmd->add_flag("--gui", args->gui,
+                                "Open the warp inspector: points, histogram vs density and the chi-square verdict");
+  cmd->add_option("--points", args->points, "--gui: number of points as a power of two, 2^K")
+      ->capture_default_str()
+      ->check(CLI::Range(5, 20));
+  cmd->add_option("--point-set", args->pointSet, "--gui: independent, grid or stratified")->capture_default_str();
+  cmd->add_flag("--grid-lines", args->gridLines, "--gui: draw the warped grid lines");
+  cmd->add_flag("--offscreen", args->view.offscreen, "--gui: render offscreen (OSMesa) instead of a window");
+  cmd->add_option("--screenshot", args->view.screenshot, "--gui: write the last frame to this PNG");
+  cmd->add_option("--frames", args->view.frames, "--gui: stop after N frames (offscreen default: 3)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--window", args->view.window, "--gui: window size, e.g. 1280x800");
+  cmd->add_flag("--no-wait", args->view.noWait, "--gui offscreen: do not wait for the chi-square test");
+  cmd->add_flag("--print-layout", args->view.printLayout, "Print the panels' rectangles (tests)")->group("");
+  guiFlag->excludes(all)->excludes(dump)->excludes(pdf)->excludes(pdfOf)->excludes(scale);
+
+  cmd->callback([args, cmd, gui, &exitCode]() {
     const WarpArgs& a = *args;
+    if (a.gui) {
+      if (!gui) throw Error("--gui: the warp inspector is not part of this build");
+      WarpGuiArgs g = a.view;
+      g.type = a.type.empty() ? WarpType::CosineHemisphere : parseType(a.type);
+      g.param = checkedParam(g.type, cmd->count("--param") > 0, a.param, "--param");
+      g.log2Points = a.points;
+      g.pointSet = a.pointSet;
+      g.mismatch = a.mismatch;
+      g.gridLines = a.gridLines;
+      g.seed = a.seed;
+      g.res = cmd->count("--res") ? a.res : 0;
+      exitCode = gui(g);
+      return;
+    }
+    for (const char* o : {"--points", "--point-set", "--grid-lines", "--offscreen", "--screenshot", "--frames",
+                          "--window", "--no-wait"})
+      if (cmd->count(o)) throw Error(std::string(o) + " is an option of the warp inspector: add --gui");
     if (a.all) {
       if (!a.type.empty() || cmd->count("--param"))
         throw Error("--all runs every warp: give no TYPE or --param");

@@ -8,27 +8,13 @@
 #include <GL/gl.h>
 #include <GL/glext.h>
 
+#include "app/ui/gl_program.h"
 #include "core/math/error.h"
 #include "penumbra_shaders.h"  // generated from shaders/
 
 namespace penumbra::ui {
 
 namespace {
-
-GLuint compile(GLenum type, const char* source, const char* name) {
-  GLuint s = glCreateShader(type);
-  glShaderSource(s, 1, &source, nullptr);
-  glCompileShader(s);
-  GLint ok = 0;
-  glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
-  if (!ok) {
-    char log[4096] = "";
-    glGetShaderInfoLog(s, sizeof log, nullptr, log);
-    glDeleteShader(s);
-    throw Error(std::string("shaders/") + name + ": " + log);
-  }
-  return s;
-}
 
 void makeTexture(GLuint& tex) {
   glGenTextures(1, &tex);
@@ -73,21 +59,7 @@ ImageLayout layoutImage(const DisplaySettings& d, int imageW, int imageH, int ar
 }
 
 ImageDisplay::ImageDisplay() {
-  GLuint vs = compile(GL_VERTEX_SHADER, shaders::k_display_vert, "display.vert");
-  GLuint fs = compile(GL_FRAGMENT_SHADER, shaders::k_display_frag, "display.frag");
-  program_ = glCreateProgram();
-  glAttachShader(program_, vs);
-  glAttachShader(program_, fs);
-  glLinkProgram(program_);
-  glDeleteShader(vs);
-  glDeleteShader(fs);
-  GLint ok = 0;
-  glGetProgramiv(program_, GL_LINK_STATUS, &ok);
-  if (!ok) {
-    char log[4096] = "";
-    glGetProgramInfoLog(program_, sizeof log, nullptr, log);
-    throw Error(std::string("shaders/display: link failed: ") + log);
-  }
+  program_ = linkProgram(shaders::k_display_vert, shaders::k_display_frag, "display");
   glGenVertexArrays(1, &vao_);
   makeTexture(mean_);
   makeTexture(stdErr_);

@@ -14,6 +14,7 @@
 #include "app/platform/platform.h"
 #include "app/ui/image_display.h"
 #include "app/ui/panels.h"
+#include "app/ui/warp_inspector.h"
 #include "core/image/image_io.h"
 #include "core/image/tonemap.h"
 #include "core/math/error.h"
@@ -138,8 +139,14 @@ class ViewerApp {
     ImGui::PopItemWidth();
     ImGui::Separator();
     if (ImGui::Button("Help (H)")) st_.showHelp = !st_.showHelp;
+    ImGui::SameLine();
+    if (ImGui::Button("Warp inspector")) showWarpInspector_ = !showWarpInspector_;
     ImGui::End();
     drawHelpPanel(c_, st_);
+    if (showWarpInspector_) {
+      if (!warpInspector_) warpInspector_ = std::make_unique<WarpInspector>();
+      warpInspector_->draw(&showWarpInspector_, false);
+    }
   }
 
   platform::Platform& platform_;
@@ -147,6 +154,8 @@ class ViewerApp {
   ImageDisplay display_;
   PanelState st_;
   ImageLayout layout_;
+  std::unique_ptr<WarpInspector> warpInspector_;  // created when first opened
+  bool showWarpInspector_ = false;
 };
 
 double median(std::vector<double> v) {

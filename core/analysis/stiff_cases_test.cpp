@@ -123,8 +123,11 @@ TEST(StiffCasesCanFail, AWrongRejectionMessageOrAnAcceptedFileFails) {
 TEST(StiffCasesCanFail, AMissingSceneDirectoryFailsInsteadOfThrowing) {
   CaseOptions o;
   o.sceneDir = "/nonexistent/stiff";
-  for (const StiffCase& c : stiffCases())
-    if (c.name == "light-straddling" || c.name == "scale-ao") EXPECT_FALSE(runStiffCase(c, o).passed()) << c.name;
+  for (const StiffCase& c : stiffCases()) {
+    if (c.name == "light-straddling" || c.name == "scale-ao") {
+      EXPECT_FALSE(runStiffCase(c, o).passed()) << c.name;
+    }
+  }
 }
 
 }  // namespace

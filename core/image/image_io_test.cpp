@@ -231,7 +231,7 @@ TEST_F(ImageIoTest, EmptyImageThrows) {
 }
 
 TEST(ImageIoSeed, ReadsSeedReferenceExr) {
-  const std::string path = PENUMBRA_SOURCE_DIR "/../shared/seed/scenes/hw2/References/sphere-area.exr";
+  const std::string path = PENUMBRA_SOURCE_DIR "/scenes/hw2/References/sphere-area.exr";
   if (!fs::exists(path)) GTEST_SKIP() << "seed scenes not found at " << path;
   Image img = readImage(path);
   ASSERT_EQ(img.width, 768);

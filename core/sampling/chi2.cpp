@@ -185,8 +185,12 @@ double integratePdf(const Chi2Domain& domain, const PdfFunction& pdf, int resolu
   return std::accumulate(e.cells.begin(), e.cells.end(), 0.0) + e.outside;
 }
 
-Chi2Result chi2Test(const Chi2Domain& domain, const SampleFunction& sample, const PdfFunction& pdf,
-                    const Chi2Options& options) {
+namespace {
+
+// The test proper: `count` samples from next() (a warped point each call), judged by `pdf`.
+template <class Next>
+Chi2Result chi2Run(const Chi2Domain& domain, uint64_t count, Next&& next, const PdfFunction& pdf,
+                   const Chi2Options& options) {
   Chi2Result r;
   r.alphaEffective = sidakAlpha(options.alpha, options.testCount);
   Grid g = gridFor(domain, std::max(options.resolution, 1));
@@ -196,13 +200,10 @@ Chi2Result chi2Test(const Chi2Domain& domain, const SampleFunction& sample, cons
   r.observed.assign(cellCount, 0.0);
 
   // ---- histogram ----
-  Rng rng(mix64(options.seed), options.seed);
   const double spanX = g.dx * g.resX, spanY = g.dy * g.resY;
   const double slackX = kBinSlack * spanX, slackY = kBinSlack * spanY;
-  for (uint64_t i = 0; i < options.sampleCount; ++i) {
-    float u1 = rng.nextFloat();
-    Vec2 u(u1, rng.nextFloat());
-    Vec3 v = sample(u);
+  for (uint64_t i = 0; i < count; ++i) {
+    Vec3 v = next();
     if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z)) {
       ++r.invalidSamples;
       continue;
@@ -230,7 +231,7 @@ Chi2Result chi2Test(const Chi2Domain& domain, const SampleFunction& sample, cons
   }
 
   // ---- expected counts ----
-  const double n = static_cast<double>(options.sampleCount);
+  const double n = static_cast<double>(count);
   Chi2Expected e = integrateCells(domain, pdf, options.resolution);
   r.expected.resize(cellCount);
   for (size_t c = 0; c < cellCount; ++c) r.expected[c] = n * e.cells[c];
@@ -307,6 +308,25 @@ Chi2Result chi2Test(const Chi2Domain& domain, const SampleFunction& sample, cons
     r.message = buf;
   }
   return r;
+}
+
+}  // namespace
+
+Chi2Result chi2Test(const Chi2Domain& domain, const SampleFunction& sample, const PdfFunction& pdf,
+                    const Chi2Options& options) {
+  Rng rng(mix64(options.seed), options.seed);
+  auto next = [&] {
+    float u1 = rng.nextFloat();
+    return sample(Vec2(u1, rng.nextFloat()));
+  };
+  return chi2Run(domain, options.sampleCount, next, pdf, options);
+}
+
+Chi2Result chi2TestPoints(const Chi2Domain& domain, const std::vector<Vec3>& points, const PdfFunction& pdf,
+                          const Chi2Options& options) {
+  size_t i = 0;
+  auto next = [&] { return points[i++]; };
+  return chi2Run(domain, points.size(), next, pdf, options);
 }
 
 }  // namespace penumbra

@@ -71,6 +71,11 @@ struct Chi2Result {
 Chi2Result chi2Test(const Chi2Domain& domain, const SampleFunction& sample, const PdfFunction& pdf,
                     const Chi2Options& options);
 
+// The same test on samples already drawn and warped (e.g. a grid or stratified point set, as the
+// viewer's warp inspector draws them); options.sampleCount and options.seed are not used.
+Chi2Result chi2TestPoints(const Chi2Domain& domain, const std::vector<Vec3>& points, const PdfFunction& pdf,
+                          const Chi2Options& options);
+
 // Expected probability of every cell of the domain's grid (same layout as Chi2Result) and of the
 // outside region, by nested adaptive Gauss-Lobatto quadrature (error far below sampling noise).
 struct Chi2Expected {

@@ -1,0 +1,83 @@
+// `penumbra warp --gui`: the warp inspector in its own window, or offscreen (penumbra-offscreen,
+// OSMesa) with --offscreen or without a display, by the same re-execution as `penumbra view`.
+// Compiled into the executables with the viewer (it needs GL), like view_command.cpp.
+#include <unistd.h>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "app/cli/commands.h"
+#include "app/platform/offscreen_exec.h"
+#include "app/platform/platform.h"
+#include "app/ui/warp_inspector.h"
+#include "core/math/error.h"
+
+namespace penumbra::cli {
+
+namespace {
+
+constexpr const char* kFallbackScreenshot = "penumbra-warp.png";
+
+[[noreturn]] void execOffscreen(const WarpGuiArgs& g) {
+  char param[32];
+  std::snprintf(param, sizeof param, "%.9g", g.param);
+  std::vector<std::string> args = {"warp",
+                                   warpTypeName(g.type),
+                                   "--gui",
+                                   "--points",
+                                   std::to_string(g.log2Points),
+                                   "--point-set",
+                                   g.pointSet,
+                                   "--seed",
+                                   std::to_string(g.seed)};
+  if (warpHasParameter(g.type)) args.insert(args.end(), {"--param", param});
+  if (g.mismatch) args.push_back("--mismatch");
+  if (g.gridLines) args.push_back("--grid-lines");
+  if (g.res > 0) args.insert(args.end(), {"--res", std::to_string(g.res)});
+  if (g.frames >= 0) args.insert(args.end(), {"--frames", std::to_string(g.frames)});
+  args.insert(args.end(), {"--screenshot", g.screenshot.empty() ? kFallbackScreenshot : g.screenshot});
+  if (!g.window.empty()) args.insert(args.end(), {"--window", g.window});
+  if (g.noWait) args.push_back("--no-wait");
+  if (g.printLayout) args.push_back("--print-layout");
+  platform::execOffscreen(args);
+}
+
+}  // namespace
+
+int runWarpGui(const WarpGuiArgs& in) {
+  WarpGuiArgs g = in;
+  ui::WarpGuiOptions o;
+  if (!ui::parsePointSet(g.pointSet, o.settings.pointSet))
+    throw Error("--point-set " + g.pointSet + ": expected independent, grid or stratified");
+  const bool offscreenBuild = platform::isOffscreenBuild();
+  if (!offscreenBuild) {
+    std::string why;
+    if (!g.offscreen && !platform::displayAvailable(why)) {
+      std::fprintf(stderr, "penumbra warp --gui: %s; rendering offscreen instead (OSMesa) and writing %s\n",
+                   why.c_str(), g.screenshot.empty() ? kFallbackScreenshot : g.screenshot.c_str());
+      g.offscreen = true;
+    }
+    if (g.offscreen) execOffscreen(g);
+  }
+  o.settings.type = g.type;
+  o.settings.param = warpHasParameter(g.type) ? g.param : 0.f;
+  o.settings.log2Points = g.log2Points;
+  o.settings.mismatch = g.mismatch;
+  o.settings.gridLines = g.gridLines;
+  o.settings.seed = g.seed;
+  o.settings.resolution = g.res;
+  o.screenshot = g.screenshot;
+  if (offscreenBuild && o.screenshot.empty()) o.screenshot = kFallbackScreenshot;
+  o.frames = g.frames >= 0 ? g.frames : (offscreenBuild ? 3 : 0);
+  o.waitForResult = offscreenBuild && !g.noWait;
+  o.printLayout = g.printLayout;
+  if (!g.window.empty() && (std::sscanf(g.window.c_str(), "%dx%d", &o.windowWidth, &o.windowHeight) != 2 ||
+                            o.windowWidth < 320 || o.windowHeight < 240))
+    throw Error("--window " + g.window + ": expected WIDTHxHEIGHT, e.g. 1280x800");
+  return ui::runWarpInspector(o);
+}
+
+}  // namespace penumbra::cli

@@ -1,0 +1,257 @@
+// The warp inspector: its model (point sets, background chi-square with cancellation, the panels'
+// images) directly, and the real UI rendered offscreen by `penumbra-offscreen warp --gui`, read back
+// from the screenshot.
+#include <gtest/gtest.h>
+
+#include "tests/run_command.h"
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <thread>
+
+#include "app/ui/warp_inspector_model.h"
+#include "core/image/image_io.h"
+#include "core/image/tonemap.h"
+#include "core/sampling/rng.h"
+
+namespace fs = std::filesystem;
+using namespace penumbra;
+using namespace penumbra::ui;
+
+namespace {
+
+std::string tempDir() {
+  fs::path d = fs::temp_directory_path() / ("penumbra-warp-inspector-test-" + std::to_string(::getpid()));
+  fs::create_directories(d);
+  return d.string();
+}
+
+using RunResult = test::CommandResult;
+RunResult run(const std::string& cmd) {
+  return test::runCommand(cmd);
+}
+
+struct Rect {
+  int x = 0, y = 0, w = 0, h = 0;
+};
+
+Rect panelRect(const std::string& out, const std::string& name) {
+  Rect r;
+  size_t p = out.find("panel " + name + " ");
+  if (p != std::string::npos)
+    std::sscanf(out.c_str() + p + 7 + name.size(), "%d %d %d %d", &r.x, &r.y, &r.w, &r.h);
+  return r;
+}
+
+// Mean absolute difference (0 ... 255) of two equally sized screen regions, from the inner 80 % of
+// each (away from the frames).
+double regionDifference(const Image& img, const Rect& a, const Rect& b) {
+  double sum = 0;
+  int n = 0;
+  for (int j = a.h / 10; j < a.h - a.h / 10; ++j)
+    for (int i = a.w / 10; i < a.w - a.w / 10; ++i)
+      for (int c = 0; c < 3; ++c) {
+        int va = toSrgb8(img.rgb[img.index(a.x + i, a.y + j) + c]);
+        int vb = toSrgb8(img.rgb[img.index(b.x + i, b.y + j) + c]);
+        sum += std::abs(va - vb);
+        ++n;
+      }
+  return n ? sum / n : 255.0;
+}
+
+WarpInspectorSettings cosine14() {
+  WarpInspectorSettings s;
+  s.type = WarpType::CosineHemisphere;
+  s.log2Points = 14;
+  return s;
+}
+
+std::shared_ptr<const WarpVerdict> verdictFor(const WarpInspectorSettings& s) {
+  WarpInspectorWorker w;
+  w.request(s);
+  EXPECT_TRUE(w.waitIdle(60.0));
+  auto v = w.verdict();
+  EXPECT_TRUE(v && v->settings == s);
+  return v;
+}
+
+}  // namespace
+
+TEST(WarpInspectorModel, PointSetsAreThePowerOfTwoAndStratified) {
+  for (int i = 0; i < kPointSetCount; ++i) {
+    auto set = static_cast<PointSet>(i);
+    for (int k : {5, 6, 11}) {
+      std::vector<Vec2> pts = makePointSet(set, k, 7);
+      ASSERT_EQ(pts.size(), size_t(1) << k);
+      if (set == PointSet::Independent) continue;
+      // one point in each cell of the 2^ceil(k/2) x 2^floor(k/2) grid
+      const int nx = 1 << ((k + 1) / 2), ny = 1 << (k / 2);
+      std::vector<int> hits(size_t(nx) * ny, 0);
+      for (Vec2 p : pts) {
+        ASSERT_TRUE(p.x >= 0.f && p.x < 1.f && p.y >= 0.f && p.y < 1.f);
+        ++hits[size_t(int(p.y * ny)) * nx + int(p.x * nx)];
+      }
+      for (int h : hits) EXPECT_EQ(h, 1) << pointSetName(set) << " 2^" << k;
+    }
+  }
+  // independent = the CLI's chi-square stream for the seed (same first sample)
+  Rng rng(mix64(7), 7);
+  float u1 = rng.nextFloat();
+  EXPECT_EQ(makePointSet(PointSet::Independent, 5, 7)[0], Vec2(u1, rng.nextFloat()));
+}
+
+TEST(WarpInspectorModel, GridLinesAreSubdividedAndWarped) {
+  std::vector<Vec3> lines = warpedGridLines(WarpType::ConcentricDisk, 0.f, 4, 16);
+  ASSERT_EQ(lines.size(), size_t(2 * 5 * 16 * 2));
+  for (const Vec3& v : lines) EXPECT_LE(v.x * v.x + v.y * v.y, 1.0001f);
+  for (const Vec3& v : warpedGridLines(WarpType::UniformSphere, 0.f, 4, 16))
+    EXPECT_NEAR(glm::length(v), 1.f, 1e-5f);
+}
+
+TEST(WarpInspectorModel, CosineHemisphereAcceptedPanelsCloseMismatchRejected) {
+  auto ok = verdictFor(cosine14());
+  ASSERT_TRUE(ok);
+  EXPECT_TRUE(ok->chi2.accepted) << ok->chi2.message << " p " << ok->chi2.pValue;
+  EXPECT_EQ(ok->domain.kind, Chi2Domain::Kind::Sphere);
+  HistogramPanels panels = makeHistogramPanels(ok->chi2);
+  ASSERT_EQ(panels.width, 2 * panels.height);
+  double close = meanAbsoluteDifference(panels.observed, panels.expected);
+  std::printf("panels: mean |histogram - density| %.2f / 255 (%dx%d cells)\n", close, panels.width,
+              panels.height);
+  EXPECT_LT(close, 15.0) << "histogram and density panels differ";
+
+  WarpInspectorSettings bad = cosine14();
+  bad.mismatch = true;
+  auto rejected = verdictFor(bad);
+  ASSERT_TRUE(rejected);
+  EXPECT_FALSE(rejected->chi2.accepted) << "p " << rejected->chi2.pValue;
+  HistogramPanels badPanels = makeHistogramPanels(rejected->chi2);
+  EXPECT_GT(meanAbsoluteDifference(badPanels.observed, badPanels.expected), close * 1.5);
+}
+
+TEST(WarpInspectorModel, PlanarWarpsAreHistogrammedOnThePlane) {
+  for (WarpType t : {WarpType::ConcentricDisk, WarpType::Tent}) {
+    WarpInspectorSettings s;
+    s.type = t;
+    s.log2Points = 14;
+    auto v = verdictFor(s);
+    ASSERT_TRUE(v);
+    EXPECT_EQ(v->domain.kind, Chi2Domain::Kind::Square) << warpTypeName(t);
+    EXPECT_EQ(v->chi2.resX, v->chi2.resY);
+    EXPECT_TRUE(v->chi2.accepted) << warpTypeName(t) << ": " << v->chi2.message;
+  }
+}
+
+TEST(WarpInspectorModel, NewRequestsCancelStaleJobs) {
+  WarpInspectorWorker w;
+  WarpInspectorSettings s;
+  s.type = WarpType::Beckmann;
+  s.param = 0.3f;
+  s.log2Points = 20;
+  w.request(s);
+  for (int i = 0; i < 5; ++i) {  // a slider dragged: every frame a new request
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    s.param += 0.05f;
+    w.request(s);
+  }
+  s.log2Points = 12;
+  w.request(s);
+  ASSERT_TRUE(w.waitIdle(60.0));
+  EXPECT_GE(w.cancelledJobs(), 1u);
+  ASSERT_TRUE(w.verdict());
+  EXPECT_TRUE(w.verdict()->settings == s);
+  EXPECT_TRUE(w.points()->settings == s);
+  EXPECT_EQ(w.points()->points.size(), size_t(1) << 12);
+}
+
+TEST(WarpInspectorOffscreen, CosineHemisphereRendersAcceptsAndPanelsAgree) {
+  std::string shot = tempDir() + "/inspector.png";
+  RunResult r =
+      run(std::string(PENUMBRA_OFFSCREEN_BINARY) +
+          " warp cosine-hemisphere --gui --points 14 --window 1280x800 --print-layout --screenshot " + shot);
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  EXPECT_NE(r.out.find("verdict accepted"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("(stale)"), std::string::npos) << r.out;
+  Image img = readPng(shot);
+  ASSERT_EQ(img.width, 1280);
+  Rect hist = panelRect(r.out, "histogram"), dens = panelRect(r.out, "density"),
+       diff = panelRect(r.out, "difference");
+  ASSERT_GT(hist.w, 50) << r.out;
+  ASSERT_EQ(hist.w, dens.w);
+  ASSERT_EQ(hist.h, dens.h);
+  ASSERT_LE(dens.x + dens.w, img.width);
+  ASSERT_LE(hist.y + hist.h, img.height);
+  double close = regionDifference(img, hist, dens);
+  std::printf("histogram vs density panels on screen: mean |difference| %.2f / 255\n", close);
+  EXPECT_LT(close, 15.0) << "histogram and density panels differ on screen";
+  // The density panel is not blank: bright (yellow) near the pole, dark near the horizon.
+  int top = toSrgb8(img.rgb[img.index(dens.x + dens.w / 2, dens.y + 2) + 1]);
+  int bottom = toSrgb8(img.rgb[img.index(dens.x + dens.w / 2, dens.y + dens.h - 3) + 1]);
+  EXPECT_GT(top, bottom + 80);
+  // The 3-D view above the panels shows coloured points (not only the background).
+  int coloured = 0;
+  for (int y = 40; y < hist.y - 60; y += 3)
+    for (int x = 320; x < img.width; x += 3) {
+      int rr = toSrgb8(img.rgb[img.index(x, y)]), gg = toSrgb8(img.rgb[img.index(x, y) + 1]),
+          bb = toSrgb8(img.rgb[img.index(x, y) + 2]);
+      coloured += std::max({rr, gg, bb}) - std::min({rr, gg, bb}) > 100;
+    }
+  EXPECT_GT(coloured, 2000) << "no warped points in the 3-D view";
+  (void)diff;
+}
+
+TEST(WarpInspectorOffscreen, MismatchedPdfIsRejectedThroughPenumbraGuiOffscreen) {
+  std::string shot = tempDir() + "/mismatch.png";
+  RunResult r = run(std::string(PENUMBRA_BINARY) +
+                    " warp cosine-hemisphere --gui --offscreen --mismatch --points 14"
+                    " --window 1280x800 --print-layout --screenshot " +
+                    shot);
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  EXPECT_NE(r.out.find("verdict rejected"), std::string::npos) << r.out;
+  Image img = readPng(shot);
+  Rect hist = panelRect(r.out, "histogram"), dens = panelRect(r.out, "density");
+  ASSERT_GT(hist.w, 50) << r.out;
+  double apart = regionDifference(img, hist, dens);
+  std::printf("mismatched: histogram vs density panels on screen: mean |difference| %.2f / 255\n", apart);
+  EXPECT_GT(apart, 16.0) << "a rejected pair should look different";
+}
+
+TEST(WarpInspectorCli, GuiOptionsNeedGui) {
+  RunResult r = run(std::string(PENUMBRA_BINARY) + " warp cosine-hemisphere --points 10");
+  EXPECT_EQ(r.exitCode, 2) << r.out;
+  EXPECT_NE(r.out.find("--gui"), std::string::npos) << r.out;
+  r = run(std::string(PENUMBRA_BINARY) + " warp cosine-hemisphere --gui --offscreen --point-set sobol");
+  EXPECT_EQ(r.exitCode, 2) << r.out;
+}
+
+TEST(WarpInspectorWindow, RealWindowUnderXvfb) {
+  if (std::system("command -v xvfb-run > /dev/null 2>&1") != 0)
+    GTEST_SKIP() << "xvfb-run is not installed (apt-get install xvfb xauth): skipping the real-window test";
+  std::string shot = tempDir() + "/window.png";
+  // -n 170: its own display numbers, so that it never races the viewer's xvfb-run -a under ctest -j;
+  // retried because xvfb-run -a can still race an X server starting elsewhere at the same moment.
+  RunResult r;
+  for (int attempt = 0; attempt < 3; ++attempt) {
+    r = run("xvfb-run -a -n " + std::to_string(170 + 7 * attempt) + " -s '-screen 0 1024x768x24' " +
+            std::string(PENUMBRA_BINARY) +
+            " warp concentric-disk --gui --points 10 --grid-lines --frames 20 --window 960x640 --print-layout"
+            " --screenshot " +
+            shot);
+    if (r.exitCode == 0 && r.out.find("GLFW") != std::string::npos) break;
+  }
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  EXPECT_NE(r.out.find("GLFW"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("panel histogram"), std::string::npos) << r.out;
+  Image img = readPng(shot);
+  EXPECT_EQ(img.width, 960);
+  EXPECT_EQ(img.height, 640);
+}
