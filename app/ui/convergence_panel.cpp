@@ -77,6 +77,7 @@ void drawPlot(const ConvergenceTracker& t, bool noLight) {
       if (!(c.seconds[i] > 0) || !(y > 0)) continue;
       ImVec2 p(X(c.seconds[i]), Y(y));
       if (have) dl->AddLine(prev, p, col, ci + 1 == curves.size() ? 2.5f : 1.5f);
+      dl->AddCircleFilled(p, 2.5f, col);  // a marker per measurement (a curve may have a single point)
       prev = p;
       have = true;
     }
