@@ -13,6 +13,7 @@ int main(int argc, char** argv) {
   penumbra::cli::addWarpCommand(app, exitCode, penumbra::cli::runWarpGui);
   penumbra::cli::addRenderCommand(app, exitCode);
   penumbra::cli::addBenchCommand(app, exitCode);
+  penumbra::cli::addConvergeCommand(app, exitCode);
   penumbra::cli::addCheckCommand(app, exitCode);
   penumbra::cli::addViewCommand(app, exitCode);
 

@@ -30,6 +30,7 @@ int runWarpGui(const WarpGuiArgs& args);
 void addWarpCommand(CLI::App& app, int& exitCode, WarpGuiRunner gui = nullptr);
 void addRenderCommand(CLI::App& app, int& exitCode);
 void addBenchCommand(CLI::App& app, int& exitCode);
+void addConvergeCommand(CLI::App& app, int& exitCode);
 void addCheckCommand(CLI::App& app, int& exitCode);
 // Compiled into the penumbra and penumbra-offscreen executables only (it needs GL).
 void addViewCommand(CLI::App& app, int& exitCode);

@@ -8,6 +8,7 @@
 
 #include "app/cli/commands.h"
 #include "app/cli/scene_options.h"
+#include "core/analysis/reference.h"
 #include "core/image/image_io.h"
 #include "core/math/error.h"
 #include "core/render/engine.h"
@@ -26,6 +27,7 @@ struct RenderOptions {
   double seconds = 0;
   int64_t seed = -1;
   int threads = 0;
+  bool reference = false;  // converged reference: lowest-variance estimator, stored with its standard error
 };
 
 void drawProgress(const RenderProgress& p, uint32_t target, double seconds) {
@@ -45,10 +47,18 @@ int runRender(const RenderOptions& o) {
   job->scene = loaded.scene;
   job->settings = loaded.settings;
   if (o.seed >= 0) job->settings.seed = uint64_t(o.seed);
+  std::string output = o.output;
+  if (o.reference) {
+    job->settings.integrator = referenceEstimator(job->settings.integrator);
+    if (o.seed < 0) job->settings.seed = kReferenceSeed;  // independent of the runs measured against it
+    if (output.empty()) output = referenceCachePath(loaded);  // where `penumbra converge` looks for it
+  }
+  if (output.empty()) throw Error("render: -o/--output is required (optional only with --reference)");
 
   RenderLimits limits;
   limits.seconds = o.seconds;
-  limits.targetSpp = o.spp > 0 ? o.spp : (o.seconds > 0 ? 0 : job->settings.sampleCount);
+  uint32_t defaultSpp = o.reference ? 4096u : job->settings.sampleCount;
+  limits.targetSpp = o.spp > 0 ? o.spp : (o.seconds > 0 ? 0 : defaultSpp);
 
   gInterrupted = false;
   auto previous = std::signal(SIGINT, onInterrupt);
@@ -74,11 +84,18 @@ int runRender(const RenderOptions& o) {
   meta.add("seconds", std::to_string(p.seconds));
   meta.add("scene", loaded.path.empty() ? "<built-in>" : loaded.path);
   meta.add("badSamples", std::to_string(p.badSamples));
-  writeImage(o.output, engine.film().mean(p.spp), meta);
+  if (o.reference) {
+    meta.add("sceneHash", sceneContentHash(loaded.desc));
+    Reference ref{engine.film().mean(p.spp), engine.film().standardError(p.spp),
+                  "rendered " + strategyLabel(job->settings.integrator) + " " + std::to_string(p.spp) + " spp"};
+    writeReference(output, ref, meta);  // + <output>.stderr.exr
+  } else {
+    writeImage(output, engine.film().mean(p.spp), meta);
+  }
 
   const auto& cam = job->settings.camera;
   std::printf("%s: %dx%d, %u spp, %.3f s, %.2f M samples/s, %llu NaN/Inf/negative, %s, %d threads%s\n",
-              o.output.c_str(), cam.width, cam.height, p.spp, p.seconds,
+              output.c_str(), cam.width, cam.height, p.spp, p.seconds,
               p.seconds > 0 ? double(p.samples) / p.seconds * 1e-6 : 0.0,
               (unsigned long long)p.badSamples, strategyLabel(job->settings.integrator).c_str(),
               engine.threadCount(),
@@ -92,8 +109,12 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
   auto opts = std::make_shared<RenderOptions>();
   CLI::App* cmd = app.add_subcommand("render", "Render a scene headless to .exr, .pfm or .png");
   opts->scene.addTo(*cmd);
-  cmd->add_option("-o,--output", opts->output, "Output image (.exr float, .pfm float, .png sRGB 8-bit)")
-      ->required();
+  cmd->add_option("-o,--output", opts->output,
+                  "Output image (.exr float, .pfm float, .png sRGB 8-bit); required unless --reference");
+  cmd->add_flag("--reference", opts->reference,
+                "Converged reference: the lowest-variance estimator (direct: solid-angle, ao: cosine), 4096 spp "
+                "unless --spp/--time, written with NAME.stderr.exr; default output: the cache next to the scene "
+                "(SCENE.xml.ref-HASH.exr) that `penumbra converge` reads");
   cmd->add_option("--spp", opts->spp, "Samples per pixel (default: the scene's sampleCount)")
       ->check(CLI::Range(1u, 1u << 30));
   cmd->add_option("--time", opts->seconds, "Render for this many seconds (whole passes)")

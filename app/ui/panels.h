@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "app/ui/convergence_tracker.h"
 #include "app/ui/viewer_controller.h"
 
 namespace penumbra::ui {
@@ -18,6 +19,10 @@ struct PanelState {
   bool hoverValid = false;    // pixel inspector: the cursor is over the image
   int hoverX = 0, hoverY = 0;
   bool requestSavePng = false;
+  // Convergence panel: live RMSE against time for each accumulation of the session.
+  ConvergenceTracker convergence;
+  char referencePath[1024] = "";
+  bool convergenceNoLight = false;
 };
 
 void drawScenePanel(ViewerController& c, PanelState& st);
@@ -26,6 +31,7 @@ void drawSamplerPanel(ViewerController& c, PanelState& st);
 void drawCameraPanel(ViewerController& c, PanelState& st);
 void drawDisplayPanel(ViewerController& c, PanelState& st);
 void drawStatsPanel(ViewerController& c, PanelState& st);
+void drawConvergencePanel(ViewerController& c, PanelState& st);
 void drawHelpPanel(ViewerController& c, PanelState& st);
 
 // The keyboard shortcuts, as listed in the help panel (key, action).

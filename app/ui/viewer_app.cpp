@@ -135,6 +135,7 @@ class ViewerApp {
     drawCameraPanel(c_, st_);
     drawDisplayPanel(c_, st_);
     drawStatsPanel(c_, st_);
+    drawConvergencePanel(c_, st_);
     ImGui::PopItemWidth();
     ImGui::Separator();
     if (ImGui::Button("Help (H)")) st_.showHelp = !st_.showHelp;

@@ -1,14 +1,21 @@
 #include "core/render/engine.h"
 
 #include <algorithm>
+#include <ctime>
 
 #include "core/render/row_renderer.h"
 
 namespace penumbra {
 
-Engine::~Engine() {
-  cancel();
+namespace {
+double processCpuSeconds() {
+  timespec ts;
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
 }
+}  // namespace
+
+Engine::~Engine() { cancel(); }
 
 void Engine::start(std::shared_ptr<const RenderJob> job, RenderLimits limits, int threads) {
   cancel();
@@ -34,11 +41,13 @@ void Engine::start(std::shared_ptr<const RenderJob> job, RenderLimits limits, in
   pausedSeconds_ = 0.0;
   finalSeconds_ = 0.0;
   startTime_ = std::chrono::steady_clock::now();
+  cpuAtStart_ = processCpuSeconds();
   pauseBegan_ = startTime_;
   {
     std::lock_guard lk(snapshotMutex_);
     snapshot_.spp = 0;
     snapshot_.seconds = 0;
+    snapshot_.cpuSeconds = 0;
     ++snapshot_.version;  // viewers see the restart at once
     snapshot_.mean = Image();
     snapshot_.standardError = Image();
@@ -156,6 +165,7 @@ void Engine::publishSnapshot() {
   snapshot_.standardError = std::move(err);
   snapshot_.spp = spp;
   snapshot_.seconds = elapsedNow();
+  snapshot_.cpuSeconds = processCpuSeconds() - cpuAtStart_;
   ++snapshot_.version;
 }
 
@@ -194,6 +204,7 @@ void Engine::workerLoop(int /*workerIndex*/, bool preview) {
         snapshot_.standardError = Image();
         snapshot_.spp = 0;
         snapshot_.seconds = elapsedNow();
+        snapshot_.cpuSeconds = processCpuSeconds() - cpuAtStart_;
         ++snapshot_.version;
       }
       ++generation_;

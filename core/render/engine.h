@@ -46,6 +46,10 @@ struct FilmSnapshot {
   uint64_t version = 0;
   uint32_t spp = 0;
   double seconds = 0.0;
+  // Process CPU time (all threads) since start(), read at this pass boundary. Unlike `seconds` it does
+  // not grow while other processes hold the cores, so error-against-CPU-time is stable on a shared
+  // machine (analysis/convergence.h). Includes whatever else the process runs (e.g. a UI thread).
+  double cpuSeconds = 0.0;
   Image mean;
   Image standardError;
 };
@@ -118,6 +122,7 @@ class Engine {
   std::atomic<double> pausedSeconds_{0.0};
   std::chrono::steady_clock::time_point pauseBegan_;
   std::atomic<double> finalSeconds_{0.0};
+  double cpuAtStart_ = 0.0;
 
   // Snapshot publishing.
   std::atomic<bool> snapshotRequested_{false};

@@ -1,0 +1,106 @@
+// penumbra converge: error against run time (or spp) for every sampling strategy (issue 6).
+#include <cstdio>
+#include <filesystem>
+
+#include "app/cli/commands.h"
+#include "app/cli/convergence_report.h"
+#include "app/cli/scene_options.h"
+#include "core/analysis/convergence.h"
+#include "core/math/error.h"
+
+namespace penumbra::cli {
+
+namespace {
+
+struct ConvergeOptions {
+  SceneOptions scene;
+  std::string strategies = "all";
+  double seconds = 0;
+  uint32_t spp = 0;
+  std::string reference;
+  std::string cacheDir;
+  uint32_t referenceSpp = 4096;
+  std::string outDir;
+  int threads = 0;
+  uint64_t seed = 0;
+  std::string timeAxis = "wall";
+};
+
+void logLine(const std::string& s) { std::fprintf(stderr, "%s\n", s.c_str()); }
+
+int runConverge(const ConvergeOptions& o) {
+  LoadedScene loaded = o.scene.load();
+  if (o.spp == 0 && o.seconds <= 0) throw Error("converge: give --time SECONDS or --spp N");
+  std::vector<IntegratorDesc> strategies = parseStrategies(loaded.settings.integrator, o.strategies);
+  if (o.seed == kReferenceSeed) throw Error("converge: --seed must differ from the reference's seed");
+  ReferenceRequest rq;
+  rq.path = o.reference;
+  rq.cacheDir = o.cacheDir;
+  rq.referenceSpp = o.referenceSpp;
+  rq.threads = o.threads;
+  Reference ref = obtainReference(loaded, rq, logLine);
+  std::vector<uint8_t> mask = emitterMask(loaded);
+
+  std::filesystem::create_directories(o.outDir);
+  ConvergenceOptions co;
+  co.seconds = o.seconds;
+  co.spp = o.spp;
+  co.threads = o.threads;
+  co.seed = o.seed;
+  std::vector<ConvergenceRun> runs;
+  for (const IntegratorDesc& s : strategies) {
+    runs.push_back(runConvergence(loaded, s, ref, mask, co));
+    const ConvergenceRun& r = runs.back();
+    std::printf("%-28s %6u spp  %7.2f s  RMSE %.4e  (no-light %.4e)  %zu points\n", r.strategy.c_str(), r.spp,
+                r.seconds, r.points.back().error.all.rmse, r.points.back().error.noLight.rmse, r.points.size());
+  }
+
+  ReportInfo info;
+  info.sceneName = loaded.path.empty() ? "built-in scene" : std::filesystem::path(loaded.path).filename().string();
+  info.referenceSource = ref.source;
+  info.sppMode = o.spp > 0;
+  info.cpuAxis = o.timeAxis == "cpu";
+  info.budget = o.spp > 0 ? double(o.spp) : o.seconds;
+  info.threads = o.threads;
+  info.width = ref.mean.width;
+  info.height = ref.mean.height;
+  info.pixels = ref.mean.pixelCount();
+  info.noLightPixels = runs.empty() ? 0 : runs.front().points.back().error.noLight.pixels;
+  std::string dir = o.outDir + "/";
+  writeConvergenceCsv(dir + "convergence.csv", runs);
+  plotConvergence(dir + "convergence.png", runs, info);
+  writeEqualTimeImage(dir + "equal-time.png", runs, ref, info);
+  writeSummary(dir + "summary.md", runs, info);
+  std::printf("wrote %sconvergence.csv, convergence.png, equal-time.png, summary.md\n", dir.c_str());
+  return 0;
+}
+
+}  // namespace
+
+void addConvergeCommand(CLI::App& app, int& exitCode) {
+  auto opts = std::make_shared<ConvergeOptions>();
+  CLI::App* cmd = app.add_subcommand("converge", "Error against time (or spp) for every sampling strategy");
+  opts->scene.addTo(*cmd);
+  cmd->add_option("--strategies", opts->strategies,
+                  "all, or a comma-separated list: uniform-hemisphere,cosine-hemisphere,area,solid-angle "
+                  "(ao: uniform,cosine)");
+  cmd->add_option("--time", opts->seconds, "Seconds per strategy (error against time)")->check(CLI::PositiveNumber);
+  cmd->add_option("--spp", opts->spp, "Samples per pixel per strategy (error against samples)")
+      ->check(CLI::Range(1u, 1u << 24));
+  cmd->add_option("--reference", opts->reference,
+                  "Reference EXR/PFM (a sibling NAME.stderr.exr adds its standard error), or closed-form; "
+                  "default: closed form for scenes/analytic, else the cached or a freshly rendered reference");
+  cmd->add_option("--reference-spp", opts->referenceSpp, "spp of a reference rendered because none is cached")
+      ->check(CLI::Range(1u, 1u << 24));
+  cmd->add_option("--cache-dir", opts->cacheDir, "Where cached references live (default: next to the scene)");
+  cmd->add_option("-o,--output", opts->outDir, "Output directory")->required();
+  cmd->add_option("--threads", opts->threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 1024));
+  cmd->add_option("--seed", opts->seed, "Random seed");
+  cmd->add_option("--time-axis", opts->timeAxis,
+                  "x axis of convergence.png in time mode: wall (default) or cpu (the render's CPU seconds, "
+                  "stable when other processes compete for the cores)")
+      ->check(CLI::IsMember({"wall", "cpu"}));
+  cmd->callback([opts, &exitCode] { exitCode = runConverge(*opts); });
+}
+
+}  // namespace penumbra::cli

@@ -1,0 +1,175 @@
+#include "core/analysis/convergence.h"
+
+#include <chrono>
+#include <cmath>
+#include <sstream>
+#include <thread>
+#include <ctime>
+
+#include "core/math/error.h"
+#include "core/render/engine.h"
+
+namespace penumbra {
+
+namespace {
+double cpuClock(clockid_t id) {
+  timespec ts;
+  clock_gettime(id, &ts);
+  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+}
+}  // namespace
+
+std::string strategyShortName(const IntegratorDesc& d) {
+  if (d.type == IntegratorType::Ao) return std::string("ao-") + (d.warp == HemisphereWarp::Cosine ? "cosine" : "uniform");
+  if (d.type == IntegratorType::Direct) {
+    if (d.measure == DirectMeasure::Hemisphere) return hemisphereWarpName(d.warp);
+    return directMeasureName(d.measure);
+  }
+  return integratorTypeName(d.type);
+}
+
+std::vector<IntegratorDesc> parseStrategies(const IntegratorDesc& base, const std::string& list) {
+  std::vector<IntegratorDesc> all;
+  if (base.type == IntegratorType::Direct) {
+    for (auto [m, w] : {std::pair{DirectMeasure::Hemisphere, HemisphereWarp::Uniform},
+                        std::pair{DirectMeasure::Hemisphere, HemisphereWarp::Cosine},
+                        std::pair{DirectMeasure::Area, HemisphereWarp::Cosine},
+                        std::pair{DirectMeasure::SolidAngle, HemisphereWarp::Cosine}}) {
+      IntegratorDesc d = base;
+      d.measure = m;
+      d.warp = w;
+      all.push_back(d);
+    }
+  } else if (base.type == IntegratorType::Ao) {
+    for (HemisphereWarp w : {HemisphereWarp::Uniform, HemisphereWarp::Cosine}) {
+      IntegratorDesc d = base;
+      d.warp = w;
+      all.push_back(d);
+    }
+  } else {
+    throw Error(std::string("converge: the ") + integratorTypeName(base.type) +
+                " integrator has no sampling strategies to compare (use direct or ao)");
+  }
+  if (list.empty() || list == "all") return all;
+  std::vector<IntegratorDesc> out;
+  std::stringstream ss(list);
+  std::string name;
+  while (std::getline(ss, name, ',')) {
+    if (name.empty()) continue;
+    bool found = false;
+    for (const IntegratorDesc& d : all) {
+      std::string label = strategyLabel(d), shortName = strategyShortName(d);
+      std::string tail = label.substr(label.find('/') + 1);
+      if (name == label || name == shortName || name == tail ||
+          (d.type == IntegratorType::Direct && d.measure == DirectMeasure::Hemisphere &&
+           name == (d.warp == HemisphereWarp::Uniform ? "uniform" : "cosine")) ||
+          (d.type == IntegratorType::Direct && name == "solidAngle" && d.measure == DirectMeasure::SolidAngle)) {
+        out.push_back(d);
+        found = true;
+        break;
+      }
+    }
+    if (!found) {
+      std::string names;
+      for (const IntegratorDesc& d : all) names += (names.empty() ? "" : ", ") + strategyShortName(d);
+      throw Error("unknown strategy \"" + name + "\" (expected all or a list of: " + names + ")");
+    }
+  }
+  if (out.empty()) throw Error("no strategies given");
+  return out;
+}
+
+ConvergenceRun runConvergence(const LoadedScene& scene, const IntegratorDesc& strategy, const Reference& ref,
+                              const std::vector<uint8_t>& seesLight, const ConvergenceOptions& o) {
+  bool sppMode = o.spp > 0;
+  if (!sppMode && !(o.seconds > 0)) throw Error("converge: give a time or an spp count");
+  auto job = std::make_shared<RenderJob>();
+  job->scene = scene.scene;
+  job->settings = scene.settings;
+  job->settings.integrator = strategy;
+  job->settings.seed = o.seed;
+  const uint64_t pixels = uint64_t(job->settings.camera.width) * uint64_t(job->settings.camera.height);
+
+  // Log-spaced targets (seconds or spp), the last one being the limit itself.
+  std::vector<double> targets;
+  double limit = sppMode ? double(o.spp) : o.seconds;
+  double first = sppMode ? 1.0 : limit * o.firstFraction;
+  int n = std::max(1, int(std::ceil(std::log10(limit / first) * o.pointsPerDecade)));
+  for (int k = 0; k <= n; ++k) {
+    double t = first * std::pow(limit / first, double(k) / n);
+    if (sppMode) t = std::round(t);
+    if (targets.empty() || t > targets.back()) targets.push_back(t);
+  }
+  targets.pop_back();  // the final point comes from the film after the render stops
+
+  ConvergenceRun run;
+  run.strategy = strategyLabel(strategy);
+  run.integrator = strategy;
+  // This polling thread's CPU (snapshot copies, metrics) is not part of the render's cost.
+  double pollerCpuStart = 0;
+  auto record = [&](const Image& mean, uint32_t spp, double seconds, double cpu) {
+    ConvergencePoint p;
+    p.seconds = seconds;
+    p.cpuSeconds = cpu - (cpuClock(CLOCK_THREAD_CPUTIME_ID) - pollerCpuStart);
+    p.spp = spp;
+    p.samples = uint64_t(spp) * pixels;
+    p.error = computeErrors(mean, ref.mean, ref.standardError, seesLight);
+    run.points.push_back(p);
+  };
+
+  Engine engine;
+  RenderLimits limits;
+  if (sppMode) limits.targetSpp = o.spp;
+  else limits.seconds = o.seconds;
+  double cpuStart = cpuClock(CLOCK_PROCESS_CPUTIME_ID);
+  pollerCpuStart = cpuClock(CLOCK_THREAD_CPUTIME_ID);
+  engine.start(job, limits, o.threads);
+  std::size_t next = 0;
+  bool requested = false;
+  FilmSnapshot snap;
+  while (true) {
+    RenderProgress p = engine.progress();
+    if (engine.latestSnapshot(snap) && snap.spp > 0 && !snap.mean.empty()) {
+      if (run.points.empty() || snap.spp > run.points.back().spp) record(snap.mean, snap.spp, snap.seconds, snap.cpuSeconds);
+      requested = false;
+      double reached = sppMode ? double(snap.spp) : snap.seconds;
+      while (next < targets.size() && targets[next] <= reached) ++next;
+    }
+    if (p.finished) break;
+    if (!requested && next < targets.size()) {
+      double now = sppMode ? double(p.spp + 1) : p.seconds;  // spp: the pass in flight completes it
+      if (now >= targets[next]) {
+        engine.requestSnapshot(false);
+        requested = true;
+      }
+    }
+    std::this_thread::sleep_for(std::chrono::microseconds(500));
+  }
+  engine.wait();
+  double cpuEnd = cpuClock(CLOCK_PROCESS_CPUTIME_ID) - cpuStart;
+  RenderProgress p = engine.progress();
+  run.finalImage = engine.film().mean(p.spp);
+  run.seconds = p.seconds;
+  run.spp = p.spp;
+  if (p.spp > 0 && (run.points.empty() || run.points.back().spp < p.spp)) record(run.finalImage, p.spp, p.seconds, cpuEnd);
+  return run;
+}
+
+double efficiency(const ConvergenceRun& run, bool noLight, bool cpuTime) {
+  if (run.points.empty()) return 0;
+  double tEnd = run.points.back().seconds;
+  double sumLog = 0;
+  int n = 0;
+  for (const ConvergencePoint& p : run.points) {
+    if (p.seconds < tEnd / 10) continue;
+    double mse = noLight ? p.error.noLight.mse : p.error.all.mse;
+    double t = cpuTime ? p.cpuSeconds : p.seconds;
+    if (!(mse > 0) || !(t > 0)) continue;
+    sumLog += std::log(mse * t);
+    ++n;
+  }
+  if (n == 0) return 0;
+  return 1.0 / std::exp(sumLog / n);
+}
+
+}  // namespace penumbra

@@ -1,0 +1,64 @@
+// Error against run time (or samples) for one strategy from a cold start (issue 6).
+//
+// The engine renders on all cores with a time (or spp) limit. A polling loop asks for a snapshot
+// when the elapsed rendering time (spp in spp mode) crosses the next of a log-spaced set of targets;
+// the snapshot is published at the next pass boundary and carries that boundary's exact spp and
+// seconds, which are what gets recorded (never the target). Snapshot resolution runs inside the
+// timed region, so the times include the measurement's own small overhead, as a user would see it.
+// The metrics are computed on the polling thread against the reference.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/analysis/error_metrics.h"
+#include "core/analysis/reference.h"
+
+namespace penumbra {
+
+struct ConvergencePoint {
+  double seconds = 0;     // wall-clock rendering time (pauses excluded)
+  // CPU time the render used (process CPU since start minus this polling thread's own CPU, which
+  // computes the metrics): immune to other processes competing for the cores.
+  double cpuSeconds = 0;
+  uint32_t spp = 0;
+  uint64_t samples = 0;  // camera samples (spp * pixels)
+  ErrorReport error;
+};
+
+struct ConvergenceRun {
+  std::string strategy;  // strategyLabel
+  IntegratorDesc integrator;
+  std::vector<ConvergencePoint> points;
+  Image finalImage;  // the mean at the end (equal time or equal spp across strategies)
+  double seconds = 0;
+  uint32_t spp = 0;
+};
+
+struct ConvergenceOptions {
+  double seconds = 0;  // time mode: render this long (ignored when spp > 0)
+  uint32_t spp = 0;    // spp mode: render this many passes
+  int threads = 0;     // 0: all cores
+  uint64_t seed = 0;
+  int pointsPerDecade = 6;
+  double firstFraction = 1e-3;  // first target = firstFraction * limit (time mode)
+};
+
+// Every strategy for the integrator type (direct: uniform-hemisphere, cosine-hemisphere, area,
+// solid-angle; ao: uniform, cosine), or those named in `list` (comma separated; "all"; names as in
+// strategyLabel with or without the "direct/"/"ao/" prefix, e.g. "area,solid-angle"). Throws Error.
+std::vector<IntegratorDesc> parseStrategies(const IntegratorDesc& base, const std::string& list);
+// A filesystem- and CSV-friendly name, e.g. "uniform-hemisphere", "solid-angle", "ao-cosine".
+std::string strategyShortName(const IntegratorDesc& d);
+
+ConvergenceRun runConvergence(const LoadedScene& scene, const IntegratorDesc& strategy, const Reference& ref,
+                              const std::vector<uint8_t>& seesLight, const ConvergenceOptions& options);
+
+// Efficiency 1 / (MSE * seconds) of a run, from the geometric mean of MSE * seconds over the points of
+// its last decade of time (MSE * t is constant for an unbiased estimator; averaging several points
+// damps the noise of a single one). noLight selects the metric over pixels that see no light.
+// cpuTime: use ConvergencePoint::cpuSeconds instead of wall seconds.
+double efficiency(const ConvergenceRun& run, bool noLight = false, bool cpuTime = false);
+
+}  // namespace penumbra
