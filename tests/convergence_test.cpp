@@ -22,6 +22,7 @@
 
 #include <sys/wait.h>
 
+#include <unistd.h>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -29,7 +30,6 @@
 #include <set>
 #include <sstream>
 #include <thread>
-#include <unistd.h>
 
 #include "app/ui/convergence_tracker.h"
 #include "core/analysis/convergence.h"
@@ -42,8 +42,12 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string analyticScene() { return test::sourcePath("scenes/analytic/plane-sphere-light.xml"); }
-std::string sphereScene() { return test::sourcePath("scenes/hw2/Tests/sphere-area.xml"); }
+std::string analyticScene() {
+  return test::sourcePath("scenes/analytic/plane-sphere-light.xml");
+}
+std::string sphereScene() {
+  return test::sourcePath("scenes/hw2/Tests/sphere-area.xml");
+}
 
 LoadedScene loadSmall(const std::string& path, int size) {
   return loadScene(path, {{"camera.width", std::to_string(size)}, {"camera.height", std::to_string(size)}});
@@ -73,7 +77,8 @@ TEST(Reference, ClosedFormAgreesWithRendering) {
 
 TEST(Reference, HashIgnoresEstimatorSettingsOnly) {
   LoadedScene a = loadScene(sphereScene());
-  LoadedScene b = loadScene(sphereScene(), {{"integrator.measure", "solid-angle"}, {"sampler.sampleCount", "3"}});
+  LoadedScene b =
+      loadScene(sphereScene(), {{"integrator.measure", "solid-angle"}, {"sampler.sampleCount", "3"}});
   LoadedScene c = loadScene(sphereScene(), {{"camera.width", "64"}});
   EXPECT_EQ(sceneContentHash(a.desc), sceneContentHash(b.desc));
   EXPECT_NE(sceneContentHash(a.desc), sceneContentHash(c.desc));
@@ -117,7 +122,8 @@ TEST(Convergence, MseSlopeAgainstTimeOnAnalyticScene) {
     std::vector<double> t, cpu, mse, spp;
     for (const ConvergencePoint& p : run.points)
       if (p.seconds >= 0.02 && p.spp >= 8)
-        t.push_back(p.seconds), cpu.push_back(p.cpuSeconds), mse.push_back(p.error.all.mse), spp.push_back(p.spp);
+        t.push_back(p.seconds), cpu.push_back(p.cpuSeconds), mse.push_back(p.error.all.mse),
+            spp.push_back(p.spp);
     ASSERT_GE(t.size(), 5u) << run.strategy;
     double slope = logLogSlope(cpu, mse);
     EXPECT_GE(slope, -1.15) << run.strategy;
@@ -132,8 +138,8 @@ TEST(Convergence, EqualTimeRankingOnSphereScene) {
   LoadedScene scene = loadSmall(sphereScene(), 64);
   Reference ref = renderReference(scene, RenderLimits{2048, 0});  // kReferenceSeed: independent of 1, 2, 3
   std::vector<uint8_t> mask = emitterMask(scene);
-  std::vector<IntegratorDesc> order = parseStrategies(scene.settings.integrator,
-                                                      "solid-angle,area,cosine-hemisphere,uniform-hemisphere");
+  std::vector<IntegratorDesc> order =
+      parseStrategies(scene.settings.integrator, "solid-angle,area,cosine-hemisphere,uniform-hemisphere");
   for (uint64_t seed : {1, 2, 3}) {
     std::vector<double> score;  // MSE * CPU seconds: equal-CPU-time MSE up to a common factor
     for (const IntegratorDesc& d : order) {
@@ -144,12 +150,12 @@ TEST(Convergence, EqualTimeRankingOnSphereScene) {
       double cpu = run.points.back().cpuSeconds;
       score.push_back(run.points.back().error.noLight.mse * cpu);
       std::printf("seed %llu %-28s MSE %.4e (all px %.4e) cpu %.3f s -> %.4e\n", (unsigned long long)seed,
-                  run.strategy.c_str(), run.points.back().error.noLight.mse, run.points.back().error.all.mse, cpu,
-                  score.back());
+                  run.strategy.c_str(), run.points.back().error.noLight.mse, run.points.back().error.all.mse,
+                  cpu, score.back());
     }
     for (std::size_t i = 0; i + 1 < score.size(); ++i)
-      EXPECT_LT(score[i], score[i + 1]) << "seed " << seed << ": " << strategyLabel(order[i]) << " vs "
-                                        << strategyLabel(order[i + 1]);
+      EXPECT_LT(score[i], score[i + 1])
+          << "seed " << seed << ": " << strategyLabel(order[i]) << " vs " << strategyLabel(order[i + 1]);
   }
 }
 
@@ -199,7 +205,8 @@ TEST(ConvergeCli, ReportFilesExistAndParse) {
     EXPECT_EQ(cols, 14) << line;
   }
   EXPECT_GE(rows, 4 * 3);
-  EXPECT_EQ(strategies, (std::set<std::string>{"uniform-hemisphere", "cosine-hemisphere", "area", "solid-angle"}));
+  EXPECT_EQ(strategies,
+            (std::set<std::string>{"uniform-hemisphere", "cosine-hemisphere", "area", "solid-angle"}));
   // PNGs decode and have a plausible size.
   for (const char* png : {"convergence.png", "equal-time.png"}) {
     Image img = readImage((dir / png).string());
@@ -208,14 +215,15 @@ TEST(ConvergeCli, ReportFilesExistAndParse) {
   }
   std::ifstream md(dir / "summary.md");
   std::string summary((std::istreambuf_iterator<char>(md)), std::istreambuf_iterator<char>());
-  for (const char* s : {"| uniform-hemisphere |", "| cosine-hemisphere |", "| area |", "| solid-angle |", "efficiency",
-                        "speed-up"})
+  for (const char* s : {"| uniform-hemisphere |", "| cosine-hemisphere |", "| area |", "| solid-angle |",
+                        "efficiency", "speed-up"})
     EXPECT_NE(summary.find(s), std::string::npos) << s << "\n" << summary;
   fs::remove_all(dir);
 }
 
 TEST(ConvergeCli, RejectsUnknownStrategy) {
-  CliRun r = penumbraCli("converge '" + analyticScene() + "' --time 0.1 --strategies bogus -o /tmp/penumbra-x");
+  CliRun r =
+      penumbraCli("converge '" + analyticScene() + "' --time 0.1 --strategies bogus -o /tmp/penumbra-x");
   EXPECT_EQ(r.exitCode, 2) << r.out;
   EXPECT_NE(r.out.find("unknown strategy"), std::string::npos) << r.out;
 }

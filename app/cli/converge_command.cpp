@@ -26,7 +26,9 @@ struct ConvergeOptions {
   std::string timeAxis = "wall";
 };
 
-void logLine(const std::string& s) { std::fprintf(stderr, "%s\n", s.c_str()); }
+void logLine(const std::string& s) {
+  std::fprintf(stderr, "%s\n", s.c_str());
+}
 
 int runConverge(const ConvergeOptions& o) {
   LoadedScene loaded = o.scene.load();
@@ -52,11 +54,13 @@ int runConverge(const ConvergeOptions& o) {
     runs.push_back(runConvergence(loaded, s, ref, mask, co));
     const ConvergenceRun& r = runs.back();
     std::printf("%-28s %6u spp  %7.2f s  RMSE %.4e  (no-light %.4e)  %zu points\n", r.strategy.c_str(), r.spp,
-                r.seconds, r.points.back().error.all.rmse, r.points.back().error.noLight.rmse, r.points.size());
+                r.seconds, r.points.back().error.all.rmse, r.points.back().error.noLight.rmse,
+                r.points.size());
   }
 
   ReportInfo info;
-  info.sceneName = loaded.path.empty() ? "built-in scene" : std::filesystem::path(loaded.path).filename().string();
+  info.sceneName =
+      loaded.path.empty() ? "built-in scene" : std::filesystem::path(loaded.path).filename().string();
   info.referenceSource = ref.source;
   info.sppMode = o.spp > 0;
   info.cpuAxis = o.timeAxis == "cpu";
@@ -84,17 +88,20 @@ void addConvergeCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("--strategies", opts->strategies,
                   "all, or a comma-separated list: uniform-hemisphere,cosine-hemisphere,area,solid-angle "
                   "(ao: uniform,cosine)");
-  cmd->add_option("--time", opts->seconds, "Seconds per strategy (error against time)")->check(CLI::PositiveNumber);
+  cmd->add_option("--time", opts->seconds, "Seconds per strategy (error against time)")
+      ->check(CLI::PositiveNumber);
   cmd->add_option("--spp", opts->spp, "Samples per pixel per strategy (error against samples)")
       ->check(CLI::Range(1u, 1u << 24));
-  cmd->add_option("--reference", opts->reference,
-                  "Reference EXR/PFM (a sibling NAME.stderr.exr adds its standard error), or closed-form; "
-                  "default: closed form for scenes/analytic, else the cached or a freshly rendered reference");
+  cmd->add_option(
+      "--reference", opts->reference,
+      "Reference EXR/PFM (a sibling NAME.stderr.exr adds its standard error), or closed-form; "
+      "default: closed form for scenes/analytic, else the cached or a freshly rendered reference");
   cmd->add_option("--reference-spp", opts->referenceSpp, "spp of a reference rendered because none is cached")
       ->check(CLI::Range(1u, 1u << 24));
   cmd->add_option("--cache-dir", opts->cacheDir, "Where cached references live (default: next to the scene)");
   cmd->add_option("-o,--output", opts->outDir, "Output directory")->required();
-  cmd->add_option("--threads", opts->threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 1024));
+  cmd->add_option("--threads", opts->threads, "Worker threads (default: all cores)")
+      ->check(CLI::Range(1, 1024));
   cmd->add_option("--seed", opts->seed, "Random seed");
   cmd->add_option("--time-axis", opts->timeAxis,
                   "x axis of convergence.png in time mode: wall (default) or cpu (the render's CPU seconds, "

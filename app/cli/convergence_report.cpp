@@ -1,7 +1,7 @@
 #include "app/cli/convergence_report.h"
 
-#include <algorithm>
 #include <cairo.h>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -18,7 +18,7 @@ namespace fs = std::filesystem;
 namespace {
 
 // Okabe-Ito colours (colour-blind safe), one per strategy.
-const double kColors[][3] = {{0.84, 0.37, 0.0}, {0.0, 0.45, 0.70}, {0.0, 0.62, 0.45},
+const double kColors[][3] = {{0.84, 0.37, 0.0},  {0.0, 0.45, 0.70}, {0.0, 0.62, 0.45},
                              {0.80, 0.47, 0.65}, {0.90, 0.62, 0.0}, {0.34, 0.71, 0.91}};
 
 void writeAtomically(const std::string& path, const std::string& text) {
@@ -34,7 +34,8 @@ void writeAtomically(const std::string& path, const std::string& text) {
 void savePng(cairo_surface_t* surface, const std::string& path) {
   std::string tmp = path + ".tmp.png";
   cairo_surface_flush(surface);
-  if (cairo_surface_write_to_png(surface, tmp.c_str()) != CAIRO_STATUS_SUCCESS) throw Error("cannot write " + path);
+  if (cairo_surface_write_to_png(surface, tmp.c_str()) != CAIRO_STATUS_SUCCESS)
+    throw Error("cannot write " + path);
   fs::rename(tmp, path);
 }
 
@@ -44,9 +45,10 @@ std::string fmt(const char* f, double v) {
   return buf;
 }
 
-void text(cairo_t* cr, double x, double y, const std::string& s, double size, double alignX = 0, double alignY = 0,
-          bool bold = false) {
-  cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, bold ? CAIRO_FONT_WEIGHT_BOLD : CAIRO_FONT_WEIGHT_NORMAL);
+void text(cairo_t* cr, double x, double y, const std::string& s, double size, double alignX = 0,
+          double alignY = 0, bool bold = false) {
+  cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL,
+                         bold ? CAIRO_FONT_WEIGHT_BOLD : CAIRO_FONT_WEIGHT_NORMAL);
   cairo_set_font_size(cr, size);
   cairo_text_extents_t e;
   cairo_text_extents(cr, s.c_str(), &e);
@@ -74,13 +76,14 @@ void powerLabel(cairo_t* cr, double x, double y, int k, double size, double alig
 }
 
 struct Axes {
-  double x0, y0, w, h;            // plot area in pixels (y0 = top)
-  double lx0, lx1, ly0, ly1;      // log10 ranges
+  double x0, y0, w, h;        // plot area in pixels (y0 = top)
+  double lx0, lx1, ly0, ly1;  // log10 ranges
   double px(double v) const { return x0 + (std::log10(v) - lx0) / (lx1 - lx0) * w; }
   double py(double v) const { return y0 + h - (std::log10(v) - ly0) / (ly1 - ly0) * h; }
 };
 
-void drawAxes(cairo_t* cr, const Axes& a, const std::string& xLabel, const std::string& yLabel, const std::string& title) {
+void drawAxes(cairo_t* cr, const Axes& a, const std::string& xLabel, const std::string& yLabel,
+              const std::string& title) {
   cairo_set_source_rgb(cr, 1, 1, 1);
   cairo_rectangle(cr, a.x0, a.y0, a.w, a.h);
   cairo_fill(cr);
@@ -104,8 +107,10 @@ void drawAxes(cairo_t* cr, const Axes& a, const std::string& xLabel, const std::
           cairo_move_to(cr, x, a.y0 + a.h);
           cairo_line_to(cr, x, a.y0 + a.h + (major ? 6 : 3));
           cairo_stroke(cr);
-          if (major) powerLabel(cr, x, a.y0 + a.h + 9, k, 13, 0.5, 0);
-          else if ((m == 2 || m == 5) && hi - lo <= 2.01) text(cr, x, a.y0 + a.h + 9, fmt("%g", v), 11, 0.5, 0);
+          if (major)
+            powerLabel(cr, x, a.y0 + a.h + 9, k, 13, 0.5, 0);
+          else if ((m == 2 || m == 5) && hi - lo <= 2.01)
+            text(cr, x, a.y0 + a.h + 9, fmt("%g", v), 11, 0.5, 0);
         } else {
           double y = a.py(v);
           cairo_move_to(cr, a.x0, y);
@@ -115,8 +120,10 @@ void drawAxes(cairo_t* cr, const Axes& a, const std::string& xLabel, const std::
           cairo_move_to(cr, a.x0, y);
           cairo_line_to(cr, a.x0 - (major ? 6 : 3), y);
           cairo_stroke(cr);
-          if (major) powerLabel(cr, a.x0 - 9, y, k, 13, 1, 0.5);
-          else if ((m == 2 || m == 5) && hi - lo <= 2.01) text(cr, a.x0 - 9, y, fmt("%g", v), 11, 1, 0.5);
+          if (major)
+            powerLabel(cr, a.x0 - 9, y, k, 13, 1, 0.5);
+          else if ((m == 2 || m == 5) && hi - lo <= 2.01)
+            text(cr, a.x0 - 9, y, fmt("%g", v), 11, 1, 0.5);
         }
       }
   }
@@ -152,7 +159,7 @@ std::vector<double> squaredErrors(const Image& v, const Image& ref) {
 
 // "magma"-like false colour, t in [0, 1].
 void falseColour(double t, double& r, double& g, double& b) {
-  static const double k[][3] = {{0.0, 0.0, 0.02}, {0.23, 0.06, 0.44}, {0.55, 0.16, 0.51},
+  static const double k[][3] = {{0.0, 0.0, 0.02},   {0.23, 0.06, 0.44}, {0.55, 0.16, 0.51},
                                 {0.87, 0.29, 0.41}, {0.99, 0.62, 0.42}, {0.99, 0.99, 0.75}};
   t = std::clamp(t, 0.0, 1.0) * 5;
   int i = std::min(int(t), 4);
@@ -188,7 +195,9 @@ void drawScaled(cairo_t* cr, cairo_surface_t* img, int w, int h, double x, doubl
   cairo_restore(cr);
 }
 
-std::string strategyTitle(const ConvergenceRun& r) { return strategyShortName(r.integrator); }
+std::string strategyTitle(const ConvergenceRun& r) {
+  return strategyShortName(r.integrator);
+}
 
 }  // namespace
 
@@ -199,14 +208,16 @@ void writeConvergenceCsv(const std::string& path, const std::vector<ConvergenceR
   out.precision(9);
   for (const ConvergenceRun& r : runs)
     for (const ConvergencePoint& p : r.points)
-      out << strategyShortName(r.integrator) << ',' << p.seconds << ',' << p.cpuSeconds << ',' << p.spp << ',' << p.samples << ','
-          << p.error.all.mse << ',' << p.error.all.rmse << ',' << p.error.all.relMse << ',' << p.error.all.mseStdErr
-          << ',' << p.error.all.refVariance << ',' << p.error.noLight.mse << ',' << p.error.noLight.rmse << ','
-          << p.error.noLight.relMse << ',' << p.error.noLight.mseStdErr << '\n';
+      out << strategyShortName(r.integrator) << ',' << p.seconds << ',' << p.cpuSeconds << ',' << p.spp << ','
+          << p.samples << ',' << p.error.all.mse << ',' << p.error.all.rmse << ',' << p.error.all.relMse
+          << ',' << p.error.all.mseStdErr << ',' << p.error.all.refVariance << ',' << p.error.noLight.mse
+          << ',' << p.error.noLight.rmse << ',' << p.error.noLight.relMse << ',' << p.error.noLight.mseStdErr
+          << '\n';
   writeAtomically(path, out.str());
 }
 
-void plotConvergence(const std::string& path, const std::vector<ConvergenceRun>& runs, const ReportInfo& info) {
+void plotConvergence(const std::string& path, const std::vector<ConvergenceRun>& runs,
+                     const ReportInfo& info) {
   const int W = 1240, H = 590;
   cairo_surface_t* surface = cairo_image_surface_create(CAIRO_FORMAT_RGB24, W, H);
   cairo_t* cr = cairo_create(surface);
@@ -215,24 +226,33 @@ void plotConvergence(const std::string& path, const std::vector<ConvergenceRun>&
 
   for (int panel = 0; panel < 2; ++panel) {
     bool noLight = panel == 1;
-    auto rmseOf = [&](const ConvergencePoint& p) { return noLight ? p.error.noLight.rmse : p.error.all.rmse; };
+    auto rmseOf = [&](const ConvergencePoint& p) {
+      return noLight ? p.error.noLight.rmse : p.error.all.rmse;
+    };
     double xmin = INFINITY, xmax = 0, ymin = INFINITY, ymax = 0;
     for (const ConvergenceRun& r : runs)
       for (const ConvergencePoint& p : r.points) {
         double x = xOf(p, info), y = rmseOf(p);
         if (!(x > 0) || !(y > 0)) continue;
-        xmin = std::min(xmin, x), xmax = std::max(xmax, x), ymin = std::min(ymin, y), ymax = std::max(ymax, y);
+        xmin = std::min(xmin, x), xmax = std::max(xmax, x), ymin = std::min(ymin, y),
+        ymax = std::max(ymax, y);
       }
     if (!(xmax > 0)) xmin = 1e-3, xmax = 1, ymin = 1e-3, ymax = 1;
-    Axes a{95.0 + panel * 590.0, 50.0, 470.0, double(H) - 190.0,
-           std::floor(std::log10(xmin) * 2) / 2, std::ceil(std::log10(xmax) * 2) / 2,
-           std::floor(std::log10(ymin) * 2) / 2, std::ceil(std::log10(ymax) * 2) / 2};
+    Axes a{95.0 + panel * 590.0,
+           50.0,
+           470.0,
+           double(H) - 190.0,
+           std::floor(std::log10(xmin) * 2) / 2,
+           std::ceil(std::log10(xmax) * 2) / 2,
+           std::floor(std::log10(ymin) * 2) / 2,
+           std::ceil(std::log10(ymax) * 2) / 2};
     if (a.lx1 - a.lx0 < 1) a.lx1 = a.lx0 + 1;
     if (a.ly1 - a.ly0 < 1) a.ly1 = a.ly0 + 1;
-    std::string title = noLight ? "pixels that see no light directly (" + std::to_string(info.noLightPixels) + " px)"
-                                : "all pixels (" + std::to_string(info.pixels) + " px)";
+    std::string title =
+        noLight ? "pixels that see no light directly (" + std::to_string(info.noLightPixels) + " px)"
+                : "all pixels (" + std::to_string(info.pixels) + " px)";
     drawAxes(cr, a,
-             info.sppMode ? "samples per pixel"
+             info.sppMode   ? "samples per pixel"
              : info.cpuAxis ? "CPU time of the render (seconds, summed over threads)"
                             : "render time (wall-clock seconds, all cores)",
              "RMSE", title);
@@ -253,7 +273,8 @@ void plotConvergence(const std::string& path, const std::vector<ConvergenceRun>&
       cairo_stroke(cr);
       cairo_set_dash(cr, nullptr, 0, 0);
       double lxt = lxm + 0.25 * (a.lx1 - a.lx0) * 0.5;
-      text(cr, a.px(std::pow(10, lxt)) + 4, a.py(std::pow(10, lym - 0.5 * (lxt - lxm))) + 4, "slope -1/2", 12, 0, 0);
+      text(cr, a.px(std::pow(10, lxt)) + 4, a.py(std::pow(10, lym - 0.5 * (lxt - lxm))) + 4, "slope -1/2", 12,
+           0, 0);
     }
     for (std::size_t i = 0; i < runs.size(); ++i) {
       const double* c = kColors[i % 6];
@@ -263,8 +284,10 @@ void plotConvergence(const std::string& path, const std::vector<ConvergenceRun>&
       for (const ConvergencePoint& p : runs[i].points) {
         double x = xOf(p, info), y = rmseOf(p);
         if (!(x > 0) || !(y > 0)) continue;
-        if (!started) cairo_move_to(cr, a.px(x), a.py(y));
-        else cairo_line_to(cr, a.px(x), a.py(y));
+        if (!started)
+          cairo_move_to(cr, a.px(x), a.py(y));
+        else
+          cairo_line_to(cr, a.px(x), a.py(y));
         started = true;
       }
       cairo_stroke(cr);
@@ -303,16 +326,16 @@ void plotConvergence(const std::string& path, const std::vector<ConvergenceRun>&
     lx += 32 + e.x_advance + 30;
   }
   cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
-  std::string caption = info.sceneName + ", " + std::to_string(info.width) + "x" + std::to_string(info.height) +
-                        ", reference: " + info.referenceSource;
+  std::string caption = info.sceneName + ", " + std::to_string(info.width) + "x" +
+                        std::to_string(info.height) + ", reference: " + info.referenceSource;
   text(cr, 95, H - 22, caption, 12, 0, 0.5);
   cairo_destroy(cr);
   savePng(surface, path);
   cairo_surface_destroy(surface);
 }
 
-void writeEqualTimeImage(const std::string& path, const std::vector<ConvergenceRun>& runs, const Reference& ref,
-                         const ReportInfo& info) {
+void writeEqualTimeImage(const std::string& path, const std::vector<ConvergenceRun>& runs,
+                         const Reference& ref, const ReportInfo& info) {
   const int n = int(runs.size()) + 1;  // + the reference
   const double tile = 240, gap = 14, top = 44, labelH = 46;
   const int W = int(gap + n * (tile + gap)), H = int(top + 2 * (tile + labelH) + 30);
@@ -323,7 +346,8 @@ void writeEqualTimeImage(const std::string& path, const std::vector<ConvergenceR
   cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
   std::string head = info.sppMode ? "Equal samples (" + fmt("%.0f", info.budget) + " spp each)"
                                   : "Equal time (" + fmt("%.3g", info.budget) + " s each)";
-  text(cr, W / 2.0, 14, head + ": images (top) and per-pixel squared error against the reference (bottom)", 15, 0.5, 0, true);
+  text(cr, W / 2.0, 14, head + ": images (top) and per-pixel squared error against the reference (bottom)",
+       15, 0.5, 0, true);
 
   // Shared log scale for the error maps: 1st to 99.5th percentile of positive errors over all runs.
   std::vector<std::vector<double>> errs;
@@ -354,7 +378,8 @@ void writeEqualTimeImage(const std::string& path, const std::vector<ConvergenceR
       text(cr, x + tile / 2, top + tile + 6, "reference", 14, 0.5, 0, true);
       // "cache scenes/x/y.xml.ref-HASH.exr (rendered ...)": the file name only, then how it was made.
       std::string src = info.referenceSource, how;
-      if (size_t open = src.find(" ("); open != std::string::npos) how = src.substr(open + 2, src.size() - open - 3), src.resize(open);
+      if (size_t open = src.find(" ("); open != std::string::npos)
+        how = src.substr(open + 2, src.size() - open - 3), src.resize(open);
       if (size_t sp = src.find(' '); sp != std::string::npos)
         src = src.substr(0, sp + 1) + fs::path(src.substr(sp + 1)).filename().string();
       if (src.size() > 40) src = src.substr(0, 18) + "..." + src.substr(src.size() - 19);
@@ -366,21 +391,24 @@ void writeEqualTimeImage(const std::string& path, const std::vector<ConvergenceR
     const ConvergencePoint& last = r.points.back();
     text(cr, x + tile / 2, top + tile + 6, strategyTitle(r), 14, 0.5, 0, true);
     text(cr, x + tile / 2, top + tile + 26,
-         std::to_string(r.spp) + " spp, " + fmt("%.2f s", r.seconds) + ", RMSE " + fmt("%.3g", last.error.all.rmse), 12,
-         0.5, 0);
+         std::to_string(r.spp) + " spp, " + fmt("%.2f s", r.seconds) + ", RMSE " +
+             fmt("%.3g", last.error.all.rmse),
+         12, 0.5, 0);
     std::vector<uint8_t> rgb(std::size_t(w) * h * 3);
     for (std::size_t p = 0; p < errs[i].size(); ++p) {
       double t = errs[i][p] > 0 ? (std::log10(errs[i][p]) - lo) / (hi - lo) : 0;
       double cr_, cg, cb;
       falseColour(t, cr_, cg, cb);
-      rgb[3 * p] = uint8_t(cr_ * 255 + 0.5), rgb[3 * p + 1] = uint8_t(cg * 255 + 0.5), rgb[3 * p + 2] = uint8_t(cb * 255 + 0.5);
+      rgb[3 * p] = uint8_t(cr_ * 255 + 0.5), rgb[3 * p + 1] = uint8_t(cg * 255 + 0.5),
+              rgb[3 * p + 2] = uint8_t(cb * 255 + 0.5);
     }
     s = surfaceFrom(rgb, w, h);
     double y2 = top + tile + labelH;
     drawScaled(cr, s, w, h, x, y2, tile);
     cairo_surface_destroy(s);
     cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
-    text(cr, x + tile / 2, y2 + tile + 6, "no-light RMSE " + fmt("%.3g", last.error.noLight.rmse), 12, 0.5, 0);
+    text(cr, x + tile / 2, y2 + tile + 6, "no-light RMSE " + fmt("%.3g", last.error.noLight.rmse), 12, 0.5,
+         0);
   }
   // Colour bar under the reference column.
   double bx = gap + (n - 1) * (tile + gap), by = top + tile + labelH + 40, bw = tile, bh = 18;
@@ -404,7 +432,9 @@ void writeEqualTimeImage(const std::string& path, const std::vector<ConvergenceR
     powerLabel(cr, px, by + bh + 8, k, 12, 0.5, 0);
   }
   text(cr, bx, by + bh + 40, "black: below " + fmt("%.1e", std::pow(10, lo)), 11, 0, 0);
-  text(cr, W / 2.0, H - 16, info.sceneName + ", " + std::to_string(w) + "x" + std::to_string(h) + ", sRGB, no exposure change", 11, 0.5, 0.5);
+  text(cr, W / 2.0, H - 16,
+       info.sceneName + ", " + std::to_string(w) + "x" + std::to_string(h) + ", sRGB, no exposure change", 11,
+       0.5, 0.5);
   cairo_destroy(cr);
   savePng(surface, path);
   cairo_surface_destroy(surface);
@@ -413,19 +443,23 @@ void writeEqualTimeImage(const std::string& path, const std::vector<ConvergenceR
 void writeSummary(const std::string& path, const std::vector<ConvergenceRun>& runs, const ReportInfo& info) {
   std::ostringstream out;
   out << "# Convergence: " << info.sceneName << "\n\n";
-  out << "- image: " << info.width << "x" << info.height << " (" << info.pixels << " px; " << info.noLightPixels
-      << " see no light directly)\n";
+  out << "- image: " << info.width << "x" << info.height << " (" << info.pixels << " px; "
+      << info.noLightPixels << " see no light directly)\n";
   out << "- budget: " << (info.sppMode ? fmt("%.0f spp", info.budget) : fmt("%.3g s", info.budget))
-      << " per strategy, each from a cold start on " << (info.threads > 0 ? std::to_string(info.threads) : std::string("all"))
+      << " per strategy, each from a cold start on "
+      << (info.threads > 0 ? std::to_string(info.threads) : std::string("all"))
       << " threads, one after another\n";
   out << "- reference: " << info.referenceSource << "\n";
-  out << "- efficiency = 1 / (MSE x seconds), from the geometric mean of MSE x seconds over the last decade of "
+  out << "- efficiency = 1 / (MSE x seconds), from the geometric mean of MSE x seconds over the last decade "
+         "of "
          "each run; speed-up = efficiency / efficiency of uniform hemisphere sampling (the time uniform "
          "hemisphere sampling needs to reach the same MSE, divided by this strategy's).\n";
-  out << "- wall: wall-clock seconds (what a user waits); CPU: the render's CPU seconds, which do not grow while "
+  out << "- wall: wall-clock seconds (what a user waits); CPU: the render's CPU seconds, which do not grow "
+         "while "
          "other processes hold the cores, so the CPU speed-ups are the stable ones on a shared machine.\n";
   out << "- no-light: only pixels that see no emitter directly (the emitter's silhouette pixels have a large "
-         "variance from the pixel filter alone, the same for every strategy, and dominate the all-pixel MSE).\n\n";
+         "variance from the pixel filter alone, the same for every strategy, and dominate the all-pixel "
+         "MSE).\n\n";
   const ConvergenceRun* base = nullptr;
   for (const ConvergenceRun& r : runs)
     if ((r.integrator.type == IntegratorType::Direct && r.integrator.measure == DirectMeasure::Hemisphere &&
@@ -436,17 +470,21 @@ void writeSummary(const std::string& path, const std::vector<ConvergenceRun>& ru
          "speed-up (CPU) | MSE no-light | efficiency no-light (wall) | speed-up no-light (wall) | "
          "speed-up no-light (CPU) |\n";
   out << "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
-  auto ratio = [&](double e, double eb) { return base && eb > 0 ? fmt("%.3gx", e / eb) : std::string("n/a"); };
+  auto ratio = [&](double e, double eb) {
+    return base && eb > 0 ? fmt("%.3gx", e / eb) : std::string("n/a");
+  };
   for (const ConvergenceRun& r : runs) {
     const ConvergencePoint& p = r.points.back();
-    double e = efficiency(r), en = efficiency(r, true), ec = efficiency(r, false, true), enc = efficiency(r, true, true);
+    double e = efficiency(r), en = efficiency(r, true), ec = efficiency(r, false, true),
+           enc = efficiency(r, true, true);
     double b = base ? efficiency(*base) : 0, bn = base ? efficiency(*base, true) : 0;
     double bc = base ? efficiency(*base, false, true) : 0, bnc = base ? efficiency(*base, true, true) : 0;
-    out << "| " << strategyShortName(r.integrator) << " | " << r.spp << " | " << fmt("%.2f", r.seconds) << " | "
-        << fmt("%.2f", p.cpuSeconds) << " | " << fmt("%.3e", p.error.all.mse) << " | "
-        << fmt("%.3e", p.error.all.rmse) << " | " << fmt("%.3e", p.error.all.relMse) << " | " << fmt("%.4g", e)
-        << " | " << ratio(e, b) << " | " << ratio(ec, bc) << " | " << fmt("%.3e", p.error.noLight.mse) << " | "
-        << fmt("%.4g", en) << " | " << ratio(en, bn) << " | " << ratio(enc, bnc) << " |\n";
+    out << "| " << strategyShortName(r.integrator) << " | " << r.spp << " | " << fmt("%.2f", r.seconds)
+        << " | " << fmt("%.2f", p.cpuSeconds) << " | " << fmt("%.3e", p.error.all.mse) << " | "
+        << fmt("%.3e", p.error.all.rmse) << " | " << fmt("%.3e", p.error.all.relMse) << " | "
+        << fmt("%.4g", e) << " | " << ratio(e, b) << " | " << ratio(ec, bc) << " | "
+        << fmt("%.3e", p.error.noLight.mse) << " | " << fmt("%.4g", en) << " | " << ratio(en, bn) << " | "
+        << ratio(enc, bnc) << " |\n";
   }
   if (!base) out << "\n(uniform hemisphere sampling was not run, so there is no speed-up column.)\n";
   out << "\nFiles: convergence.csv (every measurement), convergence.png (RMSE against "

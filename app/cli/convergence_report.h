@@ -21,9 +21,10 @@ struct ReportInfo {
 };
 
 void writeConvergenceCsv(const std::string& path, const std::vector<ConvergenceRun>& runs);
-void plotConvergence(const std::string& path, const std::vector<ConvergenceRun>& runs, const ReportInfo& info);
-void writeEqualTimeImage(const std::string& path, const std::vector<ConvergenceRun>& runs, const Reference& ref,
-                         const ReportInfo& info);
+void plotConvergence(const std::string& path, const std::vector<ConvergenceRun>& runs,
+                     const ReportInfo& info);
+void writeEqualTimeImage(const std::string& path, const std::vector<ConvergenceRun>& runs,
+                         const Reference& ref, const ReportInfo& info);
 void writeSummary(const std::string& path, const std::vector<ConvergenceRun>& runs, const ReportInfo& info);
 
 }  // namespace penumbra::cli

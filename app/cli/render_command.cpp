@@ -1,10 +1,10 @@
 // penumbra render: headless progressive rendering to EXR / PFM / PNG.
+#include <unistd.h>
 #include <atomic>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
 #include <thread>
-#include <unistd.h>
 
 #include "app/cli/commands.h"
 #include "app/cli/scene_options.h"
@@ -18,7 +18,9 @@ namespace penumbra::cli {
 namespace {
 
 std::atomic<bool> gInterrupted{false};
-extern "C" void onInterrupt(int) { gInterrupted = true; }
+extern "C" void onInterrupt(int) {
+  gInterrupted = true;
+}
 
 struct RenderOptions {
   SceneOptions scene;
@@ -32,12 +34,14 @@ struct RenderOptions {
 
 void drawProgress(const RenderProgress& p, uint32_t target, double seconds) {
   double fraction = 0;
-  if (target > 0) fraction = double(p.spp) / target;
-  else if (seconds > 0) fraction = p.seconds / seconds;
+  if (target > 0)
+    fraction = double(p.spp) / target;
+  else if (seconds > 0)
+    fraction = p.seconds / seconds;
   fraction = std::min(fraction, 1.0);
   int filled = int(fraction * 30);
-  std::fprintf(stderr, "\r[%.*s%*s] %3d%%  %u spp  %.1f s", filled, "==============================",
-               30 - filled, "", int(fraction * 100), p.spp, p.seconds);
+  std::fprintf(stderr, "\r[%.*s%*s] %3d%%  %u spp  %.1f s", filled,
+               "==============================", 30 - filled, "", int(fraction * 100), p.spp, p.seconds);
   std::fflush(stderr);
 }
 
@@ -50,7 +54,7 @@ int runRender(const RenderOptions& o) {
   std::string output = o.output;
   if (o.reference) {
     job->settings.integrator = referenceEstimator(job->settings.integrator);
-    if (o.seed < 0) job->settings.seed = kReferenceSeed;  // independent of the runs measured against it
+    if (o.seed < 0) job->settings.seed = kReferenceSeed;      // independent of the runs measured against it
     if (output.empty()) output = referenceCachePath(loaded);  // where `penumbra converge` looks for it
   }
   if (output.empty()) throw Error("render: -o/--output is required (optional only with --reference)");
@@ -86,8 +90,9 @@ int runRender(const RenderOptions& o) {
   meta.add("badSamples", std::to_string(p.badSamples));
   if (o.reference) {
     meta.add("sceneHash", sceneContentHash(loaded.desc));
-    Reference ref{engine.film().mean(p.spp), engine.film().standardError(p.spp),
-                  "rendered " + strategyLabel(job->settings.integrator) + " " + std::to_string(p.spp) + " spp"};
+    Reference ref{
+        engine.film().mean(p.spp), engine.film().standardError(p.spp),
+        "rendered " + strategyLabel(job->settings.integrator) + " " + std::to_string(p.spp) + " spp"};
     writeReference(output, ref, meta);  // + <output>.stderr.exr
   } else {
     writeImage(output, engine.film().mean(p.spp), meta);
@@ -96,9 +101,8 @@ int runRender(const RenderOptions& o) {
   const auto& cam = job->settings.camera;
   std::printf("%s: %dx%d, %u spp, %.3f s, %.2f M samples/s, %llu NaN/Inf/negative, %s, %d threads%s\n",
               output.c_str(), cam.width, cam.height, p.spp, p.seconds,
-              p.seconds > 0 ? double(p.samples) / p.seconds * 1e-6 : 0.0,
-              (unsigned long long)p.badSamples, strategyLabel(job->settings.integrator).c_str(),
-              engine.threadCount(),
+              p.seconds > 0 ? double(p.samples) / p.seconds * 1e-6 : 0.0, (unsigned long long)p.badSamples,
+              strategyLabel(job->settings.integrator).c_str(), engine.threadCount(),
               gInterrupted ? " (interrupted)" : "");
   return 0;
 }
@@ -111,16 +115,19 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
   opts->scene.addTo(*cmd);
   cmd->add_option("-o,--output", opts->output,
                   "Output image (.exr float, .pfm float, .png sRGB 8-bit); required unless --reference");
-  cmd->add_flag("--reference", opts->reference,
-                "Converged reference: the lowest-variance estimator (direct: solid-angle, ao: cosine), 4096 spp "
-                "unless --spp/--time, written with NAME.stderr.exr; default output: the cache next to the scene "
-                "(SCENE.xml.ref-HASH.exr) that `penumbra converge` reads");
+  cmd->add_flag(
+      "--reference", opts->reference,
+      "Converged reference: the lowest-variance estimator (direct: solid-angle, ao: cosine), 4096 spp "
+      "unless --spp/--time, written with NAME.stderr.exr; default output: the cache next to the scene "
+      "(SCENE.xml.ref-HASH.exr) that `penumbra converge` reads");
   cmd->add_option("--spp", opts->spp, "Samples per pixel (default: the scene's sampleCount)")
       ->check(CLI::Range(1u, 1u << 30));
   cmd->add_option("--time", opts->seconds, "Render for this many seconds (whole passes)")
       ->check(CLI::PositiveNumber);
-  cmd->add_option("--seed", opts->seed, "Random seed (default: the scene's, else 0)")->check(CLI::NonNegativeNumber);
-  cmd->add_option("--threads", opts->threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 1024));
+  cmd->add_option("--seed", opts->seed, "Random seed (default: the scene's, else 0)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--threads", opts->threads, "Worker threads (default: all cores)")
+      ->check(CLI::Range(1, 1024));
   cmd->callback([opts, &exitCode] { exitCode = runRender(*opts); });
 }
 

@@ -13,9 +13,9 @@ namespace penumbra::ui {
 
 namespace {
 
-const ImU32 kCurveColours[] = {IM_COL32(230, 159, 0, 255),  IM_COL32(86, 180, 233, 255),
-                               IM_COL32(0, 158, 115, 255),  IM_COL32(240, 228, 66, 255),
-                               IM_COL32(213, 94, 0, 255),   IM_COL32(204, 121, 167, 255)};
+const ImU32 kCurveColours[] = {IM_COL32(230, 159, 0, 255), IM_COL32(86, 180, 233, 255),
+                               IM_COL32(0, 158, 115, 255), IM_COL32(240, 228, 66, 255),
+                               IM_COL32(213, 94, 0, 255),  IM_COL32(204, 121, 167, 255)};
 
 void drawPlot(const ConvergenceTracker& t, bool noLight) {
   const auto& curves = t.curves();
@@ -102,10 +102,11 @@ void drawConvergencePanel(ViewerController& c, PanelState& st) {
   t.update(c);  // every frame, even when collapsed, so the curve has no gaps
   if (!ImGui::CollapsingHeader("Convergence", ImGuiTreeNodeFlags_DefaultOpen)) return;
   if (!t.hasReference()) {
-    ImGui::TextWrapped("No reference for this scene and camera. Scenes in scenes/analytic/ use their closed "
-                       "form; otherwise run `penumbra render --reference SCENE.xml` (writes %s) or load an "
-                       "EXR/PFM below.",
-                       t.cachePath().c_str());
+    ImGui::TextWrapped(
+        "No reference for this scene and camera. Scenes in scenes/analytic/ use their closed "
+        "form; otherwise run `penumbra render --reference SCENE.xml` (writes %s) or load an "
+        "EXR/PFM below.",
+        t.cachePath().c_str());
   } else {
     ImGui::TextWrapped("reference: %s", t.reference().source.c_str());
     ImGui::Checkbox("only pixels that see no light", &st.convergenceNoLight);

@@ -27,7 +27,8 @@ void ConvergenceTracker::rekey(const ViewerController& c) {
   lastRestart_ = c.restartCount();
   lastScene_ = c.scene().scene;
   LoadedScene live = liveScene(c);
-  std::string key = sceneContentHash(live.desc) + "/" + std::to_string(live.settings.integrator.type == IntegratorType::Ao);
+  std::string key =
+      sceneContentHash(live.desc) + "/" + std::to_string(live.settings.integrator.type == IntegratorType::Ao);
   if (key == key_) return;
   key_ = key;
   curves_.clear();  // errors against another reference (camera, scene) are not comparable
@@ -39,10 +40,13 @@ void ConvergenceTracker::rekey(const ViewerController& c) {
   try {
     // 4x4 filter samples per pixel (the CLI uses 16x16): this runs on the UI thread when the camera
     // changes and blocks it (~0.2 s at 128x128 on this machine); still far below the live noise.
-    if (hasClosedFormReference(live)) reference_ = closedFormReference(live, 4);
-    else if (std::filesystem::exists(cachePath_)) reference_ = readReference(cachePath_);
+    if (hasClosedFormReference(live))
+      reference_ = closedFormReference(live, 4);
+    else if (std::filesystem::exists(cachePath_))
+      reference_ = readReference(cachePath_);
     const auto& cam = live.settings.camera;
-    if (!reference_.mean.empty() && (reference_.mean.width != cam.width || reference_.mean.height != cam.height)) {
+    if (!reference_.mean.empty() &&
+        (reference_.mean.width != cam.width || reference_.mean.height != cam.height)) {
       error_ = "reference size does not match the camera";
       reference_ = Reference();
     }
@@ -74,7 +78,9 @@ bool ConvergenceTracker::loadReference(const ViewerController& c, const std::str
   }
 }
 
-void ConvergenceTracker::clearCurves() { curves_.clear(); }
+void ConvergenceTracker::clearCurves() {
+  curves_.clear();
+}
 
 void ConvergenceTracker::update(const ViewerController& c) {
   rekey(c);
@@ -88,7 +94,8 @@ void ConvergenceTracker::update(const ViewerController& c) {
   lastSpp_ = snap.spp;
   if (curves_.empty() || curves_.back().restart != c.snapshotRestart()) {
     // Accumulations cut short after a point (e.g. while dragging a slider) would only clutter the plot.
-    if (!curves_.empty() && curves_.back().seconds.size() < 2 && curves_.back().spp.back() < 4) curves_.pop_back();
+    if (!curves_.empty() && curves_.back().seconds.size() < 2 && curves_.back().spp.back() < 4)
+      curves_.pop_back();
     ConvergenceCurve curve;
     curve.label = strategyLabel(c.settings().integrator);
     curve.restart = c.snapshotRestart();

@@ -14,9 +14,9 @@ struct PanelState {
   char openPath[1024] = "";
   char savePath[1024] = "penumbra.png";
   char sceneSavePath[1024] = "scene-live.xml";
-  std::string status;         // last save / load message
+  std::string status;  // last save / load message
   bool showHelp = false;
-  bool hoverValid = false;    // pixel inspector: the cursor is over the image
+  bool hoverValid = false;  // pixel inspector: the cursor is over the image
   int hoverX = 0, hoverY = 0;
   bool requestSavePng = false;
   // Convergence panel: live RMSE against time for each accumulation of the session.

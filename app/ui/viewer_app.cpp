@@ -24,7 +24,9 @@ namespace penumbra::ui {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double msSince(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
+double msSince(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
 
 class ViewerApp {
  public:
@@ -93,7 +95,8 @@ class ViewerApp {
     if (!io.WantCaptureMouse) {
       ImVec2 d = io.MouseDelta;
       if (ImGui::IsMouseDragging(ImGuiMouseButton_Left) && (d.x != 0 || d.y != 0)) c_.orbit(d.x, d.y);
-      if ((ImGui::IsMouseDragging(ImGuiMouseButton_Right) || ImGui::IsMouseDragging(ImGuiMouseButton_Middle)) &&
+      if ((ImGui::IsMouseDragging(ImGuiMouseButton_Right) ||
+           ImGui::IsMouseDragging(ImGuiMouseButton_Middle)) &&
           (d.x != 0 || d.y != 0))
         c_.pan(d.x / std::max(layout_.zoom, 1e-3f), d.y / std::max(layout_.zoom, 1e-3f));
       if (io.MouseWheel != 0 && overArea) {
@@ -109,14 +112,37 @@ class ViewerApp {
     if (!io.WantTextInput) {
       for (ImWchar ch : io.InputQueueCharacters) {
         switch (ch) {
-          case ' ': c_.setPaused(!c_.paused()); break;
-          case 'r': case 'R': c_.restart(); break;
-          case 's': case 'S': st_.requestSavePng = true; break;
-          case 'f': case 'F': c_.display.fit = true; c_.display.panX = c_.display.panY = 0; break;
-          case '+': case '=': c_.display.exposure += 0.5f; break;
-          case '-': case '_': c_.display.exposure -= 0.5f; break;
-          case 'h': case 'H': case '?': st_.showHelp = !st_.showHelp; break;
-          default: break;
+          case ' ':
+            c_.setPaused(!c_.paused());
+            break;
+          case 'r':
+          case 'R':
+            c_.restart();
+            break;
+          case 's':
+          case 'S':
+            st_.requestSavePng = true;
+            break;
+          case 'f':
+          case 'F':
+            c_.display.fit = true;
+            c_.display.panX = c_.display.panY = 0;
+            break;
+          case '+':
+          case '=':
+            c_.display.exposure += 0.5f;
+            break;
+          case '-':
+          case '_':
+            c_.display.exposure -= 0.5f;
+            break;
+          case 'h':
+          case 'H':
+          case '?':
+            st_.showHelp = !st_.showHelp;
+            break;
+          default:
+            break;
         }
       }
     }
@@ -215,15 +241,23 @@ int runBench(platform::Platform& p, ViewerController& c, ViewerApp& app, int fra
   }
   double fm = median(frameMs);
   double lost = 100.0 * (1.0 - uiRate / std::max(aloneRate, 1e-9));
-  std::printf("bench: UI frame time median %.2f ms (%.0f fps) over %zu frames, p90 %.2f ms\n", fm, 1000.0 / fm,
-              frameMs.size(), [&] { auto v = frameMs; std::sort(v.begin(), v.end()); return v[v.size() * 9 / 10]; }());
-  std::printf("bench: restart latency (control change -> first frame of the new estimate) median %.1f ms, max %.1f ms\n",
-              median(latency), *std::max_element(latency.begin(), latency.end()));
+  std::printf("bench: UI frame time median %.2f ms (%.0f fps) over %zu frames, p90 %.2f ms\n", fm,
+              1000.0 / fm, frameMs.size(), [&] {
+                auto v = frameMs;
+                std::sort(v.begin(), v.end());
+                return v[v.size() * 9 / 10];
+              }());
+  std::printf(
+      "bench: restart latency (control change -> first frame of the new estimate) median %.1f ms, max %.1f "
+      "ms\n",
+      median(latency), *std::max_element(latency.begin(), latency.end()));
   std::printf("bench: control change -> first full pass on screen: median %.1f ms\n", median(fullPass));
-  std::printf("bench: throughput engine alone %.3f M samples/s, with UI %.3f M samples/s: %.1f %% lost to the UI\n",
-              aloneRate * 1e-6, uiRate * 1e-6, lost);
-  std::printf("bench: targets >= 60 fps: %s, <= 50 ms: %s, <= 10 %% lost: %s\n", 1000.0 / fm >= 60 ? "met" : "NOT met",
-              median(latency) <= 50 ? "met" : "NOT met", lost <= 10 ? "met" : "NOT met");
+  std::printf(
+      "bench: throughput engine alone %.3f M samples/s, with UI %.3f M samples/s: %.1f %% lost to the UI\n",
+      aloneRate * 1e-6, uiRate * 1e-6, lost);
+  std::printf("bench: targets >= 60 fps: %s, <= 50 ms: %s, <= 10 %% lost: %s\n",
+              1000.0 / fm >= 60 ? "met" : "NOT met", median(latency) <= 50 ? "met" : "NOT met",
+              lost <= 10 ? "met" : "NOT met");
   return 0;
 }
 
@@ -244,7 +278,8 @@ int runViewer(LoadedScene scene, ViewerController::Overrides overrides, const Vi
   platform::WindowOptions wo;
   wo.width = o.windowWidth > 0 ? o.windowWidth : kSidebarWidth + std::clamp(cam.width, 512, 1280);
   wo.height = o.windowHeight > 0 ? o.windowHeight : std::clamp(cam.height, 720, 960);
-  wo.title = "Penumbra — " + (controller.scene().path.empty() ? std::string("built-in scene") : controller.scene().path);
+  wo.title = "Penumbra — " +
+             (controller.scene().path.empty() ? std::string("built-in scene") : controller.scene().path);
 
   IMGUI_CHECKVERSION();
   ImGui::CreateContext();

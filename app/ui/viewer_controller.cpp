@@ -18,7 +18,8 @@ namespace fs = std::filesystem;
 glm::mat4 lookAt(const Vec3& origin, const Vec3& target, const Vec3& up) {
   Vec3 dir = glm::normalize(target - origin);
   Vec3 left = glm::cross(up, dir);
-  if (glm::length(left) < 1e-6f) left = glm::cross(std::abs(dir.z) < 0.9f ? Vec3(0, 0, 1) : Vec3(1, 0, 0), dir);
+  if (glm::length(left) < 1e-6f)
+    left = glm::cross(std::abs(dir.z) < 0.9f ? Vec3(0, 0, 1) : Vec3(1, 0, 0), dir);
   left = glm::normalize(left);
   Vec3 newUp = glm::normalize(glm::cross(dir, left));
   glm::mat4 m(1.f);
@@ -35,7 +36,9 @@ ViewerController::ViewerController(LoadedScene scene, Overrides overrides, int t
   if (!scene_.path.empty()) rememberRecent(scene_.path);
 }
 
-ViewerController::~ViewerController() { engine_.cancel(); }
+ViewerController::~ViewerController() {
+  engine_.cancel();
+}
 
 void ViewerController::adoptScene(LoadedScene loaded) {
   scene_ = std::move(loaded);
@@ -77,7 +80,9 @@ void ViewerController::start() {
   ++restarts_;
 }
 
-void ViewerController::setPaused(bool paused) { engine_.setPaused(paused); }
+void ViewerController::setPaused(bool paused) {
+  engine_.setPaused(paused);
+}
 
 bool ViewerController::pollSnapshot(bool wantStandardError) {
   engine_.requestSnapshot(wantStandardError);
@@ -323,7 +328,9 @@ SceneNode ViewerController::liveDesc() const {
   return root;
 }
 
-std::string ViewerController::liveSceneXml() const { return writeSceneXml(liveDesc()); }
+std::string ViewerController::liveSceneXml() const {
+  return writeSceneXml(liveDesc());
+}
 
 std::string ViewerController::saveImage(const std::string& path) const {
   if (snapshot_.mean.empty()) throw Error(path + ": nothing rendered yet");

@@ -24,9 +24,9 @@ struct DisplaySettings {
   float exposure = 0.f;  // stops
   Tonemap tonemap = Tonemap::Srgb;
   FalseColour falseColour = FalseColour::None;
-  float zoom = 1.f;         // screen pixels per image pixel
+  float zoom = 1.f;              // screen pixels per image pixel
   float panX = 0.f, panY = 0.f;  // image offset from the centred position, screen pixels
-  bool fit = true;          // zoom follows the image area until the user zooms
+  bool fit = true;               // zoom follows the image area until the user zooms
 };
 
 // Orbit camera state derived from a Nori toWorld (columns: left, up, forward, origin).
@@ -45,7 +45,7 @@ class ViewerController {
   ~ViewerController();
 
   // ---- rendering -------------------------------------------------------------------------------
-  void start();    // (re)starts accumulation with the live settings and limits
+  void start();  // (re)starts accumulation with the live settings and limits
   void restart() { start(); }
   void setPaused(bool paused);
   bool paused() const { return engine_.paused(); }

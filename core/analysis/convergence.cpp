@@ -2,9 +2,9 @@
 
 #include <chrono>
 #include <cmath>
+#include <ctime>
 #include <sstream>
 #include <thread>
-#include <ctime>
 
 #include "core/math/error.h"
 #include "core/render/engine.h"
@@ -20,7 +20,8 @@ double cpuClock(clockid_t id) {
 }  // namespace
 
 std::string strategyShortName(const IntegratorDesc& d) {
-  if (d.type == IntegratorType::Ao) return std::string("ao-") + (d.warp == HemisphereWarp::Cosine ? "cosine" : "uniform");
+  if (d.type == IntegratorType::Ao)
+    return std::string("ao-") + (d.warp == HemisphereWarp::Cosine ? "cosine" : "uniform");
   if (d.type == IntegratorType::Direct) {
     if (d.measure == DirectMeasure::Hemisphere) return hemisphereWarpName(d.warp);
     return directMeasureName(d.measure);
@@ -63,7 +64,8 @@ std::vector<IntegratorDesc> parseStrategies(const IntegratorDesc& base, const st
       if (name == label || name == shortName || name == tail ||
           (d.type == IntegratorType::Direct && d.measure == DirectMeasure::Hemisphere &&
            name == (d.warp == HemisphereWarp::Uniform ? "uniform" : "cosine")) ||
-          (d.type == IntegratorType::Direct && name == "solidAngle" && d.measure == DirectMeasure::SolidAngle)) {
+          (d.type == IntegratorType::Direct && name == "solidAngle" &&
+           d.measure == DirectMeasure::SolidAngle)) {
         out.push_back(d);
         found = true;
         break;
@@ -119,8 +121,10 @@ ConvergenceRun runConvergence(const LoadedScene& scene, const IntegratorDesc& st
 
   Engine engine;
   RenderLimits limits;
-  if (sppMode) limits.targetSpp = o.spp;
-  else limits.seconds = o.seconds;
+  if (sppMode)
+    limits.targetSpp = o.spp;
+  else
+    limits.seconds = o.seconds;
   double cpuStart = cpuClock(CLOCK_PROCESS_CPUTIME_ID);
   pollerCpuStart = cpuClock(CLOCK_THREAD_CPUTIME_ID);
   engine.start(job, limits, o.threads);
@@ -130,7 +134,8 @@ ConvergenceRun runConvergence(const LoadedScene& scene, const IntegratorDesc& st
   while (true) {
     RenderProgress p = engine.progress();
     if (engine.latestSnapshot(snap) && snap.spp > 0 && !snap.mean.empty()) {
-      if (run.points.empty() || snap.spp > run.points.back().spp) record(snap.mean, snap.spp, snap.seconds, snap.cpuSeconds);
+      if (run.points.empty() || snap.spp > run.points.back().spp)
+        record(snap.mean, snap.spp, snap.seconds, snap.cpuSeconds);
       requested = false;
       double reached = sppMode ? double(snap.spp) : snap.seconds;
       while (next < targets.size() && targets[next] <= reached) ++next;
@@ -151,7 +156,8 @@ ConvergenceRun runConvergence(const LoadedScene& scene, const IntegratorDesc& st
   run.finalImage = engine.film().mean(p.spp);
   run.seconds = p.seconds;
   run.spp = p.spp;
-  if (p.spp > 0 && (run.points.empty() || run.points.back().spp < p.spp)) record(run.finalImage, p.spp, p.seconds, cpuEnd);
+  if (p.spp > 0 && (run.points.empty() || run.points.back().spp < p.spp))
+    record(run.finalImage, p.spp, p.seconds, cpuEnd);
   return run;
 }
 

@@ -18,7 +18,7 @@
 namespace penumbra {
 
 struct ConvergencePoint {
-  double seconds = 0;     // wall-clock rendering time (pauses excluded)
+  double seconds = 0;  // wall-clock rendering time (pauses excluded)
   // CPU time the render used (process CPU since start minus this polling thread's own CPU, which
   // computes the metrics): immune to other processes competing for the cores.
   double cpuSeconds = 0;

@@ -27,11 +27,11 @@
 namespace penumbra {
 
 struct ErrorStats {
-  double mse = 0.0;        // reference noise subtracted when known
-  double rmse = 0.0;       // sqrt(max(mse, 0))
-  double relMse = 0.0;     // reference noise subtracted when known
-  double mseStdErr = 0.0;  // standard error of `mse` itself
-  double rawMse = 0.0;     // mean (v - ref)^2 before subtracting the reference's noise
+  double mse = 0.0;          // reference noise subtracted when known
+  double rmse = 0.0;         // sqrt(max(mse, 0))
+  double relMse = 0.0;       // reference noise subtracted when known
+  double mseStdErr = 0.0;    // standard error of `mse` itself
+  double rawMse = 0.0;       // mean (v - ref)^2 before subtracting the reference's noise
   double refVariance = 0.0;  // mean s^2 of the reference (0 when unknown)
   std::size_t pixels = 0;
 };

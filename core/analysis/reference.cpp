@@ -168,7 +168,8 @@ Reference closedFormReference(const LoadedScene& loaded, int grid) {
           if (!scene.geometry.intersect(ray, hit)) continue;
           const SurfaceMaterial& m = scene.materials[hit.objectId];
           glm::dvec3 L(0.0);
-          if (m.sphereLight >= 0) L += glm::dvec3(scene.sphereLights[m.sphereLight].eval(hit.p, hit.ng, ray.d));
+          if (m.sphereLight >= 0)
+            L += glm::dvec3(scene.sphereLights[m.sphereLight].eval(hit.p, hit.ng, ray.d));
           if (!isBlack(m.albedo)) {
             ShadingPoint sp(scene, ray, hit);
             glm::dvec3 E(0.0);
@@ -197,7 +198,8 @@ std::vector<uint8_t> emitterMask(const LoadedScene& loaded) {
     for (int x = 0; x < w; ++x)
       for (int j = 0; j < 3 && !direct[std::size_t(y) * w + x]; ++j)
         for (int i = 0; i < 3; ++i) {
-          Ray ray = camera.generateRay(Vec2(float(x) + (float(i) + 0.5f) / 3.f, float(y) + (float(j) + 0.5f) / 3.f));
+          Ray ray = camera.generateRay(
+              Vec2(float(x) + (float(i) + 0.5f) / 3.f, float(y) + (float(j) + 0.5f) / 3.f));
           SurfaceHit hit;
           if (scene.geometry.intersect(ray, hit) && scene.materials[hit.objectId].sphereLight >= 0) {
             direct[std::size_t(y) * w + x] = 1;
@@ -210,7 +212,8 @@ std::vector<uint8_t> emitterMask(const LoadedScene& loaded) {
     for (int x = 0; x < w; ++x) {
       if (!direct[std::size_t(y) * w + x]) continue;
       for (int yy = std::max(0, y - r); yy <= std::min(h - 1, y + r); ++yy)
-        for (int xx = std::max(0, x - r); xx <= std::min(w - 1, x + r); ++xx) mask[std::size_t(yy) * w + xx] = 1;
+        for (int xx = std::max(0, x - r); xx <= std::min(w - 1, x + r); ++xx)
+          mask[std::size_t(yy) * w + xx] = 1;
     }
   return mask;
 }
@@ -233,7 +236,8 @@ Reference obtainReference(const LoadedScene& scene, const ReferenceRequest& requ
   if (!request.path.empty()) {
     Reference ref = readReference(request.path);
     checkSize(ref, "reference " + request.path);
-    say("reference: " + request.path + (ref.standardError.empty() ? " (no standard error)" : " (with standard error)"));
+    say("reference: " + request.path +
+        (ref.standardError.empty() ? " (no standard error)" : " (with standard error)"));
     return ref;
   }
   std::string cache = referenceCachePath(scene, request.cacheDir);
@@ -247,7 +251,8 @@ Reference obtainReference(const LoadedScene& scene, const ReferenceRequest& requ
   if (!request.renderIfMissing) throw Error("no reference for this scene (expected " + cache + ")");
   say("reference: rendering " + std::to_string(request.referenceSpp) + " spp of " +
       strategyLabel(referenceEstimator(scene.settings.integrator)) + " into " + cache);
-  Reference ref = renderReference(scene, RenderLimits{request.referenceSpp, request.referenceSeconds}, request.threads);
+  Reference ref =
+      renderReference(scene, RenderLimits{request.referenceSpp, request.referenceSeconds}, request.threads);
   ImageMetadata meta;
   meta.add("sceneHash", sceneContentHash(scene.desc));
   writeReference(cache, ref, meta);

@@ -71,8 +71,8 @@ std::vector<uint8_t> emitterMask(const LoadedScene& scene);
 // (c)); else the closed form for analytic scenes; else the cache; else render one (referenceSpp
 // samples of the reference estimator) and store it in the cache. `log` receives one-line messages.
 struct ReferenceRequest {
-  std::string path;        // user file or "closed-form"; empty: automatic
-  std::string cacheDir;    // empty: next to the scene
+  std::string path;      // user file or "closed-form"; empty: automatic
+  std::string cacheDir;  // empty: next to the scene
   uint32_t referenceSpp = 4096;
   double referenceSeconds = 0;  // if > 0, caps the time spent rendering a missing reference
   bool renderIfMissing = true;

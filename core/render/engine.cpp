@@ -15,7 +15,9 @@ double processCpuSeconds() {
 }
 }  // namespace
 
-Engine::~Engine() { cancel(); }
+Engine::~Engine() {
+  cancel();
+}
 
 void Engine::start(std::shared_ptr<const RenderJob> job, RenderLimits limits, int threads) {
   cancel();
