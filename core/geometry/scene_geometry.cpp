@@ -103,7 +103,8 @@ void SceneGeometry::build(AccelMode mode) {
       const TriangleMesh& mesh = meshes_[m];
       for (uint32_t i = 0; i < mesh.triangles.size(); ++i) {
         const glm::uvec3 t = mesh.triangles[i];
-        flat_.push_back({mesh.positions[t.x], mesh.positions[t.y], mesh.positions[t.z], m, i});
+        const Vec3 &p0 = mesh.positions[t.x], &p1 = mesh.positions[t.y], &p2 = mesh.positions[t.z];
+        flat_.push_back({p0, p1, p2, m, i, trianglePlane(p0, p1, p2)});
       }
     }
     return;
@@ -150,6 +151,7 @@ bool SceneGeometry::intersect(const Ray& ray, SurfaceHit& hit) const {
   }
 
   uint32_t meshHit = 0, primHit = 0;
+  const FlatTriangle* flatHit = nullptr;
   bool triHit = false;
   TriangleIntersection best{};
   if (scene_) {
@@ -177,6 +179,7 @@ bool SceneGeometry::intersect(const Ray& ray, SurfaceHit& hit) const {
           triHit = true;
           meshHit = tri.mesh;
           primHit = tri.prim;
+          flatHit = &tri;
         }
       }
     };
@@ -194,15 +197,10 @@ bool SceneGeometry::intersect(const Ray& ray, SurfaceHit& hit) const {
   }
 
   if (triHit) {
+    // Embree hits keep offsets relative to the triangle's coordinates (its t carries that error);
+    // brute-force hits are projected and offset relative to |p| (see projectOntoPlane).
     fillTriangleHit(meshes_[meshHit], primHit, best, meshIds_[meshHit], hit);
-    if (scene_) {
-      // Embree's t carries error relative to the triangle's coordinates: offset by those.
-      const TriangleMesh& m = meshes_[meshHit];
-      const glm::uvec3 tri = m.triangles[primHit];
-      const Vec3 v = glm::max(glm::abs(m.positions[tri.x]),
-                              glm::max(glm::abs(m.positions[tri.y]), glm::abs(m.positions[tri.z])));
-      hit.offsetScale = std::max(hit.offsetScale, maxComponent(v));
-    }
+    if (flatHit) projectOntoPlane(flatHit->plane, hit);
     return true;
   }
   if (sphereHit >= 0) {

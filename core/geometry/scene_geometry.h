@@ -12,6 +12,7 @@
 #include "core/geometry/ray.h"
 #include "core/geometry/sphere.h"
 #include "core/geometry/surface_hit.h"
+#include "core/geometry/triangle.h"
 #include "core/geometry/triangle_mesh.h"
 
 namespace penumbra {
@@ -62,6 +63,7 @@ class SceneGeometry {
   struct FlatTriangle {
     Vec3 p0, p1, p2;
     uint32_t mesh, prim;
+    TrianglePlane plane;
   };
   void release();
 

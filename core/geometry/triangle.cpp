@@ -11,15 +11,8 @@ void fillTriangleHit(const TriangleMesh& mesh, uint32_t primId, const TriangleIn
   const Vec3& p1 = mesh.positions[tri.y];
   const Vec3& p2 = mesh.positions[tri.z];
   hit.t = isect.t;
-  // Interpolate in double and project onto the triangle's plane, so that p lies on the surface to
-  // within one rounding of its own magnitude (not of the triangle's): ray offsets can then be
-  // relative to |p| and contact shadows next to large triangles survive.
-  const DVec3 d0(p0), d1(p1), d2(p2);
-  DVec3 pd = double(isect.b0) * d0 + double(isect.b1) * d1 + double(isect.b2) * d2;
-  const DVec3 nd = glm::cross(d1 - d0, d2 - d0);
-  const double nn = glm::dot(nd, nd);
-  if (nn > 0.0 && std::isfinite(nn)) pd -= nd * (glm::dot(pd - d0, nd) / nn);
-  hit.p = Vec3(pd);
+  // From the barycentrics: accurate to the rounding of the vertices' magnitude (see offsetScale).
+  hit.p = isect.b0 * p0 + isect.b1 * p1 + isect.b2 * p2;
   Vec3 ng = glm::cross(p1 - p0, p2 - p0);
   const float len = glm::length(ng);
   if (len > 0.f && std::isfinite(len)) {
@@ -37,12 +30,27 @@ void fillTriangleHit(const TriangleMesh& mesh, uint32_t primId, const TriangleIn
     const float l = glm::length(ns);
     if (l > 0.f && std::isfinite(l)) hit.ns = ns / l;
   }
-  // The triangle test rejects hits within its own rounding error of t (pbrt-v4's conservative t),
-  // so an origin offset relative to |p| cannot re-hit this triangle. SceneGeometry widens this for
-  // Embree, whose test has no such bound.
-  hit.offsetScale = maxComponent(glm::abs(hit.p));
+  const Vec3 m = glm::max(glm::abs(p0), glm::max(glm::abs(p1), glm::abs(p2)));
+  hit.offsetScale = std::max(maxComponent(m), maxComponent(glm::abs(hit.p)));
   hit.objectId = objectId;
   hit.primId = primId;
+}
+
+void projectOntoPlane(const TrianglePlane& plane, SurfaceHit& hit) {
+  const DVec3 p(hit.p);
+  hit.p = Vec3(p - plane.normal * (glm::dot(plane.normal, p) - plane.offset));
+  // The brute-force triangle test rejects hits within its own rounding error of t (pbrt-v4's
+  // conservative t), so an origin offset relative to |p| cannot re-hit this triangle.
+  hit.offsetScale = maxComponent(glm::abs(hit.p));
+}
+
+TrianglePlane trianglePlane(const Vec3& p0, const Vec3& p1, const Vec3& p2) {
+  const DVec3 d0(p0), d1(p1), d2(p2);
+  DVec3 n = glm::cross(d1 - d0, d2 - d0);
+  const double len = glm::length(n);
+  if (!(len > 0.0) || !std::isfinite(len)) return TrianglePlane{DVec3(0.0), 0.0};
+  n /= len;
+  return TrianglePlane{n, glm::dot(n, (d0 + d1 + d2) / 3.0)};
 }
 
 }  // namespace penumbra

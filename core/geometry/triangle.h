@@ -135,4 +135,16 @@ inline bool intersectTriangle(const Ray& ray, float tMax, const Vec3& p0, const 
 void fillTriangleHit(const TriangleMesh& mesh, uint32_t primId, const TriangleIntersection& isect,
                      uint32_t objectId, SurfaceHit& hit);
 
+// A triangle's plane in double precision: unit normal and offset (n . p = offset on the plane).
+struct TrianglePlane {
+  DVec3 normal;
+  double offset;
+};
+TrianglePlane trianglePlane(const Vec3& p0, const Vec3& p1, const Vec3& p2);
+
+// Moves hit.p onto the plane (in double) so that it is accurate to its own magnitude rather than the
+// triangle's, and makes ray offsets relative to |p|: contact shadows next to large triangles survive.
+// Only for hits of the conservative brute-force test (a degenerate plane leaves p unchanged).
+void projectOntoPlane(const TrianglePlane& plane, SurfaceHit& hit);
+
 }  // namespace penumbra
