@@ -96,10 +96,8 @@ TriangleMesh triangleSoup(int n) {
   return m;
 }
 
-void triangleSoupBench(benchmark::State& state, AccelMode mode) {
-  SceneGeometry g;
-  g.addMesh(triangleSoup(static_cast<int>(state.range(0))), 0);
-  g.build(mode);
+// Nearest-hit queries of rays from a sphere of radius 3 towards points in [-1, 1]^3.
+void intersectBench(benchmark::State& state, const SceneGeometry& g) {
   std::mt19937 rng(4);
   std::uniform_real_distribution<float> u(-1.f, 1.f);
   std::vector<Ray> rays(kRayCount);
@@ -113,6 +111,13 @@ void triangleSoupBench(benchmark::State& state, AccelMode mode) {
     benchmark::DoNotOptimize(g.intersect(rays[i++ & (kRayCount - 1)], hit));
   }
   state.SetItemsProcessed(state.iterations());
+}
+
+void triangleSoupBench(benchmark::State& state, AccelMode mode) {
+  SceneGeometry g;
+  g.addMesh(triangleSoup(static_cast<int>(state.range(0))), 0);
+  g.build(mode);
+  intersectBench(state, g);
 }
 void BM_TrianglesBruteForce(benchmark::State& s) {
   triangleSoupBench(s, AccelMode::BruteForce);
@@ -120,24 +125,13 @@ void BM_TrianglesBruteForce(benchmark::State& s) {
 void BM_TrianglesEmbree(benchmark::State& s) {
   triangleSoupBench(s, AccelMode::Embree);
 }
+
 // A closed mesh: the rock at s = 0 (20 triangles) and s = 1 (80), rays from outside.
 void smallRockBench(benchmark::State& state, AccelMode mode) {
   SceneGeometry g;
   g.addMesh(makeRockMesh(static_cast<int>(state.range(0)), 3), 0);
   g.build(mode);
-  std::mt19937 rng(4);
-  std::uniform_real_distribution<float> u(-1.f, 1.f);
-  std::vector<Ray> rays(kRayCount);
-  for (Ray& r : rays) {
-    r.o = randomUnit(rng) * 3.f;
-    r.d = glm::normalize(Vec3(u(rng), u(rng), u(rng)) - r.o);
-  }
-  size_t i = 0;
-  for (auto _ : state) {
-    SurfaceHit hit;
-    benchmark::DoNotOptimize(g.intersect(rays[i++ & (kRayCount - 1)], hit));
-  }
-  state.SetItemsProcessed(state.iterations());
+  intersectBench(state, g);
 }
 void BM_SmallRockBruteForce(benchmark::State& s) {
   smallRockBench(s, AccelMode::BruteForce);

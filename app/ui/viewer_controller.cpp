@@ -9,6 +9,7 @@
 #include "core/image/atomic_file.h"
 #include "core/image/image_io.h"
 #include "core/math/error.h"
+#include "core/math/frame.h"
 #include "core/scene/xml_parser.h"
 
 namespace penumbra::ui {
@@ -22,12 +23,7 @@ glm::mat4 lookAt(const Vec3& origin, const Vec3& target, const Vec3& up) {
     left = glm::cross(std::abs(dir.z) < 0.9f ? Vec3(0, 0, 1) : Vec3(1, 0, 0), dir);
   left = glm::normalize(left);
   Vec3 newUp = glm::normalize(glm::cross(dir, left));
-  glm::mat4 m(1.f);
-  m[0] = glm::vec4(left, 0.f);
-  m[1] = glm::vec4(newUp, 0.f);
-  m[2] = glm::vec4(dir, 0.f);
-  m[3] = glm::vec4(origin, 1.f);
-  return m;
+  return cameraToWorld(origin, left, newUp, dir);
 }
 
 ViewerController::ViewerController(LoadedScene scene, Overrides overrides, int threads)

@@ -22,3 +22,19 @@ struct Frame {
 };
 
 }  // namespace penumbra
+
+#include <glm/mat4x4.hpp>
+
+namespace penumbra {
+
+// Nori's camera-to-world matrix: columns (left, up, dir, origin); the camera looks down +z.
+inline glm::mat4 cameraToWorld(const Vec3& origin, const Vec3& left, const Vec3& up, const Vec3& dir) {
+  glm::mat4 m(1.f);
+  m[0] = glm::vec4(left, 0.f);
+  m[1] = glm::vec4(up, 0.f);
+  m[2] = glm::vec4(dir, 0.f);
+  m[3] = glm::vec4(origin, 1.f);
+  return m;
+}
+
+}  // namespace penumbra

@@ -1,4 +1,5 @@
 #include "core/scene/xml_parser.h"
+#include "core/math/frame.h"
 
 #include <tinyxml2.h>
 
@@ -257,12 +258,7 @@ glm::mat4 lookAtMatrix(const Vec3& origin, const Vec3& target, const Vec3& up, c
                 "<lookat>: expected an up vector not parallel to the viewing direction (target - origin)");
   Vec3 left = c / cl;
   Vec3 newUp = glm::normalize(glm::cross(dir, left));
-  glm::mat4 m(1.f);
-  m[0] = glm::vec4(left, 0.f);
-  m[1] = glm::vec4(newUp, 0.f);
-  m[2] = glm::vec4(dir, 0.f);
-  m[3] = glm::vec4(origin, 1.f);
-  return m;
+  return cameraToWorld(origin, left, newUp, dir);
 }
 
 glm::mat4 parseTransformElement(const tinyxml2::XMLElement& element, const std::string& file) {
