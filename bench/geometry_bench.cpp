@@ -96,13 +96,13 @@ TriangleMesh triangleSoup(int n) {
   return m;
 }
 
-// Nearest-hit queries of rays from a sphere of radius 3 towards points in [-1, 1]^3.
-void intersectBench(benchmark::State& state, const SceneGeometry& g) {
-  std::mt19937 rng(4);
+// Nearest-hit queries of rays from a sphere of radius `from` towards points in [-1, 1]^3.
+void intersectBench(benchmark::State& state, const SceneGeometry& g, float from = 3.f, unsigned seed = 4) {
+  std::mt19937 rng(seed);
   std::uniform_real_distribution<float> u(-1.f, 1.f);
   std::vector<Ray> rays(kRayCount);
   for (Ray& r : rays) {
-    r.o = randomUnit(rng) * 3.f;
+    r.o = randomUnit(rng) * from;
     r.d = glm::normalize(Vec3(u(rng), u(rng), u(rng)) - r.o);
   }
   size_t i = 0;
@@ -158,19 +158,7 @@ const SceneGeometry& rock(int subdivisions) {
 
 void BM_Rock_OutsideRays(benchmark::State& state) {
   const SceneGeometry& g = rock(static_cast<int>(state.range(0)));
-  std::mt19937 rng(5);
-  std::uniform_real_distribution<float> u(-1.f, 1.f);
-  std::vector<Ray> rays(kRayCount);
-  for (Ray& r : rays) {
-    r.o = randomUnit(rng) * 4.f;
-    r.d = glm::normalize(Vec3(u(rng), u(rng), u(rng)) - r.o);
-  }
-  size_t i = 0;
-  for (auto _ : state) {
-    SurfaceHit hit;
-    benchmark::DoNotOptimize(g.intersect(rays[i++ & (kRayCount - 1)], hit));
-  }
-  state.SetItemsProcessed(state.iterations());
+  intersectBench(state, g, 4.f, 5);
   state.counters["triangles"] = static_cast<double>(g.triangleCount());
 }
 BENCHMARK(BM_Rock_OutsideRays)->Arg(7)->Arg(8);

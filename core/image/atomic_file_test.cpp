@@ -1,4 +1,5 @@
 #include "core/image/atomic_file.h"
+#include "tests/temp_dir_test.h"
 
 #include <gtest/gtest.h>
 
@@ -15,17 +16,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class AtomicFileTest : public ::testing::Test {
+class AtomicFileTest : public test::TempDirTest {
  protected:
-  void SetUp() override {
-    dir = fs::temp_directory_path() / ("penumbra-atomic-" + std::to_string(::getpid()) + "-" +
-                                       ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-  }
-  void TearDown() override { fs::remove_all(dir); }
-  std::string file(const std::string& name) const { return (dir / name).string(); }
-  fs::path dir;
+  AtomicFileTest() : TempDirTest("penumbra-atomic-") {}
 };
 
 std::string readFile(const std::string& path) {

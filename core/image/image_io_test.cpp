@@ -1,4 +1,5 @@
 #include "core/image/image_io.h"
+#include "tests/temp_dir_test.h"
 
 #include <gtest/gtest.h>
 #include <png.h>
@@ -20,17 +21,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class ImageIoTest : public ::testing::Test {
+class ImageIoTest : public test::TempDirTest {
  protected:
-  void SetUp() override {
-    dir = fs::temp_directory_path() / ("penumbra-image-io-" + std::to_string(::getpid()) + "-" +
-                                       ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-  }
-  void TearDown() override { fs::remove_all(dir); }
-  std::string file(const std::string& name) const { return (dir / name).string(); }
-  fs::path dir;
+  ImageIoTest() : TempDirTest("penumbra-image-io-") {}
 };
 
 // Non-square with distinct values everywhere, plus the awkward floats.
