@@ -10,6 +10,12 @@ uniform float uExposure;       // stops
 uniform int uTonemap;          // 0: sRGB OETF, 1: gamma 2.2
 uniform int uView;             // 0: colour, 1: relative standard error, 2: NaN/Inf/negative highlight
 uniform int uHasImage;
+// Compare mode: right of framebuffer x uDividerX the image comes from uMeanB / uStdErrB (the second
+// strategy), with a thin line at the divider.
+uniform int uCompare;
+uniform float uDividerX;
+uniform sampler2D uMeanB;
+uniform sampler2D uStdErrB;
 uniform vec3 uBackground;
 out vec4 fragColor;
 
@@ -46,13 +52,23 @@ void main() {
     fragColor = vec4(uBackground, 1.0);
     return;
   }
-  vec3 m = texelFetch(uMean, px, 0).rgb;
+  bool right = uCompare != 0 && gl_FragCoord.x >= uDividerX;
+  if (uCompare != 0 && abs(gl_FragCoord.x - uDividerX) < 1.0) {
+    fragColor = vec4(0.95, 0.95, 0.95, 1.0);
+    return;
+  }
+  if (right && textureSize(uMeanB, 0) != size) {  // the right side has no pass yet
+    fragColor = vec4(uBackground, 1.0);
+    return;
+  }
+  vec3 m = right ? texelFetch(uMeanB, px, 0).rgb : texelFetch(uMean, px, 0).rgb;
   if (uView == 1) {
     // Relative standard error of the luminance, log scale: 0.1 % (blue) … 100 % (red); black: no data.
-    vec3 e = texelFetch(uStdErr, min(px, textureSize(uStdErr, 0) - 1), 0).rgb;
+    ivec2 esize = right ? textureSize(uStdErrB, 0) : textureSize(uStdErr, 0);
+    vec3 e = right ? texelFetch(uStdErrB, min(px, esize - 1), 0).rgb : texelFetch(uStdErr, min(px, esize - 1), 0).rgb;
     float lm = dot(m, vec3(0.2126, 0.7152, 0.0722));
     float le = dot(e, vec3(0.2126, 0.7152, 0.0722));
-    if (textureSize(uStdErr, 0) != size || lm <= 0.0) { fragColor = vec4(0.0, 0.0, 0.0, 1.0); return; }
+    if (esize != size || lm <= 0.0) { fragColor = vec4(0.0, 0.0, 0.0, 1.0); return; }
     float r = le / lm;
     fragColor = vec4(ramp((log(max(r, 1e-3)) / log(10.0) + 3.0) / 3.0), 1.0);
     return;

@@ -267,3 +267,108 @@ TEST(ViewerWindow, RealWindowUnderXvfb) {
     EXPECT_EQ(ui.width, 720);
   }
 }
+
+namespace {
+
+template <class F>
+bool waitUntil(F done) {
+  auto t0 = std::chrono::steady_clock::now();
+  while (!done()) {
+    if (std::chrono::steady_clock::now() - t0 > std::chrono::seconds(30)) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  return true;
+}
+
+IntegratorDesc directWith(DirectMeasure m) {
+  IntegratorDesc d;
+  d.type = IntegratorType::Direct;
+  d.measure = m;
+  return d;
+}
+
+}  // namespace
+
+TEST(ViewerCompare, EnablingStartsASecondAccumulationDisablingStopsIt) {
+  ui::ViewerController c(smallDefaultScene(), {}, 2);
+  c.start();
+  EXPECT_FALSE(c.compareEnabled());
+  c.setCompareIntegrator(directWith(DirectMeasure::Area));  // compare off: nothing starts
+  EXPECT_EQ(c.compareRestartCount(), 0u);
+  EXPECT_EQ(c.compareProgress().spp, 0u);
+
+  c.setCompare(true);
+  EXPECT_TRUE(c.compareEnabled());
+  EXPECT_EQ(c.compareRestartCount(), 1u);
+  // Equal shares of the machine: one thread each out of two.
+  EXPECT_EQ(c.engineThreads(), 1);
+  EXPECT_EQ(c.engine().threadCount(), 1);
+  EXPECT_EQ(c.compareEngine().threadCount(), 1);
+  // Same scene object and settings, only the integrator differs.
+  ASSERT_TRUE(c.compareEngine().job());
+  EXPECT_EQ(c.compareEngine().job()->scene.get(), c.scene().scene.get());
+  EXPECT_EQ(c.compareEngine().job()->settings.integrator.measure, DirectMeasure::Area);
+  EXPECT_EQ(c.engine().job()->settings.integrator.measure, DirectMeasure::SolidAngle);
+  EXPECT_EQ(c.compareEngine().job()->settings.camera.toWorld, c.settings().camera.toWorld);
+
+  // Both spp counters grow; both snapshots are published.
+  ASSERT_TRUE(waitUntil([&] { return c.progress().spp >= 3 && c.compareProgress().spp >= 3; }));
+  uint32_t a = c.progress().spp, b = c.compareProgress().spp;
+  ASSERT_TRUE(waitUntil([&] { return c.progress().spp >= a + 2 && c.compareProgress().spp >= b + 2; }));
+  ASSERT_TRUE(waitUntil([&] {
+    c.pollSnapshot(false);
+    return c.snapshot().spp >= 1 && c.compareSnapshot().spp >= 1;
+  }));
+  EXPECT_EQ(c.compareSnapshot().mean.width, c.snapshot().mean.width);
+  EXPECT_EQ(c.compareSnapshot().mean.height, c.snapshot().mean.height);
+
+  // Disabling stops the second accumulation; the left one goes back to all threads.
+  uint64_t leftRestarts = c.restartCount();
+  c.setCompare(false);
+  EXPECT_FALSE(c.compareEnabled());
+  EXPECT_TRUE(c.compareProgress().finished);
+  uint32_t stopped = c.compareProgress().spp;
+  EXPECT_EQ(c.restartCount(), leftRestarts + 1);
+  EXPECT_EQ(c.engine().threadCount(), 2);
+  ASSERT_TRUE(waitUntil([&] { return c.progress().spp >= 3; }));
+  EXPECT_EQ(c.compareProgress().spp, stopped);
+  EXPECT_TRUE(c.compareSnapshot().mean.empty());
+}
+
+TEST(ViewerCompare, ChangingOneSidesStrategyRestartsOnlyThatSide) {
+  ui::ViewerController c(smallDefaultScene(), {}, 2);
+  c.setCompareIntegrator(directWith(DirectMeasure::Area));
+  c.setCompare(true);
+  ASSERT_TRUE(waitUntil([&] { return c.progress().spp >= 3 && c.compareProgress().spp >= 3; }));
+
+  // Left strategy: the left restarts, the right keeps accumulating.
+  uint64_t left = c.restartCount(), right = c.compareRestartCount();
+  uint32_t rightSpp = c.compareProgress().spp;
+  RenderSettings s = c.settings();
+  s.integrator.measure = DirectMeasure::Hemisphere;
+  s.integrator.warp = HemisphereWarp::Uniform;
+  c.setSettings(s);
+  EXPECT_EQ(c.restartCount(), left + 1);
+  EXPECT_EQ(c.compareRestartCount(), right);
+  EXPECT_GE(c.compareProgress().spp, rightSpp);
+  ASSERT_TRUE(waitUntil([&] { return c.compareProgress().spp >= rightSpp + 2; }));
+  EXPECT_EQ(c.engine().job()->settings.integrator.measure, DirectMeasure::Hemisphere);
+  EXPECT_EQ(c.compareEngine().job()->settings.integrator.measure, DirectMeasure::Area);
+
+  // Right strategy: only the right restarts.
+  ASSERT_TRUE(waitUntil([&] { return c.progress().spp >= 3; }));
+  uint32_t leftSpp = c.progress().spp;
+  left = c.restartCount();
+  c.setCompareIntegrator(directWith(DirectMeasure::SolidAngle));
+  EXPECT_EQ(c.restartCount(), left);
+  EXPECT_EQ(c.compareRestartCount(), right + 1);
+  EXPECT_GE(c.progress().spp, leftSpp);
+  EXPECT_EQ(c.compareEngine().job()->settings.integrator.measure, DirectMeasure::SolidAngle);
+
+  // The camera is shared: moving it restarts both sides.
+  right = c.compareRestartCount();
+  c.setFov(c.settings().camera.fovDegrees + 5.f);
+  EXPECT_EQ(c.restartCount(), left + 1);
+  EXPECT_EQ(c.compareRestartCount(), right + 1);
+  EXPECT_EQ(c.compareEngine().job()->settings.camera.fovDegrees, c.settings().camera.fovDegrees);
+}

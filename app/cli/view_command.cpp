@@ -33,6 +33,7 @@ struct ViewOptions {
   bool noWait = false;
   bool printLayout = false;
   int threads = 0;
+  std::string compare;
   std::string window;  // WxH
 };
 
@@ -52,6 +53,7 @@ constexpr const char* kFallbackScreenshot = "penumbra-view.png";
   if (o.printLayout) args.push_back("--print-layout");
   if (o.threads > 0) args.insert(args.end(), {"--threads", std::to_string(o.threads)});
   if (!o.window.empty()) args.insert(args.end(), {"--window", o.window});
+  if (!o.compare.empty()) args.insert(args.end(), {"--compare", o.compare});
   platform::execOffscreen(args);
 }
 
@@ -72,6 +74,7 @@ int runView(ViewOptions o) {
   vo.bench = o.bench;
   vo.threads = o.threads;
   vo.printLayout = o.printLayout;
+  vo.compare = o.compare;
   vo.screenshot = o.screenshot;
   if (offscreenBuild && vo.screenshot.empty() && !o.bench) vo.screenshot = kFallbackScreenshot;
   vo.frames = o.frames >= 0 ? o.frames : (offscreenBuild ? 3 : 0);
@@ -102,6 +105,9 @@ void addViewCommand(CLI::App& app, int& exitCode) {
                 "Measure UI frame time, restart latency and throughput lost to the UI");
   cmd->add_option("--threads", opts->threads, "Worker threads (default: all cores)")
       ->check(CLI::Range(1, 1024));
+  cmd->add_option("--compare", opts->compare,
+                  "Start in compare mode: this strategy (e.g. solid-angle) right of the divider, "
+                  "the scene's on the left, each with half of the threads");
   cmd->add_option("--window", opts->window, "Window / offscreen buffer size, e.g. 1280x800");
   cmd->add_flag("--print-layout", opts->printLayout, "Print where the image is drawn (for tests)")->group("");
   cmd->callback([opts, &exitCode] { exitCode = runView(*opts); });

@@ -12,6 +12,7 @@ const Shortcut kShortcuts[] = {
     {"+ / -", "exposure up / down by 1/2 stop"},
     {"H", "show / hide this help"},
     {"left drag", "orbit the camera about its target"},
+    {"left drag on the divider", "compare mode: move the split line"},
     {"right / middle drag", "pan the camera"},
     {"wheel", "dolly (Ctrl + wheel: zoom the display)"},
 };

@@ -63,12 +63,17 @@ ImageDisplay::ImageDisplay() {
   glGenVertexArrays(1, &vao_);
   makeTexture(mean_);
   makeTexture(stdErr_);
+  makeTexture(meanB_);
+  makeTexture(stdErrB_);
   meanW_ = meanH_ = errW_ = errH_ = 1;
+  meanBW_ = meanBH_ = errBW_ = errBH_ = 1;
 }
 
 ImageDisplay::~ImageDisplay() {
   glDeleteTextures(1, &mean_);
   glDeleteTextures(1, &stdErr_);
+  glDeleteTextures(1, &meanB_);
+  glDeleteTextures(1, &stdErrB_);
   glDeleteVertexArrays(1, &vao_);
   glDeleteProgram(program_);
 }
@@ -83,18 +88,38 @@ void ImageDisplay::upload(const FilmSnapshot& snapshot) {
   ++uploads_;
 }
 
+void ImageDisplay::uploadCompare(const FilmSnapshot& snapshot) {
+  if (snapshot.mean.empty()) return;
+  uploadImage(meanB_, snapshot.mean, meanBW_, meanBH_);
+  if (!snapshot.standardError.empty()) uploadImage(stdErrB_, snapshot.standardError, errBW_, errBH_);
+}
+
+void ImageDisplay::clearCompare() {
+  const Image none(1, 1);
+  uploadImage(meanB_, none, meanBW_, meanBH_);
+  uploadImage(stdErrB_, none, errBW_, errBH_);
+}
+
 void ImageDisplay::draw(const DisplaySettings& d, const ImageLayout& l, int fbWidth, int fbHeight) const {
   glViewport(0, 0, fbWidth, fbHeight);
   glDisable(GL_BLEND);
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_SCISSOR_TEST);
   glUseProgram(program_);
+  glActiveTexture(GL_TEXTURE3);
+  glBindTexture(GL_TEXTURE_2D, stdErrB_);
+  glActiveTexture(GL_TEXTURE2);
+  glBindTexture(GL_TEXTURE_2D, meanB_);
   glActiveTexture(GL_TEXTURE1);
   glBindTexture(GL_TEXTURE_2D, stdErr_);
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_2D, mean_);
   glUniform1i(glGetUniformLocation(program_, "uMean"), 0);
   glUniform1i(glGetUniformLocation(program_, "uStdErr"), 1);
+  glUniform1i(glGetUniformLocation(program_, "uMeanB"), 2);
+  glUniform1i(glGetUniformLocation(program_, "uStdErrB"), 3);
+  glUniform1i(glGetUniformLocation(program_, "uCompare"), dividerX > 0.f ? 1 : 0);
+  glUniform1f(glGetUniformLocation(program_, "uDividerX"), dividerX);
   glUniform2f(glGetUniformLocation(program_, "uTopLeft"), l.x, float(fbHeight) - l.y);
   glUniform1f(glGetUniformLocation(program_, "uZoom"), l.zoom);
   glUniform1f(glGetUniformLocation(program_, "uExposure"), d.exposure);

@@ -27,6 +27,12 @@ class ImageDisplay {
 
   // Uploads the snapshot's mean (and standard error when present).
   void upload(const FilmSnapshot& snapshot);
+  // Compare mode: the second strategy's snapshot, shown right of the divider.
+  void uploadCompare(const FilmSnapshot& snapshot);
+  // Forgets the compare image (compare mode turned off or restarted).
+  void clearCompare();
+  // Framebuffer x of the compare divider (<= 0: no compare view).
+  float dividerX = 0.f;
   // Draws the whole framebuffer: background plus the image per `layout` and the display settings.
   void draw(const DisplaySettings& d, const ImageLayout& layout, int fbWidth, int fbHeight) const;
   uint64_t uploads() const { return uploads_; }
@@ -34,6 +40,8 @@ class ImageDisplay {
  private:
   unsigned program_ = 0, vao_ = 0, mean_ = 0, stdErr_ = 0;
   int meanW_ = 0, meanH_ = 0, errW_ = 0, errH_ = 0;
+  unsigned meanB_ = 0, stdErrB_ = 0;
+  int meanBW_ = 0, meanBH_ = 0, errBW_ = 0, errBH_ = 0;
   bool hasImage_ = false;
   uint64_t uploads_ = 0;
 };

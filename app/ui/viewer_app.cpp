@@ -15,6 +15,8 @@
 #include "app/ui/image_display.h"
 #include "app/ui/panels.h"
 #include "app/ui/warp_inspector.h"
+#include "core/analysis/convergence.h"
+#include "core/analysis/error_metrics.h"
 #include "core/image/image_io.h"
 #include "core/image/tonemap.h"
 #include "core/math/error.h"
@@ -45,7 +47,16 @@ class ViewerApp {
     platform_.pollEvents();
     c_.checkFileChanged();
     bool wantError = c_.display.falseColour == FalseColour::RelativeError || st_.hoverValid;
-    if (c_.pollSnapshot(wantError)) display_.upload(c_.snapshot());
+    if (c_.pollSnapshot(wantError)) {
+      display_.upload(c_.snapshot());
+      if (c_.compareEnabled()) display_.uploadCompare(c_.compareSnapshot());
+    }
+    if (c_.compareEnabled() != compareShown_ || c_.compareRestartCount() != compareRestart_) {
+      display_.clearCompare();  // never show the other strategy's old image on the right
+      if (c_.compareEnabled()) display_.uploadCompare(c_.compareSnapshot());
+      compareShown_ = c_.compareEnabled();
+      compareRestart_ = c_.compareRestartCount();
+    }
 
     platform_.beginFrame();
     ImGui::NewFrame();
@@ -54,7 +65,9 @@ class ViewerApp {
     layout_ = layoutImage(c_.display, c_.settings().camera.width, c_.settings().camera.height, kSidebarWidth,
                           std::max(fbW - kSidebarWidth, 1), fbH);
     handleInput();
+    display_.dividerX = c_.compareEnabled() ? dividerScreenX() : 0.f;
     drawPanels(fbH);
+    if (c_.compareEnabled()) drawCompareLabels();
     ImGui::Render();
 
     glClearColor(0.16f, 0.16f, 0.17f, 1.f);
@@ -76,8 +89,77 @@ class ViewerApp {
   const ImageDisplay& display() const { return display_; }
 
  private:
+  float dividerScreenX() const {
+    return layout_.x + std::clamp(c_.display.compareDivider, 0.f, 1.f) * layout_.width * layout_.zoom;
+  }
+
+  // RMSE of a side against the Convergence panel's reference, recomputed when its snapshot changes.
+  struct SideError {
+    uint64_t version = ~0ull;
+    uint32_t spp = ~0u;
+    const Image* ref = nullptr;
+    double rmse = -1;
+  };
+  double sideRmse(const FilmSnapshot& snap, SideError& cache) {
+    const ConvergenceTracker& t = st_.convergence;
+    if (!t.hasReference() || snap.mean.empty() || snap.spp == 0) return -1;
+    const Reference& ref = t.reference();
+    if (cache.version == snap.version && cache.spp == snap.spp && cache.ref == &ref.mean) return cache.rmse;
+    cache.version = snap.version, cache.spp = snap.spp, cache.ref = &ref.mean;
+    try {
+      cache.rmse = computeErrors(snap.mean, ref.mean, ref.standardError).all.rmse;
+    } catch (const std::exception&) {
+      cache.rmse = -1;
+    }
+    return cache.rmse;
+  }
+
+  // "strategy  N spp  T s  RMSE E" above each side of the split image.
+  void drawCompareLabels() {
+    ImDrawList* dl = ImGui::GetForegroundDrawList();
+    auto label = [&](const IntegratorDesc& d, const FilmSnapshot& snap, SideError& cache) {
+      char buf[160];
+      double e = sideRmse(snap, cache);
+      int n = std::snprintf(buf, sizeof buf, "%s  %u spp  %.2f s", strategyLabel(d).c_str(), snap.spp,
+                            snap.seconds);
+      if (e >= 0) std::snprintf(buf + n, sizeof buf - n, "  RMSE %.4g", e);
+      return std::string(buf);
+    };
+    IntegratorDesc right = c_.compareIntegrator();
+    if (right.type == IntegratorType::Direct && !c_.sceneHasAreaLights()) right.measure = DirectMeasure::Hemisphere;
+    std::string a = label(c_.settings().integrator, c_.snapshot(), leftError_);
+    std::string b = label(right, c_.compareSnapshot(), rightError_);
+    // Left label at the image's top-left corner, right label at its top-right corner (one line lower
+    // when they would overlap), both clipped to the visible image area.
+    float x0 = std::max(layout_.x, float(kSidebarWidth)) + 6.f;
+    float x1 = std::min(layout_.x + layout_.width * layout_.zoom, ImGui::GetIO().DisplaySize.x) - 6.f;
+    float y = std::max(layout_.y, 0.f) + 6.f;
+    ImVec2 sa = ImGui::CalcTextSize(a.c_str()), sb = ImGui::CalcTextSize(b.c_str());
+    ImVec2 pa(x0, y), pb(std::max(x1 - sb.x, x0), y);
+    if (pb.x < pa.x + sa.x + 12.f) pb.y += sa.y + 6.f;
+    const ImU32 bg = IM_COL32(0, 0, 0, 170), fg = IM_COL32(235, 235, 235, 255);
+    dl->AddRectFilled(ImVec2(pa.x - 3, pa.y - 2), ImVec2(pa.x + sa.x + 3, pa.y + sa.y + 2), bg);
+    dl->AddText(pa, fg, a.c_str());
+    dl->AddRectFilled(ImVec2(pb.x - 3, pb.y - 2), ImVec2(pb.x + sb.x + 3, pb.y + sb.y + 2), bg);
+    dl->AddText(pb, fg, b.c_str());
+  }
+
   void handleInput() {
     ImGuiIO& io = ImGui::GetIO();
+    // Compare divider: a left drag that starts within a few pixels of it moves it (not the camera).
+    if (!c_.compareEnabled()) draggingDivider_ = false;
+    if (c_.compareEnabled() && layout_.width > 0 && !io.WantCaptureMouse) {
+      ImVec2 p = io.MousePos;
+      bool nearDivider = std::abs(p.x - dividerScreenX()) <= 6.f && p.y >= layout_.y &&
+                         p.y < layout_.y + layout_.height * layout_.zoom;
+      if (nearDivider || draggingDivider_) ImGui::SetMouseCursor(ImGuiMouseCursor_ResizeEW);
+      if (ImGui::IsMouseClicked(ImGuiMouseButton_Left) && nearDivider) draggingDivider_ = true;
+    }
+    if (!ImGui::IsMouseDown(ImGuiMouseButton_Left)) draggingDivider_ = false;
+    if (draggingDivider_) {
+      float w = std::max(layout_.width * layout_.zoom, 1.f);
+      c_.display.compareDivider = std::clamp((io.MousePos.x - layout_.x) / w, 0.f, 1.f);
+    }
     // Pixel inspector and camera: only when the cursor is over the image area, not over a panel.
     st_.hoverValid = false;
     ImVec2 m = io.MousePos;
@@ -94,7 +176,8 @@ class ViewerApp {
     }
     if (!io.WantCaptureMouse) {
       ImVec2 d = io.MouseDelta;
-      if (ImGui::IsMouseDragging(ImGuiMouseButton_Left) && (d.x != 0 || d.y != 0)) c_.orbit(d.x, d.y);
+      if (ImGui::IsMouseDragging(ImGuiMouseButton_Left) && !draggingDivider_ && (d.x != 0 || d.y != 0))
+        c_.orbit(d.x, d.y);
       if ((ImGui::IsMouseDragging(ImGuiMouseButton_Right) ||
            ImGui::IsMouseDragging(ImGuiMouseButton_Middle)) &&
           (d.x != 0 || d.y != 0))
@@ -182,6 +265,10 @@ class ViewerApp {
   ImageLayout layout_;
   std::unique_ptr<WarpInspector> warpInspector_;  // created when first opened
   bool showWarpInspector_ = false;
+  bool draggingDivider_ = false;
+  bool compareShown_ = false;
+  uint64_t compareRestart_ = 0;
+  SideError leftError_, rightError_;
 };
 
 double median(std::vector<double> v) {
@@ -289,7 +376,14 @@ int runViewer(LoadedScene scene, ViewerController::Overrides overrides, const Vi
   {
     std::unique_ptr<platform::Platform> p = platform::createPlatform(wo);
     ViewerApp app(*p, controller);
-    controller.start();
+    if (!o.compare.empty()) {
+      std::vector<IntegratorDesc> d = parseStrategies(controller.settings().integrator, o.compare);
+      if (d.size() != 1) throw Error("--compare " + o.compare + ": expected one strategy");
+      controller.setCompareIntegrator(d[0]);
+      controller.setCompare(true);  // starts both sides
+    } else {
+      controller.start();
+    }
     if (o.bench) {
       rc = runBench(*p, controller, app, std::max(o.frames, 60));
     } else {
@@ -297,7 +391,9 @@ int runViewer(LoadedScene scene, ViewerController::Overrides overrides, const Vi
       for (int frame = 0; !p->shouldClose() && (o.frames <= 0 || frame < o.frames); ++frame) {
         if (o.waitForTarget && o.frames > 0 && frame == o.frames - 1) {
           // Last frame: let the accumulation reach its limit first (bounded wait).
-          while (!controller.progress().finished && msSince(t0) < 120000)
+          while ((!controller.progress().finished ||
+                  (controller.compareEnabled() && !controller.compareProgress().finished)) &&
+                 msSince(t0) < 120000)
             std::this_thread::sleep_for(std::chrono::milliseconds(5));
           app.frame();  // picks up the final snapshot
         }

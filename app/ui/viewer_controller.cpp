@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <thread>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -33,6 +34,7 @@ ViewerController::ViewerController(LoadedScene scene, Overrides overrides, int t
 }
 
 ViewerController::~ViewerController() {
+  compareEngine_.cancel();
   engine_.cancel();
 }
 
@@ -64,42 +66,94 @@ void ViewerController::initOrbitFromCamera() {
   orbit_.target = origin + forward * distance;
 }
 
+int ViewerController::engineThreads() const {
+  if (!compare_) return threads_;
+  int all = threads_ > 0 ? threads_ : int(std::max(1u, std::thread::hardware_concurrency()));
+  return std::max(1, all / 2);
+}
+
 void ViewerController::start() {
+  startLeft();
+  if (compare_) startCompare();
+}
+
+void ViewerController::startLeft() {
   auto job = std::make_shared<RenderJob>();
   job->scene = scene_.scene;
   job->settings = settings_;
   bool wasPaused = engine_.paused();
   RenderLimits limits = limits_;
   limits.preview = true;  // a coarse first frame within milliseconds of any change
-  engine_.start(std::move(job), limits, threads_);
+  engine_.start(std::move(job), limits, engineThreads());
   if (wasPaused) engine_.setPaused(true);
   ++restarts_;
 }
 
-void ViewerController::setPaused(bool paused) {
-  engine_.setPaused(paused);
+void ViewerController::startCompare() {
+  auto job = std::make_shared<RenderJob>();
+  job->scene = scene_.scene;
+  job->settings = settings_;
+  job->settings.integrator = compareIntegrator_;
+  if (job->settings.integrator.type == IntegratorType::Direct && !sceneHasAreaLights())
+    job->settings.integrator.measure = DirectMeasure::Hemisphere;
+  bool wasPaused = engine_.paused();
+  RenderLimits limits = limits_;
+  limits.preview = true;
+  compareEngine_.start(std::move(job), limits, engineThreads());
+  if (wasPaused) compareEngine_.setPaused(true);
+  compareSnapshot_ = FilmSnapshot{};
+  ++compareRestarts_;
 }
 
-bool ViewerController::pollSnapshot(bool wantStandardError) {
-  engine_.requestSnapshot(wantStandardError);
-  bool changed = false;
-  if (engine_.latestSnapshot(snapshot_)) {
-    snapshotRestart_ = restarts_;
-    changed = true;
+void ViewerController::setCompare(bool on) {
+  if (on == compare_) return;
+  compare_ = on;
+  if (!on) {
+    compareEngine_.cancel();
+    compareSnapshot_ = FilmSnapshot{};
   }
+  start();  // both sides start together with their (new) share of the threads
+}
+
+void ViewerController::setCompareIntegrator(const IntegratorDesc& d) {
+  const IntegratorDesc& o = compareIntegrator_;
+  if (d.type == o.type && d.samples == o.samples && d.measure == o.measure && d.warp == o.warp) return;
+  compareIntegrator_ = d;
+  if (compare_) startCompare();
+}
+
+void ViewerController::setPaused(bool paused) {
+  engine_.setPaused(paused);
+  if (compare_) compareEngine_.setPaused(paused);
+}
+
+namespace {
+
+// Fetches the engine's newest snapshot into `snap`; true when it changed.
+bool pollEngine(Engine& engine, FilmSnapshot& snap, bool wantStandardError) {
+  engine.requestSnapshot(wantStandardError);
+  bool changed = engine.latestSnapshot(snap);
   // The engine publishes only at pass boundaries where a snapshot was requested, so the final pass of
   // a finished accumulation may not have been published: read it from the (now idle) film.
-  RenderProgress p = engine_.progress();
-  bool needError = wantStandardError && snapshot_.standardError.empty() && p.spp >= 2;
-  if (p.finished && p.spp > 0 && (snapshot_.spp != p.spp || needError || snapshot_.mean.empty())) {
-    engine_.wait();
-    snapshot_.mean = engine_.film().mean(p.spp);
-    snapshot_.standardError = wantStandardError ? engine_.film().standardError(p.spp) : Image();
-    snapshot_.spp = p.spp;
-    snapshot_.seconds = p.seconds;
-    snapshotRestart_ = restarts_;
+  RenderProgress p = engine.progress();
+  bool needError = wantStandardError && snap.standardError.empty() && p.spp >= 2;
+  if (p.finished && p.spp > 0 && (snap.spp != p.spp || needError || snap.mean.empty())) {
+    engine.wait();
+    snap.mean = engine.film().mean(p.spp);
+    snap.standardError = wantStandardError ? engine.film().standardError(p.spp) : Image();
+    snap.spp = p.spp;
+    snap.seconds = p.seconds;
     changed = true;
   }
+  return changed;
+}
+
+}  // namespace
+
+bool ViewerController::pollSnapshot(bool wantStandardError) {
+  bool changed = pollEngine(engine_, snapshot_, wantStandardError);
+  if (changed) snapshotRestart_ = restarts_;
+  if (compare_ && pollEngine(compareEngine_, compareSnapshot_, wantStandardError)) changed = true;
   return changed;
 }
 
@@ -115,15 +169,22 @@ static bool sameSettings(const RenderSettings& a, const RenderSettings& b) {
 
 void ViewerController::setSettings(const RenderSettings& s) {
   if (sameSettings(s, settings_)) return;
+  RenderSettings sameIntegrator = s;
+  sameIntegrator.integrator = settings_.integrator;
+  bool onlyIntegrator = sameSettings(sameIntegrator, settings_);
   settings_ = s;
-  start();
+  if (compare_ && onlyIntegrator)
+    startLeft();  // the right side renders its own strategy: keep its accumulation
+  else
+    start();
 }
 
 void ViewerController::setLimits(const RenderLimits& l) {
   if (l.targetSpp == limits_.targetSpp && l.seconds == limits_.seconds) return;
   limits_ = l;
   useTimeBudget_ = l.seconds > 0;
-  if (!engine_.extend(limits_)) start();  // a new target continues the accumulation
+  if (!engine_.extend(limits_)) startLeft();  // a new target continues the accumulation
+  if (compare_ && !compareEngine_.extend(limits_)) startCompare();
 }
 
 // ---- camera ---------------------------------------------------------------------------------------

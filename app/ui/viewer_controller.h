@@ -27,6 +27,7 @@ struct DisplaySettings {
   float zoom = 1.f;              // screen pixels per image pixel
   float panX = 0.f, panY = 0.f;  // image offset from the centred position, screen pixels
   bool fit = true;               // zoom follows the image area until the user zooms
+  float compareDivider = 0.5f;   // compare mode: divider position as a fraction of the image width
 };
 
 // Orbit camera state derived from a Nori toWorld (columns: left, up, forward, origin).
@@ -59,6 +60,23 @@ class ViewerController {
   const FilmSnapshot& snapshot() const { return snapshot_; }
   // Restart counter value the current snapshot belongs to.
   uint64_t snapshotRestart() const { return snapshotRestart_; }
+
+  // ---- compare mode (issue 6) -----------------------------------------------------------------
+  // A second Engine renders the same scene, camera and sampler with `compareIntegrator()`; the image
+  // shows it right of the divider. While it is on, each engine gets half of the threads (at least
+  // one), so both strategies get equal shares of time. Enabling or disabling restarts both sides;
+  // changing only the left integrator restarts only the left side, and setCompareIntegrator only
+  // the right side.
+  void setCompare(bool on);
+  bool compareEnabled() const { return compare_; }
+  const IntegratorDesc& compareIntegrator() const { return compareIntegrator_; }
+  void setCompareIntegrator(const IntegratorDesc& d);
+  RenderProgress compareProgress() const { return compareEngine_.progress(); }
+  const FilmSnapshot& compareSnapshot() const { return compareSnapshot_; }
+  uint64_t compareRestartCount() const { return compareRestarts_; }
+  Engine& compareEngine() { return compareEngine_; }
+  // Threads per engine in the current mode.
+  int engineThreads() const;
 
   // ---- live settings (any change restarts accumulation; geometry is never rebuilt) -------------
   const RenderSettings& settings() const { return settings_; }
@@ -105,6 +123,8 @@ class ViewerController {
  private:
   void adoptScene(LoadedScene loaded);
   void initOrbitFromCamera();
+  void startLeft();
+  void startCompare();
   void applyOrbit(const Vec3& origin);
   std::filesystem::file_time_type mtimeOf(const std::string& path) const;
   void rememberRecent(const std::string& path);
@@ -120,6 +140,12 @@ class ViewerController {
   FilmSnapshot snapshot_;
   uint64_t restarts_ = 0;
   uint64_t snapshotRestart_ = 0;
+  bool compare_ = false;
+  IntegratorDesc compareIntegrator_{IntegratorType::Direct, 1, DirectMeasure::SolidAngle,
+                                    HemisphereWarp::Cosine};
+  Engine compareEngine_;
+  FilmSnapshot compareSnapshot_;
+  uint64_t compareRestarts_ = 0;
   std::string sceneError_;
   std::vector<std::string> recent_;
   std::filesystem::file_time_type sceneMtime_{};
