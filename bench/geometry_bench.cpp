@@ -10,20 +10,12 @@
 #include "core/geometry/procedural_mesh.h"
 #include "core/geometry/scene_geometry.h"
 #include "core/math/float_util.h"
+#include "core/sampling/random_unit.h"
 
 namespace penumbra {
 namespace {
 
 constexpr int kRayCount = 1 << 14;
-
-Vec3 randomUnit(std::mt19937& rng) {
-  std::normal_distribution<float> n;
-  for (;;) {
-    Vec3 v(n(rng), n(rng), n(rng));
-    float l = glm::length(v);
-    if (l > 1e-3f) return v / l;
-  }
-}
 
 // The hw2 sphere-area scene: a unit sphere on a 200×200 two-triangle plane, a small sphere light.
 SceneGeometry twoSpheresAndPlane(AccelMode mode = AccelMode::Auto) {

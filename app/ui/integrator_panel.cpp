@@ -64,8 +64,10 @@ void drawIntegratorPanel(ViewerController& c, PanelState&) {
     IntegratorDesc desc;
   };
   const Choice choices[] = {
-      {"direct/uniform-hemisphere", {IntegratorType::Direct, r.samples, DirectMeasure::Hemisphere, HemisphereWarp::Uniform}},
-      {"direct/cosine-hemisphere", {IntegratorType::Direct, r.samples, DirectMeasure::Hemisphere, HemisphereWarp::Cosine}},
+      {"direct/uniform-hemisphere",
+       {IntegratorType::Direct, r.samples, DirectMeasure::Hemisphere, HemisphereWarp::Uniform}},
+      {"direct/cosine-hemisphere",
+       {IntegratorType::Direct, r.samples, DirectMeasure::Hemisphere, HemisphereWarp::Cosine}},
       {"direct/area", {IntegratorType::Direct, r.samples, DirectMeasure::Area, r.warp}},
       {"direct/solid-angle", {IntegratorType::Direct, r.samples, DirectMeasure::SolidAngle, r.warp}},
       {"ao/uniform", {IntegratorType::Ao, r.samples, r.measure, HemisphereWarp::Uniform}},

@@ -126,7 +126,8 @@ class ViewerApp {
       return std::string(buf);
     };
     IntegratorDesc right = c_.compareIntegrator();
-    if (right.type == IntegratorType::Direct && !c_.sceneHasAreaLights()) right.measure = DirectMeasure::Hemisphere;
+    if (right.type == IntegratorType::Direct && !c_.sceneHasAreaLights())
+      right.measure = DirectMeasure::Hemisphere;
     std::string a = label(c_.settings().integrator, c_.snapshot(), leftError_);
     std::string b = label(right, c_.compareSnapshot(), rightError_);
     // Left label at the image's top-left corner, right label at its top-right corner (one line lower

@@ -16,7 +16,7 @@ struct ViewerOptions {
   bool waitForTarget = false;  // before the screenshot, wait until the accumulation reaches its limit
   int windowWidth = 0, windowHeight = 0;  // 0: fit the image beside the panels
   int threads = 0;
-  std::string compare;  // non-empty: start in compare mode with this strategy on the right
+  std::string compare;       // non-empty: start in compare mode with this strategy on the right
   bool printLayout = false;  // print "image-rect X Y W H ZOOM" (tests)
 };
 

@@ -1,4 +1,5 @@
 #include "core/geometry/scene_geometry.h"
+#include "core/sampling/random_unit.h"
 
 #include <gtest/gtest.h>
 
@@ -12,15 +13,6 @@
 
 namespace penumbra {
 namespace {
-
-Vec3 randomUnit(std::mt19937& rng) {
-  std::normal_distribution<float> n;
-  for (;;) {
-    Vec3 v(n(rng), n(rng), n(rng));
-    float l = glm::length(v);
-    if (l > 1e-3f) return v / l;
-  }
-}
 
 SceneGeometry rockScene(AccelMode mode, int subdivisions) {
   SceneGeometry g;

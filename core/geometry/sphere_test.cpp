@@ -1,4 +1,5 @@
 #include "core/geometry/sphere.h"
+#include "core/sampling/random_unit.h"
 
 #include <gtest/gtest.h>
 
@@ -9,15 +10,6 @@
 
 namespace penumbra {
 namespace {
-
-Vec3 randomUnit(std::mt19937& rng) {
-  std::normal_distribution<float> n;
-  for (;;) {
-    Vec3 v(n(rng), n(rng), n(rng));
-    float l = glm::length(v);
-    if (l > 1e-3f) return v / l;
-  }
-}
 
 // |p − c| − r relative to the magnitudes involved, in float ulps.
 double onSphereError(const Sphere& s, const Vec3& p) {
