@@ -19,8 +19,8 @@ float fromBits(std::uint32_t b) {
   return t;
 }
 
-// Blue → cyan → green → yellow → red, as display.frag's ramp().
-void ramp(float t, std::uint8_t* out) {
+// Blue → cyan → green → yellow → red, as display.frag's ramp(); `out` in the order of `o`.
+void ramp(float t, std::uint8_t* out, PixelOrder o) {
   t = std::clamp(t, 0.f, 1.f) * 4.f;
   float r, g, b;
   if (t < 1.f)
@@ -31,9 +31,10 @@ void ramp(float t, std::uint8_t* out) {
     r = t - 2.f, g = 1.f, b = 0.f;
   else
     r = 1.f, g = 4.f - t, b = 0.f;
-  out[0] = std::uint8_t(r * 255.f + 0.5f);
+  const bool bgra = o == PixelOrder::Bgra;
+  out[bgra ? 2 : 0] = std::uint8_t(r * 255.f + 0.5f);
   out[1] = std::uint8_t(g * 255.f + 0.5f);
-  out[2] = std::uint8_t(b * 255.f + 0.5f);
+  out[bgra ? 0 : 2] = std::uint8_t(b * 255.f + 0.5f);
   out[3] = 255;
 }
 
@@ -44,7 +45,9 @@ float luminance(const float* c) {
 // The colour view for n pixels, one 32-bit store per pixel. NaN and Inf inputs (exponent all ones)
 // give 0, as do negative and zero exposed values; a value the exposure pushed past FLT_MAX is +inf,
 // which the table maps to 255, as display() does.
-void colourScalar(const float* m, std::size_t n, float scale, const std::uint32_t* tab, std::uint32_t* out) {
+void colourScalar(const float* m, std::size_t n, float scale, const std::uint32_t* tab, PixelOrder o,
+                  std::uint32_t* out) {
+  const int rShift = o == PixelOrder::Bgra ? 16 : 0, bShift = 16 - rShift;
   auto channel = [tab, scale](float v) -> std::uint32_t {
     std::uint32_t b;
     std::memcpy(&b, &v, sizeof b);
@@ -54,7 +57,7 @@ void colourScalar(const float* m, std::size_t n, float scale, const std::uint32_
     return (b >> 31) ? 0 : DisplayLevelTable::levelOfBits(tab, b);
   };
   for (std::size_t i = 0; i < n; ++i, m += 3)
-    out[i] = channel(m[0]) | channel(m[1]) << 8 | channel(m[2]) << 16 | 0xFF000000u;
+    out[i] = channel(m[0]) << rShift | channel(m[1]) << 8 | channel(m[2]) << bShift | 0xFF000000u;
 }
 
 bool haveAvx2() {
@@ -81,10 +84,13 @@ __attribute__((target("avx2"))) inline __m128i levelsAvx2(__m128 v, __m128 scale
 // colourScalar 4 pixels (12 channels) at a time, with AVX2 gathers from the table; returns the number
 // of pixels done (a multiple of 4). Same results, bit for bit.
 __attribute__((target("avx2"))) std::size_t colourAvx2(const float* m, std::size_t n, float scale,
-                                                       const std::uint32_t* tab, std::uint32_t* out) {
+                                                       const std::uint32_t* tab, PixelOrder o,
+                                                       std::uint32_t* out) {
   const __m128 vscale = _mm_set1_ps(scale);
-  // 12 levels r0 g0 b0 r1 .. b3 as bytes 0..11 → four RGBA pixels, alpha 255.
-  const __m128i spread = _mm_setr_epi8(0, 1, 2, -1, 3, 4, 5, -1, 6, 7, 8, -1, 9, 10, 11, -1);
+  // 12 levels r0 g0 b0 r1 .. b3 as bytes 0..11 → four RGBA (or BGRA) pixels, alpha 255.
+  const __m128i spread = o == PixelOrder::Bgra
+                             ? _mm_setr_epi8(2, 1, 0, -1, 5, 4, 3, -1, 8, 7, 6, -1, 11, 10, 9, -1)
+                             : _mm_setr_epi8(0, 1, 2, -1, 3, 4, 5, -1, 6, 7, 8, -1, 9, 10, 11, -1);
   const __m128i alpha = _mm_set1_epi32(int(0xFF000000u));
   const std::size_t groups = n / 4;
   for (std::size_t g = 0; g < groups; ++g, m += 12) {
@@ -126,7 +132,8 @@ DisplayLevelTable::DisplayLevelTable(Tonemap curve) : curve_(curve) {
 }
 
 void tonemapForDisplay(const Image& mean, const Image& standardError, const DisplaySettings& d,
-                       const DisplayLevelTable& table, std::vector<std::uint8_t>& rgba) {
+                       const DisplayLevelTable& table, PixelOrder order, std::vector<std::uint8_t>& rgba) {
+  const int ri = order == PixelOrder::Bgra ? 2 : 0, bi = 2 - ri;  // byte of red, of blue
   const std::size_t n = std::size_t(mean.width) * std::size_t(mean.height);
   rgba.resize(n * 4);
   const float scale = std::exp2(d.exposure);
@@ -151,7 +158,7 @@ void tonemapForDisplay(const Image& mean, const Image& standardError, const Disp
         continue;
       }
       float r = luminance(e + 3 * i) / lm;
-      ramp((std::log10(std::max(r, 1e-3f)) + 3.f) / 3.f, o);
+      ramp((std::log10(std::max(r, 1e-3f)) + 3.f) / 3.f, o, order);
     }
     return;
   }
@@ -162,9 +169,9 @@ void tonemapForDisplay(const Image& mean, const Image& standardError, const Disp
       bool negative = m[0] < 0.f || m[1] < 0.f || m[2] < 0.f;
       o[3] = 255;
       if (nonFinite) {
-        o[0] = 255, o[1] = 0, o[2] = 255;
+        o[ri] = 255, o[1] = 0, o[bi] = 255;
       } else if (negative) {
-        o[0] = 0, o[1] = 255, o[2] = 255;
+        o[ri] = 0, o[1] = 255, o[bi] = 255;
       } else {
         float c[3] = {level(m[0]) / 255.f, level(m[1]) / 255.f, level(m[2]) / 255.f};
         o[0] = o[1] = o[2] = std::uint8_t(luminance(c) * 0.6f * 255.f + 0.5f);
@@ -174,9 +181,9 @@ void tonemapForDisplay(const Image& mean, const Image& standardError, const Disp
   }
   // The colour view.
   const std::uint32_t* tab = table.data();
-  std::uint32_t* out = reinterpret_cast<std::uint32_t*>(rgba.data());  // RGBA bytes, little-endian
-  std::size_t done = gSimd ? colourAvx2(m, n, scale, tab, out) : 0;
-  colourScalar(m + 3 * done, n - done, scale, tab, out + done);
+  std::uint32_t* out = reinterpret_cast<std::uint32_t*>(rgba.data());  // 4 bytes, little-endian
+  std::size_t done = gSimd ? colourAvx2(m, n, scale, tab, order, out) : 0;
+  colourScalar(m + 3 * done, n - done, scale, tab, order, out + done);
 }
 
 bool displayTonemapSimd() {

@@ -73,22 +73,23 @@ TEST(DisplayTonemap, ColourViewEqualsToSrgb8WithExposure) {
   img.rgb.back() = std::numeric_limits<float>::quiet_NaN();  // in the tail
   DisplayLevelTable table(Tonemap::Srgb);
   for (bool simd : {true, false})
-    for (float exposure : {0.f, 1.5f, -3.25f, 10.f, 127.f}) {
-      setDisplayTonemapSimd(simd);
-      DisplaySettings d;
-      d.exposure = exposure;
-      std::vector<std::uint8_t> rgba;
-      tonemapForDisplay(img, Image(), d, table, rgba);
-      std::vector<std::uint8_t> ref = toSrgb8(img, exposure);
-      ASSERT_EQ(rgba.size(), size_t(img.width) * img.height * 4);
-      for (size_t p = 0; p < size_t(img.width) * img.height; ++p) {
-        for (int c = 0; c < 3; ++c)
-          ASSERT_EQ(rgba[p * 4 + c], ref[p * 3 + c])
-              << "pixel " << p << " value " << img.rgb[p * 3 + c] << " exposure " << exposure << " simd "
-              << displayTonemapSimd();
-        ASSERT_EQ(rgba[p * 4 + 3], 255);
+    for (PixelOrder order : {PixelOrder::Rgba, PixelOrder::Bgra})
+      for (float exposure : {0.f, 1.5f, -3.25f, 10.f, 127.f}) {
+        setDisplayTonemapSimd(simd);
+        DisplaySettings d;
+        d.exposure = exposure;
+        std::vector<std::uint8_t> px;
+        tonemapForDisplay(img, Image(), d, table, order, px);
+        std::vector<std::uint8_t> ref = toSrgb8(img, exposure);
+        ASSERT_EQ(px.size(), size_t(img.width) * img.height * 4);
+        for (size_t p = 0; p < size_t(img.width) * img.height; ++p) {
+          for (int c = 0; c < 3; ++c)
+            ASSERT_EQ(px[p * 4 + (order == PixelOrder::Bgra ? 2 - c : c)], ref[p * 3 + c])
+                << "pixel " << p << " value " << img.rgb[p * 3 + c] << " exposure " << exposure << " simd "
+                << displayTonemapSimd();
+          ASSERT_EQ(px[p * 4 + 3], 255);
+        }
       }
-    }
   setDisplayTonemapSimd(true);
 }
 
@@ -102,18 +103,18 @@ TEST(DisplayTonemap, FalseColourViews) {
   DisplaySettings d;
   d.falseColour = FalseColour::RelativeError;
   DisplayLevelTable table(Tonemap::Srgb);
-  tonemapForDisplay(mean, err, d, table, rgba);
+  tonemapForDisplay(mean, err, d, table, PixelOrder::Rgba, rgba);
   EXPECT_EQ(rgba[0], 0);  // 0.1 %: blue
   EXPECT_EQ(rgba[1], 0);
   EXPECT_EQ(rgba[2], 255);
   EXPECT_EQ(rgba[4], 255);  // 100 %: red
   EXPECT_EQ(rgba[5], 0);
   EXPECT_EQ(rgba[6], 0);
-  tonemapForDisplay(mean, Image(), d, table, rgba);  // no standard error yet: black
+  tonemapForDisplay(mean, Image(), d, table, PixelOrder::Rgba, rgba);  // no standard error yet: black
   EXPECT_EQ(rgba[0] + rgba[1] + rgba[2], 0);
 
   d.falseColour = FalseColour::BadPixels;
-  tonemapForDisplay(mean, err, d, table, rgba);
+  tonemapForDisplay(mean, err, d, table, PixelOrder::Rgba, rgba);
   EXPECT_EQ(rgba[0], 153);  // white, dimmed to 60 %
   EXPECT_EQ(rgba[8], 255);  // NaN: magenta
   EXPECT_EQ(rgba[9], 0);
@@ -121,4 +122,8 @@ TEST(DisplayTonemap, FalseColourViews) {
   EXPECT_EQ(rgba[12], 0);  // negative: cyan
   EXPECT_EQ(rgba[13], 255);
   EXPECT_EQ(rgba[14], 255);
+  tonemapForDisplay(mean, err, d, table, PixelOrder::Bgra, rgba);
+  EXPECT_EQ(rgba[12], 255);  // cyan as BGRA
+  EXPECT_EQ(rgba[13], 255);
+  EXPECT_EQ(rgba[14], 0);
 }
