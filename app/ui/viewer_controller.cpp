@@ -136,7 +136,7 @@ namespace {
 // Fetches the engine's newest snapshot into `snap`; true when it changed.
 bool pollEngine(Engine& engine, FilmSnapshot& snap, bool wantStandardError) {
   engine.requestSnapshot(wantStandardError);
-  bool changed = engine.latestSnapshot(snap);
+  bool changed = engine.takeSnapshot(snap);  // the controller is each engine's only reader
   // The engine publishes only at pass boundaries where a snapshot was requested, so the final pass of
   // a finished accumulation may not have been published: read it from the (now idle) film.
   RenderProgress p = engine.progress();

@@ -211,6 +211,18 @@ bool Engine::latestSnapshot(FilmSnapshot& out) const {
   return true;
 }
 
+bool Engine::takeSnapshot(FilmSnapshot& out) {
+  std::lock_guard lk(snapshotMutex_);
+  if (snapshot_.version == out.version) return false;
+  std::swap(out.mean, snapshot_.mean);
+  std::swap(out.standardError, snapshot_.standardError);
+  out.version = snapshot_.version;
+  out.spp = snapshot_.spp;
+  out.seconds = snapshot_.seconds;
+  out.cpuSeconds = snapshot_.cpuSeconds;
+  return true;
+}
+
 void Engine::publishSnapshot() {
   uint32_t spp = spp_;
   bool withError = snapshotWantsError_.exchange(false);

@@ -106,6 +106,9 @@ class Engine {
   void requestSnapshot(bool withStandardError = false);
   // Copies the latest published snapshot into `out` if it is newer than out.version.
   bool latestSnapshot(FilmSnapshot& out) const;
+  // The same for the engine's only reader, without copying the images: swaps them with out's (the
+  // engine reuses out's old buffers for later snapshots). Afterwards latestSnapshot() must not be used.
+  bool takeSnapshot(FilmSnapshot& out);
 
   // Valid once the render has stopped (after wait() or cancel()).
   const Film& film() const { return film_; }

@@ -173,8 +173,9 @@ namespace penumbra {
 namespace {
 
 // A viewer that keeps asking gets every pass resolved row by row during the pass; those snapshots
-// equal the film resolved at the same spp (mean and standard error, bit for bit).
-TEST(Engine, StreamedSnapshotsEqualTheFilmAtTheirSpp) {
+// equal the film resolved at the same spp (mean and standard error, bit for bit), whether read by
+// copy (latestSnapshot) or by swapping buffers with the engine (takeSnapshot).
+void expectStreamedSnapshotsEqualTheFilm(bool take) {
   auto job = smallJob();
   Engine engine;
   RenderLimits limits{40, 0.0};
@@ -184,7 +185,8 @@ TEST(Engine, StreamedSnapshotsEqualTheFilmAtTheirSpp) {
   FilmSnapshot snap;
   while (!engine.progress().finished) {
     engine.requestSnapshot(true);
-    if (engine.latestSnapshot(snap) && snap.spp >= 2 && !snap.standardError.empty()) seen.push_back(snap);
+    bool got = take ? engine.takeSnapshot(snap) : engine.latestSnapshot(snap);
+    if (got && snap.spp >= 2 && !snap.standardError.empty()) seen.push_back(snap);
     std::this_thread::yield();
   }
   engine.wait();
@@ -197,6 +199,14 @@ TEST(Engine, StreamedSnapshotsEqualTheFilmAtTheirSpp) {
     EXPECT_EQ(s.mean.rgb, reference.film().mean(s.spp).rgb) << "spp " << s.spp;
     EXPECT_EQ(s.standardError.rgb, reference.film().standardError(s.spp).rgb) << "spp " << s.spp;
   }
+}
+
+TEST(Engine, StreamedSnapshotsEqualTheFilmAtTheirSpp) {
+  expectStreamedSnapshotsEqualTheFilm(false);
+}
+
+TEST(Engine, TakenSnapshotsEqualTheFilmAtTheirSpp) {
+  expectStreamedSnapshotsEqualTheFilm(true);
 }
 
 }  // namespace
