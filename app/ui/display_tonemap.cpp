@@ -132,10 +132,10 @@ DisplayLevelTable::DisplayLevelTable(Tonemap curve) : curve_(curve) {
 }
 
 void tonemapForDisplay(const Image& mean, const Image& standardError, const DisplaySettings& d,
-                       const DisplayLevelTable& table, PixelOrder order, std::vector<std::uint8_t>& rgba) {
+                       const DisplayLevelTable& table, PixelOrder order, std::vector<std::uint32_t>& pixels) {
   const int ri = order == PixelOrder::Bgra ? 2 : 0, bi = 2 - ri;  // byte of red, of blue
   const std::size_t n = std::size_t(mean.width) * std::size_t(mean.height);
-  rgba.resize(n * 4);
+  pixels.resize(n);
   const float scale = std::exp2(d.exposure);
   // display() of display.frag for one channel.
   auto level = [&](float linear) -> std::uint8_t {
@@ -145,7 +145,7 @@ void tonemapForDisplay(const Image& mean, const Image& standardError, const Disp
     return t > 0.f ? table(t) : 0;
   };
   const float* m = mean.rgb.data();
-  std::uint8_t* o = rgba.data();
+  std::uint8_t* o = reinterpret_cast<std::uint8_t*>(pixels.data());
 
   if (d.falseColour == FalseColour::RelativeError) {
     // Relative standard error of the luminance, log scale: 0.1 % (blue) … 100 % (red); black: no data.
@@ -181,7 +181,7 @@ void tonemapForDisplay(const Image& mean, const Image& standardError, const Disp
   }
   // The colour view.
   const std::uint32_t* tab = table.data();
-  std::uint32_t* out = reinterpret_cast<std::uint32_t*>(rgba.data());  // 4 bytes, little-endian
+  std::uint32_t* out = pixels.data();  // 4 bytes in memory order: little-endian
   std::size_t done = gSimd ? colourAvx2(m, n, scale, tab, order, out) : 0;
   colourScalar(m + 3 * done, n - done, scale, tab, order, out + done);
 }

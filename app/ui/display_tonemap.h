@@ -58,10 +58,11 @@ class DisplayLevelTable {
 enum class PixelOrder { Rgba, Bgra };
 
 // Tone maps `mean` (and `standardError` for the relative-error view; may be empty) into `pixels`
-// (width * height * 4 bytes in `order`, alpha 255, image row 0 first), as shaders/display.frag does
-// for `d.exposure`, `d.falseColour` and the table's curve. `table.curve()` must be `d.tonemap`.
+// (width * height pixels of 4 bytes in `order` in memory, alpha 255, image row 0 first), as
+// shaders/display.frag does for `d.exposure`, `d.falseColour` and the table's curve.
+// `table.curve()` must be `d.tonemap`.
 void tonemapForDisplay(const Image& mean, const Image& standardError, const DisplaySettings& d,
-                       const DisplayLevelTable& table, PixelOrder order, std::vector<std::uint8_t>& pixels);
+                       const DisplayLevelTable& table, PixelOrder order, std::vector<std::uint32_t>& pixels);
 
 // The colour view runs an AVX2 loop where the CPU has it (same results, bit for bit). For tests: whether
 // it is in use, and a switch to the portable loop (enabling has no effect without AVX2).

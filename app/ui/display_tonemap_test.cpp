@@ -78,10 +78,11 @@ TEST(DisplayTonemap, ColourViewEqualsToSrgb8WithExposure) {
         setDisplayTonemapSimd(simd);
         DisplaySettings d;
         d.exposure = exposure;
-        std::vector<std::uint8_t> px;
-        tonemapForDisplay(img, Image(), d, table, order, px);
+        std::vector<std::uint32_t> out;
+        tonemapForDisplay(img, Image(), d, table, order, out);
+        const std::uint8_t* px = reinterpret_cast<const std::uint8_t*>(out.data());
         std::vector<std::uint8_t> ref = toSrgb8(img, exposure);
-        ASSERT_EQ(px.size(), size_t(img.width) * img.height * 4);
+        ASSERT_EQ(out.size(), size_t(img.width) * img.height);
         for (size_t p = 0; p < size_t(img.width) * img.height; ++p) {
           for (int c = 0; c < 3; ++c)
             ASSERT_EQ(px[p * 4 + (order == PixelOrder::Bgra ? 2 - c : c)], ref[p * 3 + c])
@@ -99,22 +100,27 @@ TEST(DisplayTonemap, FalseColourViews) {
   float e[4] = {0.001f, 1.f, 0.f, 0.f};
   for (int x = 0; x < 4; ++x)
     for (int c = 0; c < 3; ++c) mean.rgb[x * 3 + c] = m[x], err.rgb[x * 3 + c] = e[x];
-  std::vector<std::uint8_t> rgba;
   DisplaySettings d;
   d.falseColour = FalseColour::RelativeError;
   DisplayLevelTable table(Tonemap::Srgb);
-  tonemapForDisplay(mean, err, d, table, PixelOrder::Rgba, rgba);
+  std::vector<std::uint32_t> out;
+  const std::uint8_t* rgba = nullptr;
+  auto tonemap = [&](const Image& e, PixelOrder order) {
+    tonemapForDisplay(mean, e, d, table, order, out);
+    rgba = reinterpret_cast<const std::uint8_t*>(out.data());
+  };
+  tonemap(err, PixelOrder::Rgba);
   EXPECT_EQ(rgba[0], 0);  // 0.1 %: blue
   EXPECT_EQ(rgba[1], 0);
   EXPECT_EQ(rgba[2], 255);
   EXPECT_EQ(rgba[4], 255);  // 100 %: red
   EXPECT_EQ(rgba[5], 0);
   EXPECT_EQ(rgba[6], 0);
-  tonemapForDisplay(mean, Image(), d, table, PixelOrder::Rgba, rgba);  // no standard error yet: black
+  tonemap(Image(), PixelOrder::Rgba);  // no standard error yet: black
   EXPECT_EQ(rgba[0] + rgba[1] + rgba[2], 0);
 
   d.falseColour = FalseColour::BadPixels;
-  tonemapForDisplay(mean, err, d, table, PixelOrder::Rgba, rgba);
+  tonemap(err, PixelOrder::Rgba);
   EXPECT_EQ(rgba[0], 153);  // white, dimmed to 60 %
   EXPECT_EQ(rgba[8], 255);  // NaN: magenta
   EXPECT_EQ(rgba[9], 0);
@@ -122,7 +128,7 @@ TEST(DisplayTonemap, FalseColourViews) {
   EXPECT_EQ(rgba[12], 0);  // negative: cyan
   EXPECT_EQ(rgba[13], 255);
   EXPECT_EQ(rgba[14], 255);
-  tonemapForDisplay(mean, err, d, table, PixelOrder::Bgra, rgba);
+  tonemap(err, PixelOrder::Bgra);
   EXPECT_EQ(rgba[12], 255);  // cyan as BGRA
   EXPECT_EQ(rgba[13], 255);
   EXPECT_EQ(rgba[14], 0);

@@ -101,56 +101,75 @@ ImageDisplay::ImageDisplay(Tonemapper t) : tonemapper_(t) {
   }
 }
 
-ImageDisplay::~ImageDisplay() {
-  std::vector<Side*> all = {&sides_[0], &sides_[1]};
-  for (Solid& solid : solids_) all.push_back(&solid.texture);
-  for (Side* s : all) {
-    GLuint tex[3] = {s->rgba, s->mean, s->stdErr};
-    glDeleteTextures(3, tex);
-    glDeleteFramebuffers(1, &s->fbo);
+namespace {
+
+void release(unsigned& texture, unsigned& fbo) {
+  if (texture) glDeleteTextures(1, &texture);
+  if (fbo) glDeleteFramebuffers(1, &fbo);
+  texture = fbo = 0;
+}
+
+// (Re)allocates a BGRA8 target of w x h (contents from `pixels`, or undefined) with its framebuffer.
+// An unsized GL_RGBA with BGRA data makes Mesa store B8G8R8A8, the byte order of its window
+// framebuffers (and of OSMesa's, see osmesa_context.cpp): copies between them are memcpy.
+void allocate(unsigned& texture, unsigned& fbo, int& width, int& height, int w, int h, const void* pixels) {
+  if (!texture) {
+    texture = makeTexture();
+    glGenFramebuffers(1, &fbo);
   }
+  glBindTexture(GL_TEXTURE_2D, texture);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, w, h, 0, GL_BGRA, GL_UNSIGNED_BYTE, pixels);
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, texture, 0);
+  GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  if (status != GL_FRAMEBUFFER_COMPLETE) throw Error("display image: framebuffer incomplete");
+  width = w;
+  height = h;
+}
+
+}  // namespace
+
+ImageDisplay::~ImageDisplay() {
+  for (Side& s : sides_) {
+    release(s.rgba.texture, s.rgba.fbo);
+    release(s.screen.target.texture, s.screen.target.fbo);
+    unsigned none = 0;
+    release(s.mean, none);
+    release(s.stdErr, none);
+  }
+  for (Solid& solid : solids_) release(solid.texture.texture, solid.texture.fbo);
   if (vao_) glDeleteVertexArrays(1, &vao_);
   if (program_) glDeleteProgram(program_);
 }
 
 void ImageDisplay::clearCompare() {
-  sides_[1].width = sides_[1].height = 0;
+  sides_[1].rgba.width = sides_[1].rgba.height = 0;
   sides_[1].dirty = true;
 }
 
 void ImageDisplay::tonemap(Side& s, const FilmSnapshot& snap, const DisplaySettings& d) {
   const Image& mean = snap.mean;
-  if (!s.rgba) {
-    s.rgba = makeTexture();
-    glGenFramebuffers(1, &s.fbo);
-  }
-  glBindTexture(GL_TEXTURE_2D, s.rgba);
-  const bool resized = s.width != mean.width || s.height != mean.height;
+  Target& t = s.rgba;
+  const bool resized = t.width != mean.width || t.height != mean.height;
   if (tonemapper_ == Tonemapper::Cpu) {
     if (!table_ || table_->curve() != d.tonemap) table_ = std::make_unique<DisplayLevelTable>(d.tonemap);
-    tonemapForDisplay(mean, snap.standardError, d, *table_, PixelOrder::Bgra, pixels_);
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    if (resized)
-      glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, mean.width, mean.height, 0, GL_BGRA, GL_UNSIGNED_BYTE,
-                   pixels_.data());
-    else
+    tonemapForDisplay(mean, snap.standardError, d, *table_, PixelOrder::Bgra, s.pixels);
+    if (resized) {
+      allocate(t.texture, t.fbo, t.width, t.height, mean.width, mean.height, s.pixels.data());
+    } else {
+      glBindTexture(GL_TEXTURE_2D, t.texture);
+      glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
       glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, mean.width, mean.height, GL_BGRA, GL_UNSIGNED_BYTE,
-                      pixels_.data());
-  } else if (resized) {
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, mean.width, mean.height, 0, GL_BGRA, GL_UNSIGNED_BYTE, nullptr);
-  }
-  if (resized) {
-    glBindFramebuffer(GL_FRAMEBUFFER, s.fbo);
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, s.rgba, 0);
-    GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    if (status != GL_FRAMEBUFFER_COMPLETE) throw Error("display image: framebuffer incomplete");
-  }
-  if (tonemapper_ == Tonemapper::Shader) {
+                      s.pixels.data());
+    }
+  } else {
+    if (resized) allocate(t.texture, t.fbo, t.width, t.height, mean.width, mean.height, nullptr);
     if (!s.mean) s.mean = makeTexture(), s.stdErr = makeTexture();
     uploadFloat(s.mean, mean);
     uploadFloat(s.stdErr, snap.standardError.empty() ? Image(1, 1) : snap.standardError);
-    glBindFramebuffer(GL_FRAMEBUFFER, s.fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, t.fbo);
     glViewport(0, 0, mean.width, mean.height);
     glUseProgram(program_);
     glActiveTexture(GL_TEXTURE1);
@@ -168,36 +187,82 @@ void ImageDisplay::tonemap(Side& s, const FilmSnapshot& snap, const DisplaySetti
     glUseProgram(0);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
   }
-  s.width = mean.width;
-  s.height = mean.height;
   s.exposure = d.exposure;
   s.tonemap = d.tonemap;
   s.falseColour = d.falseColour;
+  ++s.made;
   ++tonemaps_;
 }
 
-// Copies the part of side `s` that falls on the screen rectangle [x0, x1) x [y0, y1) (top-left
-// origin, inside the image's rectangle). The texture's row 0 is the image's top row: the window's
-// GL y runs the other way, and Mesa stores window framebuffers top row first, so this orientation
-// is what lets an unscaled blit be a plain memory copy.
-void ImageDisplay::blit(const Side& s, const ImageLayout& l, int fbHeight, int x0, int x1, int y0,
-                        int y1) const {
-  if (x1 <= x0 || y1 <= y0) return;
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, s.fbo);
+// Copies the texture's pixels from (srcX, srcY) on (row 0 = top) to the window rectangle
+// [x0, x1) x [y0, y1) (top-left origin), unscaled. Textures hold their top row first, and so do
+// Mesa's window framebuffers while the window's GL y runs upwards: the blit is flipped in GL terms,
+// not in memory, which is what lets Mesa do it with memcpy.
+void ImageDisplay::copyToWindow(const Target& t, int srcX, int srcY, int fbHeight, int x0, int x1, int y0,
+                                int y1) {
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, t.fbo);
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+  glBlitFramebuffer(srcX, srcY, srcX + (x1 - x0), srcY + (y1 - y0), x0, fbHeight - y0, x1, fbHeight - y1,
+                    GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+void ImageDisplay::blit(Side& s, const ImageLayout& l, const int* visible, int fbHeight, int x0, int x1,
+                        int y0, int y1) {
+  if (x1 <= x0 || y1 <= y0) return;
   const int lx = int(l.x), ly = int(l.y);
   if (l.zoom == 1.f) {
-    glBlitFramebuffer(x0 - lx, y0 - ly, x1 - lx, y1 - ly, x0, fbHeight - y0, x1, fbHeight - y1,
-                      GL_COLOR_BUFFER_BIT, GL_NEAREST);
-  } else {
+    copyToWindow(s.rgba, x0 - lx, y0 - ly, fbHeight, x0, x1, y0, y1);
+    return;
+  }
+  if (tonemapper_ == Tonemapper::Shader) {  // hardware GL: a scaled blit costs nothing
     glEnable(GL_SCISSOR_TEST);
     glScissor(x0, fbHeight - y1, x1 - x0, y1 - y0);
-    int w = int(std::lround(s.width * l.zoom)), h = int(std::lround(s.height * l.zoom));
-    glBlitFramebuffer(0, 0, s.width, s.height, lx, fbHeight - ly, lx + w, fbHeight - ly - h,
+    int w = int(std::lround(s.rgba.width * l.zoom)), h = int(std::lround(s.rgba.height * l.zoom));
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, s.rgba.fbo);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+    glBlitFramebuffer(0, 0, s.rgba.width, s.rgba.height, lx, fbHeight - ly, lx + w, fbHeight - ly - h,
                       GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glDisable(GL_SCISSOR_TEST);
+    return;
   }
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  // Software GL: a scaled blit is a drawn rectangle (~6 ns a pixel, every frame). Instead resample
+  // the visible part to screen pixels on the CPU when the image or the layout changed (~1 ns a
+  // pixel), then copy. Screen pixel x shows image pixel floor((x + 0.5 - l.x) / zoom), as display.frag.
+  Screen& sc = s.screen;
+  const int vx0 = visible[0], vy0 = visible[1], vx1 = visible[2], vy1 = visible[3];
+  if (sc.image != s.made || sc.x0 != vx0 || sc.y0 != vy0 || sc.x1 != vx1 || sc.y1 != vy1 || sc.lx != l.x ||
+      sc.ly != l.y || sc.zoom != l.zoom) {
+    const int w = vx1 - vx0, h = vy1 - vy0;
+    std::vector<int> column(w);
+    for (int x = 0; x < w; ++x)
+      column[x] = std::clamp(int(std::floor((vx0 + x + 0.5f - l.x) / l.zoom)), 0, s.rgba.width - 1);
+    std::vector<std::uint32_t> out(size_t(w) * h);
+    for (int y = 0; y < h; ++y) {
+      int row = std::clamp(int(std::floor((vy0 + y + 0.5f - l.y) / l.zoom)), 0, s.rgba.height - 1);
+      const std::uint32_t* src = &s.pixels[size_t(row) * s.rgba.width];
+      std::uint32_t* dst = &out[size_t(y) * w];
+      if (y > 0 &&
+          row == std::clamp(int(std::floor((vy0 + y - 0.5f - l.y) / l.zoom)), 0, s.rgba.height - 1)) {
+        std::memcpy(dst, dst - w, sizeof(std::uint32_t) * w);  // same image row as the screen row above
+        continue;
+      }
+      for (int x = 0; x < w; ++x) dst[x] = src[column[x]];
+    }
+    Target& t = sc.target;
+    if (t.width != w || t.height != h) {
+      allocate(t.texture, t.fbo, t.width, t.height, w, h, out.data());
+    } else {
+      glBindTexture(GL_TEXTURE_2D, t.texture);
+      glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+      glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, w, h, GL_BGRA, GL_UNSIGNED_BYTE, out.data());
+    }
+    sc.image = s.made;
+    sc.x0 = vx0, sc.y0 = vy0, sc.x1 = vx1, sc.y1 = vy1;
+    sc.lx = l.x, sc.ly = l.y, sc.zoom = l.zoom;
+  }
+  copyToWindow(sc.target, x0 - vx0, y0 - vy0, fbHeight, x0, x1, y0, y1);
 }
 
 void ImageDisplay::prepare(const DisplaySettings& d, const FilmSnapshot& left, const FilmSnapshot* right) {
@@ -210,7 +275,8 @@ void ImageDisplay::prepare(const DisplaySettings& d, const FilmSnapshot& left, c
     if (!snaps[i]) continue;
     bool settingsChanged =
         s.exposure != d.exposure || s.tonemap != d.tonemap || s.falseColour != d.falseColour;
-    if ((s.dirty || (settingsChanged && s.width > 0)) && !snaps[i]->mean.empty()) tonemap(s, *snaps[i], d);
+    if ((s.dirty || (settingsChanged && s.rgba.width > 0)) && !snaps[i]->mean.empty())
+      tonemap(s, *snaps[i], d);
     s.dirty = false;
   }
 }
@@ -221,12 +287,13 @@ void ImageDisplay::draw(const ImageLayout& l, int fbWidth, int fbHeight, int are
   glViewport(0, 0, fbWidth, fbHeight);
 
   // The visible part of the image: its rectangle clipped to the area.
-  const Side& a = sides_[0];
+  Side& a = sides_[0];
   const int lx = int(l.x), ly = int(l.y);
-  int vx0 = std::max(lx, areaX), vy0 = std::max(ly, 0);
-  int vx1 = std::min(lx + int(std::lround(a.width * l.zoom)), fbWidth);
-  int vy1 = std::min(ly + int(std::lround(a.height * l.zoom)), fbHeight);
-  if (a.width == 0 || vx1 <= vx0 || vy1 <= vy0) {
+  const int v[4] = {std::max(lx, areaX), std::max(ly, 0),
+                    std::min(lx + int(std::lround(a.rgba.width * l.zoom)), fbWidth),
+                    std::min(ly + int(std::lround(a.rgba.height * l.zoom)), fbHeight)};
+  const int vx0 = v[0], vy0 = v[1], vx1 = v[2], vy1 = v[3];
+  if (a.rgba.width == 0 || vx1 <= vx0 || vy1 <= vy0) {
     fillRect(fbHeight, areaX, 0, fbWidth, fbHeight, kBackgroundRgb);
     return;
   }
@@ -235,7 +302,7 @@ void ImageDisplay::draw(const ImageLayout& l, int fbWidth, int fbHeight, int are
   fillRect(fbHeight, areaX, vy0, vx0, vy1, kBackgroundRgb);
   fillRect(fbHeight, vx1, vy0, fbWidth, vy1, kBackgroundRgb);
   if (!(dividerX > 0.f)) {
-    blit(a, l, fbHeight, vx0, vx1, vy0, vy1);
+    blit(a, l, v, fbHeight, vx0, vx1, vy0, vy1);
     return;
   }
   // Compare: screen column x (pixel centre x + 0.5) is the divider line when |x + 0.5 - dividerX| < 1,
@@ -243,11 +310,11 @@ void ImageDisplay::draw(const ImageLayout& l, int fbWidth, int fbHeight, int are
   int lineStart = int(std::floor(dividerX - 1.5f)) + 1, lineEnd = int(std::ceil(dividerX + 0.5f));
   lineStart = std::clamp(lineStart, vx0, vx1);
   lineEnd = std::clamp(lineEnd, lineStart, vx1);
-  blit(a, l, fbHeight, vx0, lineStart, vy0, vy1);
+  blit(a, l, v, fbHeight, vx0, lineStart, vy0, vy1);
   clearRect(fbHeight, lineStart, vy0, lineEnd, vy1, kDivider);
-  const Side& b = sides_[1];
-  if (b.width == a.width && b.height == a.height)
-    blit(b, l, fbHeight, lineEnd, vx1, vy0, vy1);
+  Side& b = sides_[1];
+  if (b.rgba.width == a.rgba.width && b.rgba.height == a.rgba.height)
+    blit(b, l, v, fbHeight, lineEnd, vx1, vy0, vy1);
   else  // the right side has no image yet
     clearRect(fbHeight, lineEnd, vy0, vx1, vy1, kBackgroundRgb);
 }
@@ -259,28 +326,15 @@ void ImageDisplay::fillRect(int fbHeight, int x0, int y0, int x1, int y1, const 
                        std::uint8_t(rgb[0] * 255.f + 0.5f), 255};  // BGRA
   std::uint32_t colour;
   std::memcpy(&colour, c, 4);
-  auto it = std::find_if(solids_.begin(), solids_.end(), [&](const Solid& q) { return q.rgba == colour; });
-  if (it == solids_.end()) it = solids_.insert(solids_.end(), Solid{colour, Side{}});
-  Side& s = it->texture;
-  if (s.width < w || s.height < h) {  // (re)allocate, at least as large as the window so far
-    if (!s.rgba) {
-      s.rgba = makeTexture();
-      glGenFramebuffers(1, &s.fbo);
-    }
-    s.width = std::max(s.width, w);
-    s.height = std::max(s.height, h);
-    std::vector<std::uint32_t> pixels(size_t(s.width) * s.height, colour);
-    glBindTexture(GL_TEXTURE_2D, s.rgba);
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, s.width, s.height, 0, GL_BGRA, GL_UNSIGNED_BYTE, pixels.data());
-    glBindFramebuffer(GL_FRAMEBUFFER, s.fbo);
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, s.rgba, 0);
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  auto it = std::find_if(solids_.begin(), solids_.end(), [&](const Solid& q) { return q.bgra == colour; });
+  if (it == solids_.end()) it = solids_.insert(solids_.end(), Solid{colour, Target{}});
+  Target& t = it->texture;
+  if (t.width < w || t.height < h) {  // at least as large as any rectangle filled so far
+    int tw = std::max(t.width, w), th = std::max(t.height, h);
+    std::vector<std::uint32_t> pixels(size_t(tw) * th, colour);
+    allocate(t.texture, t.fbo, t.width, t.height, tw, th, pixels.data());
   }
-  ImageLayout at;
-  at.x = float(x0);
-  at.y = float(y0);
-  blit(s, at, fbHeight, x0, x1, y0, y1);
+  copyToWindow(t, 0, 0, fbHeight, x0, x1, y0, y1);
 }
 
 }  // namespace penumbra::ui

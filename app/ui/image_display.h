@@ -64,27 +64,44 @@ class ImageDisplay {
   uint64_t tonemaps() const { return tonemaps_; }  // images tone mapped so far
 
  private:
+  // A texture with a framebuffer reading (and writing) it.
+  struct Target {
+    unsigned texture = 0, fbo = 0;
+    int width = 0, height = 0;  // 0 = nothing yet
+  };
+  // The part of a side's image on screen, resampled to screen pixels (Cpu path, zoom != 1), and what
+  // it was made from.
+  struct Screen {
+    Target target;
+    uint64_t image = 0;  // the side's `made` count
+    int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+    float lx = 0, ly = 0, zoom = 0;
+  };
   struct Side {
-    unsigned rgba = 0, fbo = 0;     // the display image and a framebuffer reading (and writing) it
-    unsigned mean = 0, stdErr = 0;  // Shader: the snapshot as float textures
-    int width = 0, height = 0;      // of rgba; 0 = no image yet
+    Target rgba;                        // the display image (BGRA8, row 0 = top)
+    unsigned mean = 0, stdErr = 0;      // Shader: the snapshot as float textures
+    std::vector<std::uint32_t> pixels;  // Cpu: rgba's contents
     bool dirty = false;
+    uint64_t made = 0;     // tone mappings so far
     float exposure = 0.f;  // display settings rgba was made with
     Tonemap tonemap = Tonemap::Srgb;
     FalseColour falseColour = FalseColour::None;
+    Screen screen;
   };
   void tonemap(Side& s, const FilmSnapshot& snap, const DisplaySettings& d);
-  void blit(const Side& s, const ImageLayout& l, int fbHeight, int x0, int x1, int y0, int y1) const;
+  // Copies [x0, x1) x [y0, y1) (top-left origin, inside the visible image rectangle `visible`) of a
+  // side's image, placed and zoomed per `l`, to the window.
+  void blit(Side& s, const ImageLayout& l, const int* visible, int fbHeight, int x0, int x1, int y0, int y1);
+  void copyToWindow(const Target& t, int srcX, int srcY, int fbHeight, int x0, int x1, int y0, int y1);
 
   Tonemapper tonemapper_;
   unsigned program_ = 0, vao_ = 0;
   Side sides_[2];
   struct Solid {
-    std::uint32_t rgba;  // the colour, RGBA8 little-endian
-    Side texture;
+    std::uint32_t bgra;  // the colour, BGRA8 little-endian
+    Target texture;
   };
   std::vector<Solid> solids_;                 // fillRect's textures, one per colour
-  std::vector<std::uint8_t> pixels_;          // Cpu: staging buffer
   std::unique_ptr<DisplayLevelTable> table_;  // Cpu: for the current tone curve
   uint64_t tonemaps_ = 0;
 };

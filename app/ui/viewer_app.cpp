@@ -43,10 +43,11 @@ double processCpuMs() {
 }
 
 // When the viewer draws (docs/viewer.md, "When the viewer redraws").
-constexpr double kFrameIntervalMs = 1000.0 / 60.0;  // at most one frame per 60 Hz display refresh
-constexpr double kIdleWaitSeconds = 0.25;           // longest sleep (paces the scene file's check)
-constexpr double kStatsRefreshMs = 500;             // while rendering, a frame at least this often
-constexpr int kFramesAfterInput = 2;                // ImGui settles hover and click state a frame later
+constexpr double kFrameIntervalMs = 1000.0 / 60.0;     // at most one frame per 60 Hz display refresh
+constexpr double kSnapshotIntervalMs = 1000.0 / 30.0;  // new passes alone: at most 30 frames a second
+constexpr double kIdleWaitSeconds = 0.25;              // longest sleep (paces the scene file's check)
+constexpr double kStatsRefreshMs = 500;                // while rendering, a frame at least this often
+constexpr int kFramesAfterInput = 2;                   // ImGui settles hover and click state a frame later
 
 // Parts of a frame, timed separately by the bench's breakdown.
 enum Stage { kUi, kTonemap, kImage, kPanels, kPresent, kStages };
@@ -165,33 +166,41 @@ class ViewerApp {
 
   // The interactive loop, until the window closes or `done()`. Event-driven: a frame is drawn when
   // input arrived (and kFramesAfterInput frames after it, and while an ImGui item is held), when a
-  // new snapshot arrived or compare mode changed, every kStatsRefreshMs while rendering, and never
-  // sooner than kFrameIntervalMs after the previous one; in between the thread sleeps in waitEvents,
-  // so an idle viewer costs nothing and a rendering one only the frames that show new passes. `continuous`
+  // new snapshot arrived (at most every kSnapshotIntervalMs, except a restart's first image) or
+  // compare mode changed, every kStatsRefreshMs while rendering, and never sooner than
+  // kFrameIntervalMs after the previous one; in between the thread sleeps in waitEvents, so an idle
+  // viewer costs nothing and a rendering one only the frames that show new passes. `continuous`
   // draws every (paced) frame, as while a slider is dragged (the bench measures both).
   template <class Done>
   void run(Done done, bool continuous = false) {
-    int pending = 1;
+    int pending = 1;           // frames owed to input (or to `continuous`)
+    bool snapshotDue = false;  // a new snapshot waits to be shown
     while (!platform_.shouldClose() && !done()) {
       platform_.pollEvents();
       if (platform_.eventCount() != seenEvents_) {
         seenEvents_ = platform_.eventCount();
         pending = std::max(pending, kFramesAfterInput);
       }
-      double early = kFrameIntervalMs - msSince(lastFrameStart_);
-      if (early > 0) {  // too soon for a frame: sleep until one is due (input wakes us, and waits)
-        platform_.waitEvents(early * 1e-3);
+      const double since = msSince(lastFrameStart_);
+      if (since < kFrameIntervalMs) {  // too soon for a frame: sleep until one is due (input wakes us)
+        platform_.waitEvents((kFrameIntervalMs - since) * 1e-3);
         continue;
       }
-      if (update() || continuous) pending = std::max(pending, 1);
+      if (update()) snapshotDue = true;
+      if (continuous) pending = std::max(pending, 1);
       // Slow passes (big images, heavy scenes): refresh the elapsed time and rates now and then.
-      if (c_.rendering() && msSince(lastFrameStart_) >= kStatsRefreshMs) pending = std::max(pending, 1);
-      if (pending == 0) {
-        platform_.waitEvents(kIdleWaitSeconds);  // input, or the waker on a new snapshot
+      if (c_.rendering() && since >= kStatsRefreshMs) pending = std::max(pending, 1);
+      // New passes of the same accumulation are shown at most every kSnapshotIntervalMs; the first
+      // image of a new accumulation (the restart's preview) at once.
+      const bool firstOfRestart = c_.snapshotRestart() != shownRestart_ && !c_.snapshot().mean.empty();
+      const bool showSnapshot = snapshotDue && (firstOfRestart || since >= kSnapshotIntervalMs);
+      if (pending == 0 && !showSnapshot) {  // input, or the waker on a new snapshot, ends the wait
+        platform_.waitEvents(snapshotDue ? (kSnapshotIntervalMs - since) * 1e-3 : kIdleWaitSeconds);
         continue;
       }
       frame();
-      --pending;
+      snapshotDue = false;
+      pending = std::max(pending - 1, 0);
       if (ImGui::IsAnyItemActive() || ImGui::IsAnyMouseDown()) pending = std::max(pending, 1);
     }
   }
@@ -446,10 +455,6 @@ double percentile90(std::vector<double> v) {
   return v[v.size() * 9 / 10];
 }
 
-double samplesPerSecond(const RenderProgress& p) {
-  return double(p.samples) / std::max(p.seconds, 1e-9);
-}
-
 // CPU time of this process's threads, split by role (Linux /proc; ms). The UI thread is the main
 // thread; the GL rasteriser's threads are Mesa's "llvmpipe-N"; everything else (the render workers,
 // which come and go with every restart) is the process total minus those two.
@@ -480,22 +485,53 @@ struct Phase {
   double seconds = 0, samplesPerSecond = 0, uiCpuMs = 0, glCpuMs = 0;
 };
 
+// Throughput from the pass boundaries seen during a phase: samples of the passes completed between the
+// second boundary and the last one, over the time between them (the first pass after a restart also
+// carries the preview; counting whole passes over a fixed time would quantise by a pass, ~6 %).
+class PassClock {
+ public:
+  void tick(const RenderProgress& p) {
+    if (p.spp == spp_) return;
+    spp_ = p.spp;
+    auto now = Clock::now();
+    if (++boundaries_ == 2) first_ = now, firstSamples_ = p.samples;
+    if (boundaries_ >= 2) last_ = now, lastSamples_ = p.samples;
+  }
+  double samplesPerSecond() const {
+    double s = std::chrono::duration<double>(last_ - first_).count();
+    return s > 0 ? double(lastSamples_ - firstSamples_) / s : 0.0;
+  }
+
+ private:
+  uint32_t spp_ = 0;
+  int boundaries_ = 0;
+  Clock::time_point first_{}, last_{};
+  uint64_t firstSamples_ = 0, lastSamples_ = 0;
+};
+
 enum class Mode { EngineAlone, Watching, Redrawing };
 
 Phase runPhase(ViewerApp& app, ViewerController& c, double seconds, Mode mode) {
   Phase r;
   c.restart();
+  PassClock passes;
   CpuSplit c0 = cpuSplit();
   auto t0 = Clock::now();
   if (mode == Mode::EngineAlone) {
-    std::this_thread::sleep_for(std::chrono::duration<double>(seconds));
+    // Only looks at the pass counter every 5 ms (negligible next to the UI's frames).
+    while (msSince(t0) < seconds * 1000) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+      passes.tick(c.progress());
+    }
   } else {
     // Redrawing: the exposure changes before every frame, as while its slider is dragged, so every
     // frame tone maps the image again and redraws the panels (a display-only change: no restart).
+    // The loop wakes on every snapshot, i.e. at every pass boundary, where the clock ticks.
     const float exposure = c.display.exposure;
     uint64_t frames = app.framesDrawn();
     app.run(
         [&] {
+          passes.tick(c.progress());
           if (app.framesDrawn() != frames) {
             frames = app.framesDrawn();
             r.frameMs.push_back(app.lastFrameMs());
@@ -507,7 +543,7 @@ Phase runPhase(ViewerApp& app, ViewerController& c, double seconds, Mode mode) {
     c.display.exposure = exposure;
   }
   r.seconds = msSince(t0) * 1e-3;
-  r.samplesPerSecond = samplesPerSecond(c.progress());
+  r.samplesPerSecond = passes.samplesPerSecond();
   CpuSplit c1 = cpuSplit();
   r.uiCpuMs = c1.ui - c0.ui;
   r.glCpuMs = c1.gl - c0.gl;
@@ -529,8 +565,8 @@ int runBench(platform::Platform& p, ViewerController& c, ViewerApp& app) {
               app.display().tonemapper() == Tonemapper::Cpu ? "CPU (software GL)" : "GPU (display.frag)");
   RenderLimits endless;
   c.setLimits(endless);
-  const int rounds = 3;
-  const double seconds = 1.5;
+  const int rounds = 5;
+  const double seconds = 3.0;
   std::vector<double> alone, watchLost, busyLost, watchFrames, busyFrames, watchRate, busyRate;
   std::vector<double> watchUi, busyUi, watchGl, busyGl;
   for (int i = 0; i < rounds; ++i) {
