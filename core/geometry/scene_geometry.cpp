@@ -51,6 +51,7 @@ SceneGeometry& SceneGeometry::operator=(SceneGeometry&& other) noexcept {
     sphereIds_ = std::move(other.sphereIds_);
     meshes_ = std::move(other.meshes_);
     meshIds_ = std::move(other.meshIds_);
+    quads_ = std::move(other.quads_);
     flat_ = std::move(other.flat_);
     triangleCount_ = std::exchange(other.triangleCount_, 0);
     bounds_ = std::exchange(other.bounds_, Bounds{});
@@ -93,15 +94,17 @@ void SceneGeometry::addMesh(const TriangleMesh& mesh, uint32_t objectId) {
 
 void SceneGeometry::build(AccelMode mode) {
   release();
+  quads_.clear();
   flat_.clear();
   const bool useEmbree =
       triangleCount_ > 0 &&
       (mode == AccelMode::Embree || (mode == AccelMode::Auto && triangleCount_ > kBruteForceMaxTriangles));
   if (!useEmbree) {
-    flat_.reserve(triangleCount_);
     for (uint32_t m = 0; m < meshes_.size(); ++m) {
       const TriangleMesh& mesh = meshes_[m];
-      for (uint32_t i = 0; i < mesh.triangles.size(); ++i) {
+      std::vector<uint32_t> leftover;
+      pairParallelograms(mesh, m, quads_, leftover);
+      for (uint32_t i : leftover) {
         const glm::uvec3 t = mesh.triangles[i];
         const Vec3 &p0 = mesh.positions[t.x], &p1 = mesh.positions[t.y], &p2 = mesh.positions[t.z];
         flat_.push_back({p0, p1, p2, m, i, trianglePlane(p0, p1, p2)});
@@ -147,6 +150,18 @@ bool SceneGeometry::intersect(const Ray& ray, SurfaceHit& hit) const {
     if (spheres_[i].intersect(r, t)) {
       r.tMax = t;
       sphereHit = static_cast<int>(i);
+    }
+  }
+
+  const Parallelogram* quadHit = nullptr;
+  float quadU = 0.f, quadV = 0.f;
+  for (const Parallelogram& q : quads_) {
+    float t, u, v;
+    if (intersectParallelogram(q, r, r.tMax, t, u, v)) {
+      r.tMax = t;
+      quadHit = &q;
+      quadU = u;
+      quadV = v;
     }
   }
 
@@ -203,6 +218,10 @@ bool SceneGeometry::intersect(const Ray& ray, SurfaceHit& hit) const {
     if (flatHit) projectOntoPlane(flatHit->plane, hit);
     return true;
   }
+  if (quadHit) {
+    fillParallelogramHit(*quadHit, ray, r.tMax, quadU, quadV, meshIds_[quadHit->mesh], hit);
+    return true;
+  }
   if (sphereHit >= 0) {
     spheres_[sphereHit].fillHit(ray, r.tMax, sphereIds_[sphereHit], hit);
     return true;
@@ -210,9 +229,13 @@ bool SceneGeometry::intersect(const Ray& ray, SurfaceHit& hit) const {
   return false;
 }
 
-bool SceneGeometry::occluded(const Ray& ray) const {
-  for (const Sphere& s : spheres_)
-    if (s.occludes(ray)) return true;
+bool SceneGeometry::occluded(const Ray& ray, int32_t skipSphere) const {
+  for (size_t i = 0; i < spheres_.size(); ++i)
+    if (static_cast<int32_t>(i) != skipSphere && spheres_[i].occludes(ray)) return true;
+  for (const Parallelogram& q : quads_) {
+    float t, u, v;
+    if (intersectParallelogram(q, ray, ray.tMax, t, u, v)) return true;
+  }
   if (scene_) {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);

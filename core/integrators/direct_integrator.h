@@ -30,10 +30,11 @@ struct DirectIntegrator {
     if (material.sphereLight >= 0) L += scene.sphereLights[material.sphereLight].eval(hit.p, hit.ng, ray.d);
     if (isBlack(material.albedo)) return L;
 
-    ShadingPoint sp(scene, ray, hit);
+    constexpr bool kSamplesHemisphere =
+        kStrategy == DirectStrategy::UniformHemisphere || kStrategy == DirectStrategy::CosineHemisphere;
+    ShadingPoint sp(scene, ray, hit, kSamplesHemisphere);
     Color3 E = deltaIrradiance(scene, sp);
-    if constexpr (kStrategy == DirectStrategy::UniformHemisphere ||
-                  kStrategy == DirectStrategy::CosineHemisphere) {
+    if constexpr (kSamplesHemisphere) {
       if (scene.hasAreaLights()) E += hemisphereIrradiance(scene, sp, sampler);
     } else if constexpr (kStrategy == DirectStrategy::Area || kStrategy == DirectStrategy::SolidAngle) {
       E += lightSamplingIrradiance(scene, sp, sampler);
@@ -104,7 +105,8 @@ struct DirectIntegrator {
         if (!(s.pdf > 0.f) || isBlack(s.Le)) continue;
         float cosTheta = glm::dot(sp.ns, s.wi);
         if (!leavesSurface(sp, s.wi, cosTheta)) continue;
-        if (scene.geometry.occluded(sp.spawnRayTo(s.p, lightScale))) continue;
+        // Every traced sample faces x (far-side area samples have Le = 0): the light cannot block it.
+        if (scene.geometry.occluded(sp.spawnRayTo(s.p, lightScale), light.geometryIndex)) continue;
         E += s.Le * (cosTheta / s.pdf);
       }
     }
