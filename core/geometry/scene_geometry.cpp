@@ -142,6 +142,53 @@ void SceneGeometry::build(AccelMode mode) {
   checkEmbree(device, "rtcCommitScene");
 }
 
+bool SceneGeometry::nearestEmbreeTriangle(const Ray& r, TriangleCandidate& c) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRayHit rh;
+  setupRay(r, r.tMax, rh.ray);
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(static_cast<RTCScene>(scene_), &context, &rh);
+  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+  c.mesh = rh.hit.geomID;
+  c.prim = rh.hit.primID;
+  c.isect = {rh.ray.tfar, 1.f - rh.hit.u - rh.hit.v, rh.hit.u, rh.hit.v};
+  c.flat = nullptr;
+  return true;
+}
+
+bool SceneGeometry::nearestFlatTriangle(const Ray& r, TriangleCandidate& c) const {
+  const TriangleRay tr(r);
+  float tMax = r.tMax;
+  const FlatTriangle* best = nullptr;
+  auto loop = [&]<int KZ>() {
+    for (const FlatTriangle& tri : flat_) {
+      if (intersectTriangleK<KZ>(tr, tMax, tri.p0, tri.p1, tri.p2, c.isect)) {
+        tMax = c.isect.t;
+        best = &tri;
+      }
+    }
+  };
+  switch (tr.kz) {
+    case 0:
+      loop.template operator()<0>();
+      break;
+    case 1:
+      loop.template operator()<1>();
+      break;
+    default:
+      loop.template operator()<2>();
+      break;
+  }
+  if (!best) return false;
+  // intersectTriangleK writes `out` only on a hit, so c.isect holds the nearest one.
+  c.mesh = best->mesh;
+  c.prim = best->prim;
+  c.flat = best;
+  return true;
+}
+
 bool SceneGeometry::intersect(const Ray& ray, SurfaceHit& hit) const {
   Ray r = ray;
   int sphereHit = -1;
@@ -165,57 +212,13 @@ bool SceneGeometry::intersect(const Ray& ray, SurfaceHit& hit) const {
     }
   }
 
-  uint32_t meshHit = 0, primHit = 0;
-  const FlatTriangle* flatHit = nullptr;
-  bool triHit = false;
-  TriangleIntersection best{};
-  if (scene_) {
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    RTCRayHit rh;
-    setupRay(r, r.tMax, rh.ray);
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(static_cast<RTCScene>(scene_), &context, &rh);
-    if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
-      triHit = true;
-      meshHit = rh.hit.geomID;
-      primHit = rh.hit.primID;
-      best = {rh.ray.tfar, 1.f - rh.hit.u - rh.hit.v, rh.hit.u, rh.hit.v};
-    }
-  } else if (!flat_.empty()) {
-    const TriangleRay tr(r);
-    auto loop = [&]<int KZ>() {
-      for (const FlatTriangle& tri : flat_) {
-        TriangleIntersection isect;
-        if (intersectTriangleK<KZ>(tr, r.tMax, tri.p0, tri.p1, tri.p2, isect)) {
-          r.tMax = isect.t;
-          best = isect;
-          triHit = true;
-          meshHit = tri.mesh;
-          primHit = tri.prim;
-          flatHit = &tri;
-        }
-      }
-    };
-    switch (tr.kz) {
-      case 0:
-        loop.template operator()<0>();
-        break;
-      case 1:
-        loop.template operator()<1>();
-        break;
-      default:
-        loop.template operator()<2>();
-        break;
-    }
-  }
-
+  TriangleCandidate tri;
+  const bool triHit = scene_ ? nearestEmbreeTriangle(r, tri) : !flat_.empty() && nearestFlatTriangle(r, tri);
   if (triHit) {
     // Embree hits keep offsets relative to the triangle's coordinates (its t carries that error);
     // brute-force hits are projected and offset relative to |p| (see projectOntoPlane).
-    fillTriangleHit(meshes_[meshHit], primHit, best, meshIds_[meshHit], hit);
-    if (flatHit) projectOntoPlane(flatHit->plane, hit);
+    fillTriangleHit(meshes_[tri.mesh], tri.prim, tri.isect, meshIds_[tri.mesh], hit);
+    if (tri.flat) projectOntoPlane(tri.flat->plane, hit);
     return true;
   }
   if (quadHit) {

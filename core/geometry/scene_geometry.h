@@ -71,6 +71,14 @@ class SceneGeometry {
     uint32_t mesh, prim;
     TrianglePlane plane;
   };
+  // The nearest triangle hit closer than r.tMax, by either path (kept out of intersect's hot loop).
+  struct TriangleCandidate {
+    TriangleIntersection isect{};
+    uint32_t mesh = 0, prim = 0;
+    const FlatTriangle* flat = nullptr;  // set on the brute-force path (its hit is re-projected)
+  };
+  [[gnu::noinline]] bool nearestEmbreeTriangle(const Ray& r, TriangleCandidate& c) const;
+  [[gnu::noinline]] bool nearestFlatTriangle(const Ray& r, TriangleCandidate& c) const;
   void release();
 
   std::vector<Sphere> spheres_;

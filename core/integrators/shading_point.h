@@ -43,7 +43,7 @@ struct ShadingPoint {
     r.o = offsetRayOrigin(hit.p, ng, hit.offsetScale, target - hit.p);
     Vec3 d = target - r.o;
     float dist = glm::length(d);
-    r.d = d / dist;
+    r.d = d * (1.f / dist);
     r.tMin = 0.f;
     r.tMax = dist - 2.f * kRayOffsetScale * std::max(targetScale, hit.offsetScale);
     return r;
