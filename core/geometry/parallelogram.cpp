@@ -56,7 +56,7 @@ void fillParallelogramHit(const Parallelogram& q, const Ray& ray, float t, float
   hit.ns = q.ns;
   // The intersection test rejects origins within its rounding of the plane, so an offset relative to
   // |p| cannot re-hit it (as for brute-force triangles, see projectOntoPlane).
-  hit.offsetScale = maxComponent(glm::abs(hit.p));
+  hit.offsetScale = maxAbsComponent(hit.p);
   hit.objectId = objectId;
   hit.primId = u + v <= 1.f ? q.primLow : q.primHigh;
 }

@@ -40,7 +40,7 @@ inline bool intersectParallelogram(const Parallelogram& q, const Ray& ray, float
                                    float& v) {
   const float denom = glm::dot(q.n, ray.d);
   const float h = glm::dot(q.n, ray.o) - q.planeOffset;  // signed distance of the origin
-  const Vec3 nd = glm::abs(q.n * ray.d), no = glm::abs(q.n * ray.o);
+  const Vec3 nd = absVec(q.n * ray.d), no = absVec(q.n * ray.o);
   if (!(std::abs(denom) > detail::kParallelogramGamma3 * (nd.x + nd.y + nd.z))) return false;
   if (!(std::abs(h) > detail::kParallelogramGamma7 * (no.x + no.y + no.z + std::abs(q.planeOffset))))
     return false;

@@ -14,7 +14,7 @@ void Sphere::fillHit(const Ray& ray, float t, uint32_t objectId, SurfaceHit& hit
   hit.p = Vec3(p);
   hit.ng = Vec3(n);
   hit.ns = hit.ng;
-  hit.offsetScale = std::max(maxComponent(glm::abs(hit.p)), maxComponent(glm::abs(center)) + radius);
+  hit.offsetScale = std::max(maxAbsComponent(hit.p), maxAbsComponent(center) + radius);
   hit.objectId = objectId;
   hit.primId = 0;
 }

@@ -55,8 +55,7 @@ struct DirectIntegrator {
       DeltaLightSample s = light.sample(sp.hit.p);
       float cosTheta = glm::dot(sp.ns, s.wi);
       if (isBlack(s.Li) || !leavesSurface(sp, s.wi, cosTheta)) continue;
-      if (scene.geometry.occluded(sp.spawnRayTo(light.position, maxComponent(glm::abs(light.position)))))
-        continue;
+      if (scene.geometry.occluded(sp.spawnRayTo(light.position, maxAbsComponent(light.position)))) continue;
       E += s.Li * cosTheta;
     }
     for (const DirectionalLight& light : scene.directionalLights) {
@@ -97,7 +96,7 @@ struct DirectIntegrator {
   Color3 lightSamplingIrradiance(const Scene& scene, const ShadingPoint& sp, Sampler& sampler) const {
     Color3 E(0.f);
     for (const SphereLight& light : scene.sphereLights) {
-      float lightScale = maxComponent(glm::abs(light.sphere.center)) + light.sphere.radius;
+      float lightScale = maxAbsComponent(light.sphere.center) + light.sphere.radius;
       for (int i = 0; i < samples; ++i) {
         Vec2 u = sampler.next2D();
         LightSample s = kStrategy == DirectStrategy::Area ? light.sampleArea(sp.hit.p, u)
