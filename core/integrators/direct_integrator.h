@@ -73,14 +73,14 @@ struct DirectIntegrator {
     for (int i = 0; i < samples; ++i) {
       Vec2 u = sampler.next2D();
       Vec3 local;
-      float invPdf;
+      float cosOverPdf;  // cos θ / pdf, in closed form: π (cosine warp), 2π cos θ (uniform warp)
       if constexpr (kStrategy == DirectStrategy::CosineHemisphere) {
         local = Warp::squareToCosineHemisphere(u);
         if (!(local.z > 0.f)) continue;
-        invPdf = kPi / local.z;
+        cosOverPdf = kPi;
       } else {
         local = Warp::squareToUniformHemisphere(u);
-        invPdf = 2.f * kPi;
+        cosOverPdf = 2.f * kPi * local.z;
       }
       Vec3 w = sp.frame.toWorld(local);
       if (!leavesSurface(sp, w, local.z)) continue;
@@ -88,9 +88,9 @@ struct DirectIntegrator {
       if (!scene.geometry.intersect(sp.spawnRay(w, INFINITY), lightHit)) continue;
       int32_t light = scene.materials[lightHit.objectId].sphereLight;
       if (light < 0) continue;
-      E += scene.sphereLights[light].eval(lightHit.p, lightHit.ng, w) * (local.z * invPdf);
+      E += scene.sphereLights[light].eval(lightHit.p, lightHit.ng, w) * cosOverPdf;
     }
-    return E / float(samples);
+    return E * (1.f / float(samples));  // the reciprocal is off the critical path
   }
 
   Color3 lightSamplingIrradiance(const Scene& scene, const ShadingPoint& sp, Sampler& sampler) const {
@@ -109,7 +109,7 @@ struct DirectIntegrator {
         E += s.Le * (cosTheta / s.pdf);
       }
     }
-    return E / float(samples);
+    return E * (1.f / float(samples));
   }
 };
 
