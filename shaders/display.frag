@@ -1,22 +1,15 @@
 #version 330 core
-// Displays the film's mean. Pixels are fetched exactly (texelFetch, nearest), so at zoom 1 the screen
-// shows the same 8-bit values as `penumbra render -o x.png`: the tone mapping below is
+// Tone maps the film's mean into the RGBA8 display image, one fragment per image pixel (the target is
+// an image-sized texture; ImageDisplay then copies it to the window at the layout's zoom and pan, and
+// runs this only when the snapshot or a display setting changed). Pixels are fetched exactly
+// (texelFetch), so the 8-bit values equal `penumbra render -o x.png`: the tone mapping below is
 // core/image/tonemap.cpp's toSrgb8 — scale by 2^exposure, sRGB OETF, clamp, round to 1/255.
-uniform sampler2D uMean;       // RGB32F, row 0 = top image row
-uniform sampler2D uStdErr;     // RGB32F standard error of the mean (may be 1x1 when unavailable)
-uniform vec2 uTopLeft;         // framebuffer position (GL, y up) of the image's top-left corner
-uniform float uZoom;           // screen pixels per image pixel
-uniform float uExposure;       // stops
-uniform int uTonemap;          // 0: sRGB OETF, 1: gamma 2.2
-uniform int uView;             // 0: colour, 1: relative standard error, 2: NaN/Inf/negative highlight
-uniform int uHasImage;
-// Compare mode: right of framebuffer x uDividerX the image comes from uMeanB / uStdErrB (the second
-// strategy), with a thin line at the divider.
-uniform int uCompare;
-uniform float uDividerX;
-uniform sampler2D uMeanB;
-uniform sampler2D uStdErrB;
-uniform vec3 uBackground;
+// app/ui/display_tonemap.cpp computes the same on the CPU (used on software GL such as llvmpipe).
+uniform sampler2D uMean;    // RGB32F, row 0 = top image row (and row 0 of the target)
+uniform sampler2D uStdErr;  // RGB32F standard error of the mean (1x1 when unavailable)
+uniform float uExposure;    // stops
+uniform int uTonemap;       // 0: sRGB OETF, 1: gamma 2.2
+uniform int uView;          // 0: colour, 1: relative standard error, 2: NaN/Inf/negative highlight
 out vec4 fragColor;
 
 bool bad(float v) { return isnan(v) || isinf(v); }
@@ -45,30 +38,15 @@ vec3 ramp(float t) {
 }
 
 void main() {
-  ivec2 size = textureSize(uMean, 0);
-  vec2 rel = vec2(gl_FragCoord.x - uTopLeft.x, uTopLeft.y - gl_FragCoord.y) / uZoom;
-  ivec2 px = ivec2(floor(rel));
-  if (uHasImage == 0 || rel.x < 0.0 || rel.y < 0.0 || px.x >= size.x || px.y >= size.y) {
-    fragColor = vec4(uBackground, 1.0);
-    return;
-  }
-  bool right = uCompare != 0 && gl_FragCoord.x >= uDividerX;
-  if (uCompare != 0 && abs(gl_FragCoord.x - uDividerX) < 1.0) {
-    fragColor = vec4(0.95, 0.95, 0.95, 1.0);
-    return;
-  }
-  if (right && textureSize(uMeanB, 0) != size) {  // the right side has no pass yet
-    fragColor = vec4(uBackground, 1.0);
-    return;
-  }
-  vec3 m = right ? texelFetch(uMeanB, px, 0).rgb : texelFetch(uMean, px, 0).rgb;
+  ivec2 px = ivec2(gl_FragCoord.xy);
+  vec3 m = texelFetch(uMean, px, 0).rgb;
   if (uView == 1) {
     // Relative standard error of the luminance, log scale: 0.1 % (blue) … 100 % (red); black: no data.
-    ivec2 esize = right ? textureSize(uStdErrB, 0) : textureSize(uStdErr, 0);
-    vec3 e = right ? texelFetch(uStdErrB, min(px, esize - 1), 0).rgb : texelFetch(uStdErr, min(px, esize - 1), 0).rgb;
+    ivec2 esize = textureSize(uStdErr, 0);
+    vec3 e = texelFetch(uStdErr, min(px, esize - 1), 0).rgb;
     float lm = dot(m, vec3(0.2126, 0.7152, 0.0722));
     float le = dot(e, vec3(0.2126, 0.7152, 0.0722));
-    if (esize != size || lm <= 0.0) { fragColor = vec4(0.0, 0.0, 0.0, 1.0); return; }
+    if (esize != textureSize(uMean, 0) || !(lm > 0.0)) { fragColor = vec4(0.0, 0.0, 0.0, 1.0); return; }
     float r = le / lm;
     fragColor = vec4(ramp((log(max(r, 1e-3)) / log(10.0) + 3.0) / 3.0), 1.0);
     return;

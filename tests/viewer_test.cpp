@@ -214,6 +214,20 @@ TEST(ViewerOffscreen, PanelsDrawAndImageAreaEqualsHeadlessRender) {
                     " --frames 3 --window 720x560 --print-layout --screenshot " + shot);
   ASSERT_EQ(r.exitCode, 0) << r.out;
   EXPECT_NE(r.out.find("spp 4"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("tone mapping: cpu"), std::string::npos) << r.out;  // llvmpipe: software GL
+  checkScreenshot(shot, parseLayout(r.out), headlessReference());
+}
+
+// On llvmpipe the viewer tone maps on the CPU (display_tonemap.cpp); hardware GL uses
+// shaders/display.frag. Both must show exactly the headless render.
+TEST(ViewerOffscreen, ShaderToneMappingAlsoEqualsHeadlessRender) {
+  std::string shot = tempDir() + "/offscreen-shader.png";
+  RunResult r = run(std::string("PENUMBRA_TONEMAP=shader ") + PENUMBRA_OFFSCREEN_BINARY + " view " +
+                    defaultSceneFile() + " " + kSets +
+                    " --frames 3 --window 720x560 --print-layout --screenshot " + shot);
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  EXPECT_NE(r.out.find("spp 4"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("tone mapping: shader"), std::string::npos) << r.out;
   checkScreenshot(shot, parseLayout(r.out), headlessReference());
 }
 

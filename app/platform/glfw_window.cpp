@@ -39,8 +39,20 @@ class GlfwWindow final : public Platform {
     glfwMakeContextCurrent(window_);
     glfwSwapInterval(1);
     glfwSetWindowUserPointer(window_, this);
+    // Every input or window event counts (the viewer redraws only when something happened). These are
+    // installed before ImGui's backend, which chains to them from its own callbacks.
+    glfwSetCursorPosCallback(window_, [](GLFWwindow* w, double, double) { count(w); });
+    glfwSetMouseButtonCallback(window_, [](GLFWwindow* w, int, int, int) { count(w); });
+    glfwSetScrollCallback(window_, [](GLFWwindow* w, double, double) { count(w); });
+    glfwSetKeyCallback(window_, [](GLFWwindow* w, int, int, int, int) { count(w); });
+    glfwSetCharCallback(window_, [](GLFWwindow* w, unsigned) { count(w); });
+    glfwSetCursorEnterCallback(window_, [](GLFWwindow* w, int) { count(w); });
+    glfwSetWindowFocusCallback(window_, [](GLFWwindow* w, int) { count(w); });
+    glfwSetFramebufferSizeCallback(window_, [](GLFWwindow* w, int, int) { count(w); });
+    glfwSetWindowRefreshCallback(window_, [](GLFWwindow* w) { count(w); });
     glfwSetDropCallback(window_, [](GLFWwindow* w, int count, const char** paths) {
       auto* self = static_cast<GlfwWindow*>(glfwGetWindowUserPointer(w));
+      ++self->events_;
       if (!self->onDrop) return;
       std::vector<std::string> files(paths, paths + count);
       self->onDrop(files);
@@ -58,6 +70,14 @@ class GlfwWindow final : public Platform {
   bool offscreen() const override { return false; }
   void framebufferSize(int& w, int& h) const override { glfwGetFramebufferSize(window_, &w, &h); }
   void pollEvents() override { glfwPollEvents(); }
+  void waitEvents(double seconds) override {
+    if (seconds > 0)
+      glfwWaitEventsTimeout(seconds);
+    else
+      glfwPollEvents();
+  }
+  void wake() override { glfwPostEmptyEvent(); }
+  std::uint64_t eventCount() const override { return events_; }
   bool shouldClose() const override { return glfwWindowShouldClose(window_); }
   void beginFrame() override {
     ImGui_ImplOpenGL3_NewFrame();
@@ -77,7 +97,10 @@ class GlfwWindow final : public Platform {
   }
 
  private:
+  static void count(GLFWwindow* w) { ++static_cast<GlfwWindow*>(glfwGetWindowUserPointer(w))->events_; }
+
   GLFWwindow* window_ = nullptr;
+  std::uint64_t events_ = 0;
 };
 
 }  // namespace

@@ -1,7 +1,10 @@
 // Offscreen OpenGL through OSMesa (llvmpipe, 3.3+ core profile) rendering into a buffer in memory.
 // Linked only into penumbra-offscreen, which links libOSMesa and not libGL: every gl* call of the
 // viewer and of the ImGui OpenGL3 backend then resolves to OSMesa.
+#include <algorithm>
 #include <chrono>
+#include <condition_variable>
+#include <mutex>
 #include <vector>
 
 #define GL_GLEXT_PROTOTYPES 1
@@ -20,8 +23,10 @@ namespace {
 class OsMesaContext final : public Platform {
  public:
   explicit OsMesaContext(const WindowOptions& o) : width_(o.width), height_(o.height) {
+    // BGRA, the byte order of X11 and Wayland windows: ImageDisplay's textures use it, so that its
+    // unscaled image copies are memory copies on both platforms.
     const int attribs[] = {OSMESA_FORMAT,
-                           OSMESA_RGBA,
+                           OSMESA_BGRA,
                            OSMESA_DEPTH_BITS,
                            0,
                            OSMESA_STENCIL_BITS,
@@ -56,6 +61,18 @@ class OsMesaContext final : public Platform {
     h = height_;
   }
   void pollEvents() override {}
+  void waitEvents(double seconds) override {  // no events offscreen: only wake() or the timeout
+    std::unique_lock lk(wakeMutex_);
+    wakeCv_.wait_for(lk, std::chrono::duration<double>(std::max(seconds, 0.0)), [&] { return woken_; });
+    woken_ = false;
+  }
+  void wake() override {
+    {
+      std::lock_guard lk(wakeMutex_);
+      woken_ = true;
+    }
+    wakeCv_.notify_all();
+  }
   bool shouldClose() const override { return false; }
   void beginFrame() override {
     ImGui_ImplOpenGL3_NewFrame();
@@ -76,7 +93,7 @@ class OsMesaContext final : public Platform {
       const std::uint8_t* src = &buffer_[size_t(h - 1 - y) * w * 4];
       std::uint8_t* dst = &rgb[size_t(y) * w * 3];
       for (int x = 0; x < w; ++x)
-        for (int c = 0; c < 3; ++c) dst[x * 3 + c] = src[x * 4 + c];
+        for (int c = 0; c < 3; ++c) dst[x * 3 + c] = src[x * 4 + 2 - c];  // BGRA
     }
     return rgb;
   }
@@ -86,6 +103,9 @@ class OsMesaContext final : public Platform {
   int width_, height_;
   std::vector<std::uint8_t> buffer_;
   std::chrono::steady_clock::time_point last_;
+  std::mutex wakeMutex_;
+  std::condition_variable wakeCv_;
+  bool woken_ = false;
 };
 
 }  // namespace

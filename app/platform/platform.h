@@ -26,6 +26,13 @@ class Platform {
   // Drawable size in pixels.
   virtual void framebufferSize(int& width, int& height) const = 0;
   virtual void pollEvents() = 0;
+  // Processes pending events, waiting up to `seconds` for one to arrive or for wake().
+  virtual void waitEvents(double seconds) = 0;
+  // Makes a waitEvents in progress (or the next one) return at once. Callable from any thread.
+  virtual void wake() = 0;
+  // Input and window events (keys, characters, mouse, scroll, resize, expose, focus, drops) seen so
+  // far: the viewer redraws when it changes. Always 0 offscreen.
+  virtual std::uint64_t eventCount() const { return 0; }
   virtual bool shouldClose() const = 0;
   // Starts an ImGui frame on the platform side (display size, time step, input).
   virtual void beginFrame() = 0;

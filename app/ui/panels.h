@@ -19,6 +19,7 @@ struct PanelState {
   bool hoverValid = false;  // pixel inspector: the cursor is over the image
   int hoverX = 0, hoverY = 0;
   bool requestSavePng = false;
+  double frameMs = 0;  // time the last UI frame took to draw and present
   // Convergence panel: live RMSE against time for each accumulation of the session.
   ConvergenceTracker convergence;
   char referencePath[1024] = "";

@@ -6,7 +6,7 @@
 
 namespace penumbra::ui {
 
-void drawStatsPanel(ViewerController& c, PanelState&) {
+void drawStatsPanel(ViewerController& c, PanelState& st) {
   if (!ImGui::CollapsingHeader("Stats", ImGuiTreeNodeFlags_DefaultOpen)) return;
   RenderProgress p = c.progress();
   const RenderLimits& l = c.limits();
@@ -17,8 +17,8 @@ void drawStatsPanel(ViewerController& c, PanelState&) {
   ImGui::Text("elapsed %.2f s%s", p.seconds, c.paused() ? " (paused)" : p.finished ? " (done)" : "");
   ImGui::Text("samples/s %.3g M", p.seconds > 0 ? double(p.samples) / p.seconds * 1e-6 : 0.0);
   ImGui::Text("NaN/Inf/negative %llu", (unsigned long long)p.badSamples);
-  ImGui::Text("%s, %d threads, %.0f fps", strategyLabel(c.settings().integrator).c_str(),
-              c.engine().threadCount(), ImGui::GetIO().Framerate);
+  ImGui::Text("%s, %d threads, UI frame %.1f ms", strategyLabel(c.settings().integrator).c_str(),
+              c.engine().threadCount(), st.frameMs);
   if (ImGui::TreeNode("Live settings as scene XML")) {
     static std::string xml;
     xml = c.liveSceneXml();

@@ -29,6 +29,10 @@ glm::mat4 lookAt(const Vec3& origin, const Vec3& target, const Vec3& up) {
 
 ViewerController::ViewerController(LoadedScene scene, Overrides overrides, int threads)
     : overrides_(std::move(overrides)), threads_(threads) {
+  for (Engine* e : {&engine_, &compareEngine_}) {
+    e->setWorkerNice(kViewerWorkerNice);
+    e->setPublishSignal(signal_);
+  }
   adoptScene(std::move(scene));
   if (!scene_.path.empty()) rememberRecent(scene_.path);
 }
@@ -132,7 +136,7 @@ namespace {
 // Fetches the engine's newest snapshot into `snap`; true when it changed.
 bool pollEngine(Engine& engine, FilmSnapshot& snap, bool wantStandardError) {
   engine.requestSnapshot(wantStandardError);
-  bool changed = engine.latestSnapshot(snap);
+  bool changed = engine.takeSnapshot(snap);  // the controller is each engine's only reader
   // The engine publishes only at pass boundaries where a snapshot was requested, so the final pass of
   // a finished accumulation may not have been published: read it from the (now idle) film.
   RenderProgress p = engine.progress();
@@ -152,9 +156,17 @@ bool pollEngine(Engine& engine, FilmSnapshot& snap, bool wantStandardError) {
 
 bool ViewerController::pollSnapshot(bool wantStandardError) {
   bool changed = pollEngine(engine_, snapshot_, wantStandardError);
-  if (changed) snapshotRestart_ = restarts_;
-  if (compare_ && pollEngine(compareEngine_, compareSnapshot_, wantStandardError)) changed = true;
+  if (changed) snapshotRestart_ = restarts_, ++snapshotSerial_;
+  if (compare_ && pollEngine(compareEngine_, compareSnapshot_, wantStandardError)) {
+    changed = true;
+    ++compareSnapshotSerial_;
+  }
   return changed;
+}
+
+bool ViewerController::rendering() const {
+  auto busy = [](const Engine& e) { return !e.paused() && !e.progress().finished; };
+  return busy(engine_) || (compare_ && busy(compareEngine_));
 }
 
 static bool sameSettings(const RenderSettings& a, const RenderSettings& b) {

@@ -37,6 +37,10 @@ struct OrbitCamera {
   float distance = 1.f;
 };
 
+// Nice value of the render threads while the viewer runs (Engine::setWorkerNice): the UI thread and the
+// GL rasteriser's threads preempt them for the few ms a frame takes, instead of getting a fair share.
+inline constexpr int kViewerWorkerNice = 10;
+
 class ViewerController {
  public:
   using Overrides = std::vector<std::pair<std::string, std::string>>;
@@ -60,6 +64,13 @@ class ViewerController {
   const FilmSnapshot& snapshot() const { return snapshot_; }
   // Restart counter value the current snapshot belongs to.
   uint64_t snapshotRestart() const { return snapshotRestart_; }
+  // Count of changes of snapshot() / compareSnapshot() (each side is tone mapped only when it changed).
+  uint64_t snapshotSerial() const { return snapshotSerial_; }
+  uint64_t compareSnapshotSerial() const { return compareSnapshotSerial_; }
+  // True while an accumulation is running (not finished, not paused).
+  bool rendering() const;
+  // Notified whenever either engine publishes a snapshot or stops (the UI sleeps on it).
+  const PublishSignal& publishSignal() const { return *signal_; }
 
   // ---- compare mode (issue 6) -----------------------------------------------------------------
   // A second Engine renders the same scene, camera and sampler with `compareIntegrator()`; the image
@@ -136,10 +147,12 @@ class ViewerController {
   RenderLimits limits_;
   bool useTimeBudget_ = false;
   OrbitCamera orbit_;
+  std::shared_ptr<PublishSignal> signal_ = std::make_shared<PublishSignal>();
   Engine engine_;
   FilmSnapshot snapshot_;
   uint64_t restarts_ = 0;
   uint64_t snapshotRestart_ = 0;
+  uint64_t snapshotSerial_ = 0, compareSnapshotSerial_ = 0;
   bool compare_ = false;
   IntegratorDesc compareIntegrator_{IntegratorType::Direct, 1, DirectMeasure::SolidAngle,
                                     HemisphereWarp::Cosine};

@@ -1,5 +1,9 @@
 #include "core/render/engine.h"
 
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <ctime>
 
@@ -14,6 +18,25 @@ double processCpuSeconds() {
   return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
 }
 }  // namespace
+
+void PublishSignal::notify() {
+  {
+    std::lock_guard lk(mutex_);
+    ++count_;
+  }
+  cv_.notify_all();
+}
+
+uint64_t PublishSignal::count() const {
+  std::lock_guard lk(mutex_);
+  return count_;
+}
+
+uint64_t PublishSignal::wait(uint64_t seen, double seconds) const {
+  std::unique_lock lk(mutex_);
+  cv_.wait_for(lk, std::chrono::duration<double>(seconds), [&] { return count_ != seen; });
+  return count_;
+}
 
 Engine::~Engine() {
   cancel();
@@ -61,6 +84,7 @@ void Engine::spawnWorkers(bool preview) {
   arrived_ = 0;
   stopAll_ = false;
   nextPreviewRow_ = 0;
+  prepareResolve(preview, false);  // an interactive start shows its first pass as soon as it ends
   if (preview) {
     const CameraDesc& cam = job_->settings.camera;
     preview_ = Image(cam.width, cam.height);
@@ -145,14 +169,57 @@ RenderProgress Engine::progress() const {
 }
 
 void Engine::requestSnapshot(bool withStandardError) {
-  if (withStandardError) snapshotWantsError_ = true;
+  if (withStandardError) {
+    snapshotWantsError_ = true;
+    ++errorRequests_;
+  }
+  ++requests_;
   snapshotRequested_ = true;
+}
+
+void Engine::prepareResolve(bool mean, bool error) {
+  resolveMean_ = mean;
+  resolveError_ = mean && error;
+  const CameraDesc& cam = job_->settings.camera;
+  if (resolveMean_ && (pendingMean_.width != cam.width || pendingMean_.height != cam.height))
+    pendingMean_ = Image(cam.width, cam.height);
+  if (resolveError_ && (pendingError_.width != cam.width || pendingError_.height != cam.height))
+    pendingError_ = Image(cam.width, cam.height);
+}
+
+// The pass that just ended was resolved row by row into pendingMean_ (and pendingError_): publish it
+// by swapping buffers (the old snapshot's become the next pass's pending ones; readers copy).
+void Engine::publishResolved() {
+  std::lock_guard lk(snapshotMutex_);
+  std::swap(snapshot_.mean, pendingMean_);
+  if (resolveError_) {
+    std::swap(snapshot_.standardError, pendingError_);
+    snapshotWantsError_ = false;
+  } else {
+    snapshot_.standardError = Image();
+  }
+  snapshot_.spp = spp_;
+  snapshot_.seconds = elapsedNow();
+  snapshot_.cpuSeconds = processCpuSeconds() - cpuAtStart_;
+  ++snapshot_.version;
 }
 
 bool Engine::latestSnapshot(FilmSnapshot& out) const {
   std::lock_guard lk(snapshotMutex_);
   if (snapshot_.version == out.version) return false;
   out = snapshot_;
+  return true;
+}
+
+bool Engine::takeSnapshot(FilmSnapshot& out) {
+  std::lock_guard lk(snapshotMutex_);
+  if (snapshot_.version == out.version) return false;
+  std::swap(out.mean, snapshot_.mean);
+  std::swap(out.standardError, snapshot_.standardError);
+  out.version = snapshot_.version;
+  out.spp = snapshot_.spp;
+  out.seconds = snapshot_.seconds;
+  out.cpuSeconds = snapshot_.cpuSeconds;
   return true;
 }
 
@@ -180,11 +247,26 @@ bool Engine::passBoundary() {
   bool stop = stopRequested_ || (limits_.targetSpp > 0 && spp_ >= limits_.targetSpp) ||
               (limits_.seconds > 0 && elapsedNow() >= limits_.seconds);
   // The last pass is always published, so viewers see the finished image.
-  if (snapshotRequested_.exchange(false) || stop) publishSnapshot();
+  bool requested = snapshotRequested_.exchange(false);
+  published_ = resolveMean_ || requested || stop;  // notified by the caller
+  if (resolveMean_)
+    publishResolved();
+  else if (requested || stop)
+    publishSnapshot();
+  // Resolve the next pass row by row while requests keep coming (one since either of the last two
+  // boundaries): a viewer asks again right after it fetched a snapshot, i.e. early in the next pass.
+  const uint64_t r = requests_, e = errorRequests_;
+  bool mean = !stop && (r != requestsSeen_[0] || requestsSeen_[0] != requestsSeen_[1]);
+  bool error = e != errorRequestsSeen_[0] || errorRequestsSeen_[0] != errorRequestsSeen_[1];
+  requestsSeen_[1] = requestsSeen_[0], requestsSeen_[0] = r;
+  errorRequestsSeen_[1] = errorRequestsSeen_[0], errorRequestsSeen_[0] = e;
+  prepareResolve(mean, error);
   return stop;
 }
 
 void Engine::workerLoop(int /*workerIndex*/, bool preview) {
+  // Linux: a nice value set through the thread id applies to this thread only.
+  if (workerNice_ > 0) setpriority(PRIO_PROCESS, id_t(syscall(SYS_gettid)), workerNice_);
   const RenderJob& job = *job_;
   const RenderSettings& s = job.settings;
   RowRenderer renderRow = makeRowRenderer(job);
@@ -202,13 +284,14 @@ void Engine::workerLoop(int /*workerIndex*/, bool preview) {
       arrived_ = 0;
       if (!cancel_) {
         std::lock_guard sl(snapshotMutex_);
-        snapshot_.mean = preview_;
+        snapshot_.mean = std::move(preview_);  // the preview is done with
         snapshot_.standardError = Image();
         snapshot_.spp = 0;
         snapshot_.seconds = elapsedNow();
         snapshot_.cpuSeconds = processCpuSeconds() - cpuAtStart_;
         ++snapshot_.version;
       }
+      if (signal_ && !cancel_) signal_->notify();
       ++generation_;
       passCv_.notify_all();
     } else {
@@ -218,10 +301,15 @@ void Engine::workerLoop(int /*workerIndex*/, bool preview) {
   }
 
   uint32_t pass = pass_;
+  bool resolveMean = resolveMean_, resolveError = resolveError_;
   for (;;) {
     uint64_t bad = 0;
-    for (int y; !cancel_.load(std::memory_order_relaxed) && (y = nextRow_.fetch_add(1)) < height;)
+    for (int y; !cancel_.load(std::memory_order_relaxed) && (y = nextRow_.fetch_add(1)) < height;) {
       renderRow.row(y, pass, sampler, film_, bad);
+      // This worker owns row y until the pass ends: resolve it now, from sums still in cache.
+      if (resolveMean) film_.resolveMean(pass + 1, pendingMean_, y, y + 1);
+      if (resolveError) film_.resolveStandardError(pass + 1, pendingError_, y, y + 1);
+    }
     if (bad) badSamples_ += bad;
 
     std::unique_lock lk(passMutex_);
@@ -229,9 +317,11 @@ void Engine::workerLoop(int /*workerIndex*/, bool preview) {
     if (++arrived_ == threadCount) {
       arrived_ = 0;
       bool stop = passBoundary();
+      if (signal_ && published_ && !stop) signal_->notify();
       while (!stop && paused_ && !cancel_ && !stopRequested_) passCv_.wait(lk);
       if (!stop && (cancel_ || stopRequested_)) stop = true;
       if (stop && !finished_.exchange(true)) finalSeconds_ = elapsedNow();
+      if (signal_ && stop) signal_->notify();  // after `finished`, which viewers read
       stopAll_ = stop;
       ++generation_;
       passCv_.notify_all();
@@ -240,6 +330,7 @@ void Engine::workerLoop(int /*workerIndex*/, bool preview) {
     }
     if (stopAll_) return;
     pass = pass_;
+    resolveMean = resolveMean_, resolveError = resolveError_;
   }
 }
 

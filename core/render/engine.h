@@ -54,6 +54,21 @@ struct FilmSnapshot {
   Image standardError;
 };
 
+// Counts snapshot publications, so a viewer can sleep until one of its engines has something new
+// (Engine::setPublishSignal) instead of polling.
+class PublishSignal {
+ public:
+  void notify();
+  uint64_t count() const;
+  // Waits until count() differs from `seen`, or `seconds` pass; returns count().
+  uint64_t wait(uint64_t seen, double seconds) const;
+
+ private:
+  mutable std::mutex mutex_;
+  mutable std::condition_variable cv_;
+  uint64_t count_ = 0;
+};
+
 class Engine {
  public:
   Engine() = default;
@@ -75,12 +90,25 @@ class Engine {
   void wait();
   void setPaused(bool paused);
   bool paused() const { return paused_.load(); }
+  // Notified after every snapshot publication (and when a render stops), from a worker thread.
+  void setPublishSignal(std::shared_ptr<PublishSignal> s) { signal_ = std::move(s); }
+  // Scheduling priority (Linux nice value, 0..19) of the worker threads of later start() / extend()
+  // calls. An interactive viewer raises it so that its UI thread, which needs a few ms now and then,
+  // gets a core at once instead of a fair share beside the workers; alone, they run as fast as ever.
+  void setWorkerNice(int nice) { workerNice_ = nice; }
 
   RenderProgress progress() const;
   // Asks the workers to publish a snapshot at the next pass boundary (cheap to call every frame).
+  // While requests keep coming (one within the last two passes), every pass is resolved row by row by
+  // the worker that rendered the row, while its sums are still in cache, and published at the pass
+  // boundary without stopping the other workers; otherwise the last worker resolves the whole film at
+  // the boundary. Interactive starts (RenderLimits::preview) resolve their first pass this way too.
   void requestSnapshot(bool withStandardError = false);
   // Copies the latest published snapshot into `out` if it is newer than out.version.
   bool latestSnapshot(FilmSnapshot& out) const;
+  // The same for the engine's only reader, without copying the images: swaps them with out's (the
+  // engine reuses out's old buffers for later snapshots). Afterwards latestSnapshot() must not be used.
+  bool takeSnapshot(FilmSnapshot& out);
 
   // Valid once the render has stopped (after wait() or cancel()).
   const Film& film() const { return film_; }
@@ -92,6 +120,8 @@ class Engine {
   void workerLoop(int workerIndex, bool preview);
   bool passBoundary();  // run by the last worker to finish a pass; returns true to stop
   void publishSnapshot();
+  void publishResolved();
+  void prepareResolve(bool mean, bool error);
   double elapsedNow() const;
 
   std::shared_ptr<const RenderJob> job_;
@@ -114,6 +144,8 @@ class Engine {
   uint64_t generation_ = 0;
   bool stopAll_ = false;
   int threadCount_ = 0;
+  int workerNice_ = 0;
+  std::shared_ptr<PublishSignal> signal_;
   mutable std::mutex passMutex_;
   std::condition_variable passCv_;
 
@@ -127,6 +159,11 @@ class Engine {
   // Snapshot publishing.
   std::atomic<bool> snapshotRequested_{false};
   std::atomic<bool> snapshotWantsError_{false};
+  std::atomic<uint64_t> requests_{0}, errorRequests_{0};
+  uint64_t requestsSeen_[2] = {0, 0}, errorRequestsSeen_[2] = {0, 0};  // at the last two boundaries
+  bool published_ = false;  // by the pass boundary being run (notify signal_ once it is over)
+  bool resolveMean_ = false, resolveError_ = false;  // the current pass resolves its rows into:
+  Image pendingMean_, pendingError_;
   mutable std::mutex snapshotMutex_;
   FilmSnapshot snapshot_;
 };

@@ -168,3 +168,46 @@ TEST(Engine, PreviewIsPublishedBeforeTheFirstPass) {
 
 }  // namespace
 }  // namespace penumbra
+
+namespace penumbra {
+namespace {
+
+// A viewer that keeps asking gets every pass resolved row by row during the pass; those snapshots
+// equal the film resolved at the same spp (mean and standard error, bit for bit), whether read by
+// copy (latestSnapshot) or by swapping buffers with the engine (takeSnapshot).
+void expectStreamedSnapshotsEqualTheFilm(bool take) {
+  auto job = smallJob();
+  Engine engine;
+  RenderLimits limits{40, 0.0};
+  limits.preview = true;
+  engine.start(job, limits, 2);
+  std::vector<FilmSnapshot> seen;
+  FilmSnapshot snap;
+  while (!engine.progress().finished) {
+    engine.requestSnapshot(true);
+    bool got = take ? engine.takeSnapshot(snap) : engine.latestSnapshot(snap);
+    if (got && snap.spp >= 2 && !snap.standardError.empty()) seen.push_back(snap);
+    std::this_thread::yield();
+  }
+  engine.wait();
+  ASSERT_FALSE(seen.empty());
+  Engine reference;
+  for (size_t i = 0; i < seen.size(); i += std::max<size_t>(1, seen.size() / 5)) {
+    const FilmSnapshot& s = seen[i];
+    reference.start(job, RenderLimits{s.spp, 0.0}, 1);
+    reference.wait();
+    EXPECT_EQ(s.mean.rgb, reference.film().mean(s.spp).rgb) << "spp " << s.spp;
+    EXPECT_EQ(s.standardError.rgb, reference.film().standardError(s.spp).rgb) << "spp " << s.spp;
+  }
+}
+
+TEST(Engine, StreamedSnapshotsEqualTheFilmAtTheirSpp) {
+  expectStreamedSnapshotsEqualTheFilm(false);
+}
+
+TEST(Engine, TakenSnapshotsEqualTheFilmAtTheirSpp) {
+  expectStreamedSnapshotsEqualTheFilm(true);
+}
+
+}  // namespace
+}  // namespace penumbra
