@@ -26,7 +26,7 @@ struct Bounds {
   float diagonal() const { return glm::length(extent()); }
   float maxExtent() const { return maxComponent(extent()); }
   // Largest absolute coordinate: the magnitude of the numbers the scene is made of.
-  float maxAbs() const { return empty() ? 0.f : maxComponent(glm::max(glm::abs(min), glm::abs(max))); }
+  float maxAbs() const { return empty() ? 0.f : maxComponent(glm::max(absVec(min), absVec(max))); }
 };
 
 }  // namespace penumbra

@@ -51,6 +51,7 @@ SceneGeometry& SceneGeometry::operator=(SceneGeometry&& other) noexcept {
     sphereIds_ = std::move(other.sphereIds_);
     meshes_ = std::move(other.meshes_);
     meshIds_ = std::move(other.meshIds_);
+    quads_ = std::move(other.quads_);
     flat_ = std::move(other.flat_);
     triangleCount_ = std::exchange(other.triangleCount_, 0);
     bounds_ = std::exchange(other.bounds_, Bounds{});
@@ -93,15 +94,17 @@ void SceneGeometry::addMesh(const TriangleMesh& mesh, uint32_t objectId) {
 
 void SceneGeometry::build(AccelMode mode) {
   release();
+  quads_.clear();
   flat_.clear();
   const bool useEmbree =
       triangleCount_ > 0 &&
       (mode == AccelMode::Embree || (mode == AccelMode::Auto && triangleCount_ > kBruteForceMaxTriangles));
   if (!useEmbree) {
-    flat_.reserve(triangleCount_);
     for (uint32_t m = 0; m < meshes_.size(); ++m) {
       const TriangleMesh& mesh = meshes_[m];
-      for (uint32_t i = 0; i < mesh.triangles.size(); ++i) {
+      std::vector<uint32_t> leftover;
+      pairParallelograms(mesh, m, quads_, leftover);
+      for (uint32_t i : leftover) {
         const glm::uvec3 t = mesh.triangles[i];
         const Vec3 &p0 = mesh.positions[t.x], &p1 = mesh.positions[t.y], &p2 = mesh.positions[t.z];
         flat_.push_back({p0, p1, p2, m, i, trianglePlane(p0, p1, p2)});
@@ -139,6 +142,53 @@ void SceneGeometry::build(AccelMode mode) {
   checkEmbree(device, "rtcCommitScene");
 }
 
+bool SceneGeometry::nearestEmbreeTriangle(const Ray& r, TriangleCandidate& c) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRayHit rh;
+  setupRay(r, r.tMax, rh.ray);
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(static_cast<RTCScene>(scene_), &context, &rh);
+  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+  c.mesh = rh.hit.geomID;
+  c.prim = rh.hit.primID;
+  c.isect = {rh.ray.tfar, 1.f - rh.hit.u - rh.hit.v, rh.hit.u, rh.hit.v};
+  c.flat = nullptr;
+  return true;
+}
+
+bool SceneGeometry::nearestFlatTriangle(const Ray& r, TriangleCandidate& c) const {
+  const TriangleRay tr(r);
+  float tMax = r.tMax;
+  const FlatTriangle* best = nullptr;
+  auto loop = [&]<int KZ>() {
+    for (const FlatTriangle& tri : flat_) {
+      if (intersectTriangleK<KZ>(tr, tMax, tri.p0, tri.p1, tri.p2, c.isect)) {
+        tMax = c.isect.t;
+        best = &tri;
+      }
+    }
+  };
+  switch (tr.kz) {
+    case 0:
+      loop.template operator()<0>();
+      break;
+    case 1:
+      loop.template operator()<1>();
+      break;
+    default:
+      loop.template operator()<2>();
+      break;
+  }
+  if (!best) return false;
+  // intersectTriangleK writes `out` only on a hit, so c.isect holds the nearest one.
+  c.mesh = best->mesh;
+  c.prim = best->prim;
+  c.flat = best;
+  return true;
+}
+
 bool SceneGeometry::intersect(const Ray& ray, SurfaceHit& hit) const {
   Ray r = ray;
   int sphereHit = -1;
@@ -150,57 +200,29 @@ bool SceneGeometry::intersect(const Ray& ray, SurfaceHit& hit) const {
     }
   }
 
-  uint32_t meshHit = 0, primHit = 0;
-  const FlatTriangle* flatHit = nullptr;
-  bool triHit = false;
-  TriangleIntersection best{};
-  if (scene_) {
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    RTCRayHit rh;
-    setupRay(r, r.tMax, rh.ray);
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(static_cast<RTCScene>(scene_), &context, &rh);
-    if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
-      triHit = true;
-      meshHit = rh.hit.geomID;
-      primHit = rh.hit.primID;
-      best = {rh.ray.tfar, 1.f - rh.hit.u - rh.hit.v, rh.hit.u, rh.hit.v};
-    }
-  } else if (!flat_.empty()) {
-    const TriangleRay tr(r);
-    auto loop = [&]<int KZ>() {
-      for (const FlatTriangle& tri : flat_) {
-        TriangleIntersection isect;
-        if (intersectTriangleK<KZ>(tr, r.tMax, tri.p0, tri.p1, tri.p2, isect)) {
-          r.tMax = isect.t;
-          best = isect;
-          triHit = true;
-          meshHit = tri.mesh;
-          primHit = tri.prim;
-          flatHit = &tri;
-        }
-      }
-    };
-    switch (tr.kz) {
-      case 0:
-        loop.template operator()<0>();
-        break;
-      case 1:
-        loop.template operator()<1>();
-        break;
-      default:
-        loop.template operator()<2>();
-        break;
+  const Parallelogram* quadHit = nullptr;
+  float quadU = 0.f, quadV = 0.f;
+  for (const Parallelogram& q : quads_) {
+    float t, u, v;
+    if (intersectParallelogram(q, r, r.tMax, t, u, v)) {
+      r.tMax = t;
+      quadHit = &q;
+      quadU = u;
+      quadV = v;
     }
   }
 
+  TriangleCandidate tri;
+  const bool triHit = scene_ ? nearestEmbreeTriangle(r, tri) : !flat_.empty() && nearestFlatTriangle(r, tri);
   if (triHit) {
     // Embree hits keep offsets relative to the triangle's coordinates (its t carries that error);
     // brute-force hits are projected and offset relative to |p| (see projectOntoPlane).
-    fillTriangleHit(meshes_[meshHit], primHit, best, meshIds_[meshHit], hit);
-    if (flatHit) projectOntoPlane(flatHit->plane, hit);
+    fillTriangleHit(meshes_[tri.mesh], tri.prim, tri.isect, meshIds_[tri.mesh], hit);
+    if (tri.flat) projectOntoPlane(tri.flat->plane, hit);
+    return true;
+  }
+  if (quadHit) {
+    fillParallelogramHit(*quadHit, ray, r.tMax, quadU, quadV, meshIds_[quadHit->mesh], hit);
     return true;
   }
   if (sphereHit >= 0) {
@@ -210,9 +232,13 @@ bool SceneGeometry::intersect(const Ray& ray, SurfaceHit& hit) const {
   return false;
 }
 
-bool SceneGeometry::occluded(const Ray& ray) const {
-  for (const Sphere& s : spheres_)
-    if (s.occludes(ray)) return true;
+bool SceneGeometry::occluded(const Ray& ray, int32_t skipSphere) const {
+  for (size_t i = 0; i < spheres_.size(); ++i)
+    if (static_cast<int32_t>(i) != skipSphere && spheres_[i].occludes(ray)) return true;
+  for (const Parallelogram& q : quads_) {
+    float t, u, v;
+    if (intersectParallelogram(q, ray, ray.tMax, t, u, v)) return true;
+  }
   if (scene_) {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);

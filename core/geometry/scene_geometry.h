@@ -1,6 +1,7 @@
 // All the geometry of a scene behind two queries: nearest hit and occlusion. Spheres are tested
 // analytically in a flat loop; triangles are tested by brute force in a flat array when there are
-// few of them, otherwise through an Embree 3 BVH. No virtual calls and no allocation per query;
+// few of them (pairs forming a parallelogram, such as a two-triangle floor, as one primitive),
+// otherwise through an Embree 3 BVH. No virtual calls and no allocation per query;
 // concurrent const queries are thread-safe once build() has returned.
 #pragma once
 
@@ -9,6 +10,7 @@
 #include <vector>
 
 #include "core/geometry/bounds.h"
+#include "core/geometry/parallelogram.h"
 #include "core/geometry/ray.h"
 #include "core/geometry/sphere.h"
 #include "core/geometry/surface_hit.h"
@@ -49,12 +51,16 @@ class SceneGeometry {
 
   // Nearest hit with ray.tMin < t < ray.tMax.
   bool intersect(const Ray& ray, SurfaceHit& hit) const;
-  // Whether anything is hit with ray.tMin < t < ray.tMax.
-  bool occluded(const Ray& ray) const;
+  // Whether anything is hit with ray.tMin < t < ray.tMax. Sphere `skipSphere` (an index returned by
+  // addSphere) is not tested: a shadow ray towards a point of a convex light that faces the shading
+  // point cannot be blocked by that light, and testing it would only add rounding (and cost).
+  bool occluded(const Ray& ray, int32_t skipSphere = -1) const;
 
   Bounds bounds() const { return bounds_; }
   size_t sphereCount() const { return spheres_.size(); }
   size_t triangleCount() const { return triangleCount_; }
+  // Brute-force path only: triangle pairs intersected as parallelograms.
+  size_t parallelogramCount() const { return quads_.size(); }
   bool usesEmbree() const { return scene_ != nullptr; }
   const std::vector<Sphere>& spheres() const { return spheres_; }
   const std::vector<TriangleMesh>& meshes() const { return meshes_; }
@@ -65,13 +71,22 @@ class SceneGeometry {
     uint32_t mesh, prim;
     TrianglePlane plane;
   };
+  // The nearest triangle hit closer than r.tMax, by either path (kept out of intersect's hot loop).
+  struct TriangleCandidate {
+    TriangleIntersection isect{};
+    uint32_t mesh = 0, prim = 0;
+    const FlatTriangle* flat = nullptr;  // set on the brute-force path (its hit is re-projected)
+  };
+  [[gnu::noinline]] bool nearestEmbreeTriangle(const Ray& r, TriangleCandidate& c) const;
+  [[gnu::noinline]] bool nearestFlatTriangle(const Ray& r, TriangleCandidate& c) const;
   void release();
 
   std::vector<Sphere> spheres_;
   std::vector<uint32_t> sphereIds_;
   std::vector<TriangleMesh> meshes_;
   std::vector<uint32_t> meshIds_;
-  std::vector<FlatTriangle> flat_;  // brute-force path only
+  std::vector<Parallelogram> quads_;  // brute-force path only
+  std::vector<FlatTriangle> flat_;    // brute-force path only: triangles not in a parallelogram
   size_t triangleCount_ = 0;
   Bounds bounds_;
   void* device_ = nullptr;  // RTCDevice, created only when a BVH is needed

@@ -41,14 +41,15 @@ struct Sphere {
     const DVec3 d(ray.d);
     const double r = radius;
     const double a = glm::dot(d, d);
+    const double invA = 1.0 / a;
     const double b = glm::dot(f, d);  // half of the usual b
     // Closest-approach form: b^2 - a·c = a·(r^2 - |f - (b/a)·d|^2), accurate when |f| >> r.
-    const DVec3 v = f - (b / a) * d;
+    const DVec3 v = f - (b * invA) * d;
     const double disc = r * r - glm::dot(v, v);
     if (!(disc >= 0.0)) return false;  // also rejects NaN (degenerate d)
     const double c = glm::dot(f, f) - r * r;
     const double q = -(b + std::copysign(std::sqrt(a * disc), b));
-    t1 = q / a;
+    t1 = q * invA;
     t0 = q != 0.0 ? c / q : t1;  // q == 0 only for r == 0 grazing the centre (then c == 0 too)
     if (t0 > t1) std::swap(t0, t1);
     return true;

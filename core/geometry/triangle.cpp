@@ -30,8 +30,8 @@ void fillTriangleHit(const TriangleMesh& mesh, uint32_t primId, const TriangleIn
     const float l = glm::length(ns);
     if (l > 0.f && std::isfinite(l)) hit.ns = ns / l;
   }
-  const Vec3 m = glm::max(glm::abs(p0), glm::max(glm::abs(p1), glm::abs(p2)));
-  hit.offsetScale = std::max(maxComponent(m), maxComponent(glm::abs(hit.p)));
+  const Vec3 m = glm::max(absVec(p0), glm::max(absVec(p1), absVec(p2)));
+  hit.offsetScale = std::max(maxComponent(m), maxAbsComponent(hit.p));
   hit.objectId = objectId;
   hit.primId = primId;
 }
@@ -41,7 +41,7 @@ void projectOntoPlane(const TrianglePlane& plane, SurfaceHit& hit) {
   hit.p = Vec3(p - plane.normal * (glm::dot(plane.normal, p) - plane.offset));
   // The brute-force triangle test rejects hits within its own rounding error of t (pbrt-v4's
   // conservative t), so an origin offset relative to |p| cannot re-hit this triangle.
-  hit.offsetScale = maxComponent(glm::abs(hit.p));
+  hit.offsetScale = maxAbsComponent(hit.p);
 }
 
 TrianglePlane trianglePlane(const Vec3& p0, const Vec3& p1, const Vec3& p2) {

@@ -25,7 +25,7 @@ struct TriangleRay {
   int kx, ky, kz;
 
   explicit TriangleRay(const Ray& ray) : o(ray.o), tMin(ray.tMin) {
-    const Vec3 a = glm::abs(ray.d);
+    const Vec3 a = absVec(ray.d);
     kz = a.x > a.y ? (a.x > a.z ? 0 : 2) : (a.y > a.z ? 1 : 2);
     kx = kz == 2 ? 0 : kz + 1;
     ky = kx == 2 ? 0 : kx + 1;

@@ -29,7 +29,7 @@ struct AoIntegrator {
       // V cos / (pi pdf): 1 for cosine sampling, 2 cos for uniform sampling.
       sum += kWarp == HemisphereWarp::Cosine ? 1.f : 2.f * local.z;
     }
-    return Color3(sum / float(samples));
+    return Color3(sum * (1.f / float(samples)));
   }
 };
 

@@ -30,10 +30,11 @@ struct DirectIntegrator {
     if (material.sphereLight >= 0) L += scene.sphereLights[material.sphereLight].eval(hit.p, hit.ng, ray.d);
     if (isBlack(material.albedo)) return L;
 
-    ShadingPoint sp(scene, ray, hit);
+    constexpr bool kSamplesHemisphere =
+        kStrategy == DirectStrategy::UniformHemisphere || kStrategy == DirectStrategy::CosineHemisphere;
+    ShadingPoint sp(scene, ray, hit, kSamplesHemisphere);
     Color3 E = deltaIrradiance(scene, sp);
-    if constexpr (kStrategy == DirectStrategy::UniformHemisphere ||
-                  kStrategy == DirectStrategy::CosineHemisphere) {
+    if constexpr (kSamplesHemisphere) {
       if (scene.hasAreaLights()) E += hemisphereIrradiance(scene, sp, sampler);
     } else if constexpr (kStrategy == DirectStrategy::Area || kStrategy == DirectStrategy::SolidAngle) {
       E += lightSamplingIrradiance(scene, sp, sampler);
@@ -54,8 +55,7 @@ struct DirectIntegrator {
       DeltaLightSample s = light.sample(sp.hit.p);
       float cosTheta = glm::dot(sp.ns, s.wi);
       if (isBlack(s.Li) || !leavesSurface(sp, s.wi, cosTheta)) continue;
-      if (scene.geometry.occluded(sp.spawnRayTo(light.position, maxComponent(glm::abs(light.position)))))
-        continue;
+      if (scene.geometry.occluded(sp.spawnRayTo(light.position, maxAbsComponent(light.position)))) continue;
       E += s.Li * cosTheta;
     }
     for (const DirectionalLight& light : scene.directionalLights) {
@@ -73,14 +73,14 @@ struct DirectIntegrator {
     for (int i = 0; i < samples; ++i) {
       Vec2 u = sampler.next2D();
       Vec3 local;
-      float invPdf;
+      float cosOverPdf;  // cos θ / pdf, in closed form: π (cosine warp), 2π cos θ (uniform warp)
       if constexpr (kStrategy == DirectStrategy::CosineHemisphere) {
         local = Warp::squareToCosineHemisphere(u);
         if (!(local.z > 0.f)) continue;
-        invPdf = kPi / local.z;
+        cosOverPdf = kPi;
       } else {
         local = Warp::squareToUniformHemisphere(u);
-        invPdf = 2.f * kPi;
+        cosOverPdf = 2.f * kPi * local.z;
       }
       Vec3 w = sp.frame.toWorld(local);
       if (!leavesSurface(sp, w, local.z)) continue;
@@ -88,15 +88,15 @@ struct DirectIntegrator {
       if (!scene.geometry.intersect(sp.spawnRay(w, INFINITY), lightHit)) continue;
       int32_t light = scene.materials[lightHit.objectId].sphereLight;
       if (light < 0) continue;
-      E += scene.sphereLights[light].eval(lightHit.p, lightHit.ng, w) * (local.z * invPdf);
+      E += scene.sphereLights[light].eval(lightHit.p, lightHit.ng, w) * cosOverPdf;
     }
-    return E / float(samples);
+    return E * (1.f / float(samples));  // the reciprocal is off the critical path
   }
 
   Color3 lightSamplingIrradiance(const Scene& scene, const ShadingPoint& sp, Sampler& sampler) const {
     Color3 E(0.f);
     for (const SphereLight& light : scene.sphereLights) {
-      float lightScale = maxComponent(glm::abs(light.sphere.center)) + light.sphere.radius;
+      float lightScale = maxAbsComponent(light.sphere.center) + light.sphere.radius;
       for (int i = 0; i < samples; ++i) {
         Vec2 u = sampler.next2D();
         LightSample s = kStrategy == DirectStrategy::Area ? light.sampleArea(sp.hit.p, u)
@@ -104,11 +104,12 @@ struct DirectIntegrator {
         if (!(s.pdf > 0.f) || isBlack(s.Le)) continue;
         float cosTheta = glm::dot(sp.ns, s.wi);
         if (!leavesSurface(sp, s.wi, cosTheta)) continue;
-        if (scene.geometry.occluded(sp.spawnRayTo(s.p, lightScale))) continue;
+        // Every traced sample faces x (far-side area samples have Le = 0): the light cannot block it.
+        if (scene.geometry.occluded(sp.spawnRayTo(s.p, lightScale), light.geometryIndex)) continue;
         E += s.Le * (cosTheta / s.pdf);
       }
     }
-    return E / float(samples);
+    return E * (1.f / float(samples));
   }
 };
 

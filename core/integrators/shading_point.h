@@ -13,16 +13,17 @@ namespace penumbra {
 struct ShadingPoint {
   SurfaceHit hit;
   Vec3 ng, ns;  // flipped to the side the ray came from
-  Frame frame;  // around ns
+  Frame frame;  // around ns (identity when built without it)
   const SurfaceMaterial* material;
 
-  ShadingPoint(const Scene& scene, const Ray& ray, const SurfaceHit& h) : hit(h) {
+  // withFrame = false skips the shading frame for estimators that never sample around the normal.
+  ShadingPoint(const Scene& scene, const Ray& ray, const SurfaceHit& h, bool withFrame = true) : hit(h) {
     material = &scene.materials[h.objectId];
     bool backFacing = glm::dot(h.ng, ray.d) > 0.f;
     ng = backFacing ? -h.ng : h.ng;
     ns = backFacing ? -h.ns : h.ns;
     if (glm::dot(ns, ng) < 0.f) ns = ng;  // interpolated normal pointing inside: fall back to geometry
-    frame = Frame(ns);
+    if (withFrame) frame = Frame(ns);
   }
 
   // A ray leaving the surface towards unit direction w, up to distance tMax.
@@ -42,7 +43,7 @@ struct ShadingPoint {
     r.o = offsetRayOrigin(hit.p, ng, hit.offsetScale, target - hit.p);
     Vec3 d = target - r.o;
     float dist = glm::length(d);
-    r.d = d / dist;
+    r.d = d * (1.f / dist);
     r.tMin = 0.f;
     r.tMax = dist - 2.f * kRayOffsetScale * std::max(targetScale, hit.offsetScale);
     return r;

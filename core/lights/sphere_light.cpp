@@ -67,7 +67,7 @@ LightSample SphereLight::sampleArea(const Vec3& x, Vec2 u) const {
   const DVec3 toP = DVec3(ls.p) - DVec3(x);
   const double dist = glm::length(toP);
   if (!(dist > 0.0)) return ls;
-  const DVec3 wi = toP / dist;
+  const DVec3 wi = toP * (1.0 / dist);
   const double cosP = -glm::dot(DVec3(n), wi);  // cos θp: light normal vs direction back to x
   if (cosP == 0.0) return ls;
   const double pdf =

@@ -11,6 +11,8 @@ namespace penumbra {
 struct SphereLight {
   Sphere sphere;
   Color3 radiance{0.f};
+  // Index of this sphere in SceneGeometry (-1: not in it), so its own shadow rays can skip it.
+  int32_t geometryIndex = -1;
 
   float area() const { return 4.f * kPi * sphere.radius * sphere.radius; }
   // Area density of sampleArea: 1 / (4π r²) (0 for a radius-0 light).

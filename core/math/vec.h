@@ -3,6 +3,7 @@
 
 #include <glm/glm.hpp>
 
+#include <cmath>
 #include <cstdint>
 
 namespace penumbra {
@@ -24,6 +25,14 @@ inline constexpr float kOneMinusEpsilon = 0x1.fffffep-1f;
 
 inline float maxComponent(const Vec3& v) {
   return glm::max(v.x, glm::max(v.y, v.z));
+}
+// Component-wise |v| with std::fabs: one AND per component (glm::abs compiles to compare-and-select,
+// because it must keep x >= 0 ? x : -x semantics for -0). Used on the per-ray paths.
+inline Vec3 absVec(const Vec3& v) {
+  return Vec3(std::fabs(v.x), std::fabs(v.y), std::fabs(v.z));
+}
+inline float maxAbsComponent(const Vec3& v) {
+  return maxComponent(absVec(v));
 }
 inline float luminance(const Color3& c) {
   return 0.212671f * c.x + 0.715160f * c.y + 0.072169f * c.z;

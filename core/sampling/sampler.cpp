@@ -69,7 +69,7 @@ bool parseSamplerKind(const std::string& name, SamplerKind& out) {
 }
 
 Sampler::Sampler(SamplerKind kind, uint32_t sampleCount, uint64_t seed)
-    : seed_(seed), sampleCount_(std::max<uint32_t>(sampleCount, 1)), kind_(kind) {
+    : seed_(seed), seedHash_(mix64(seed)), sampleCount_(std::max<uint32_t>(sampleCount, 1)), kind_(kind) {
   auto side = static_cast<uint32_t>(std::sqrt(static_cast<double>(sampleCount_)));
   while (side * side > sampleCount_) --side;
   while ((side + 1) * (side + 1) <= sampleCount_) ++side;
@@ -80,7 +80,7 @@ Sampler::Sampler(SamplerKind kind, uint32_t sampleCount, uint64_t seed)
 void Sampler::startPixelSample(IVec2 pixel, uint32_t sampleIndex) {
   uint64_t packed =
       (static_cast<uint64_t>(static_cast<uint32_t>(pixel.x)) << 32) | static_cast<uint32_t>(pixel.y);
-  pixelKey_ = hashCombine(mix64(seed_), packed);
+  pixelKey_ = hashCombine(seedHash_, packed);
   sampleIndex_ = sampleIndex;
   dimension_ = 0;
   // The sequence (stream) is chosen by the pixel; the starting state by the sample index.

@@ -42,6 +42,7 @@ class Sampler {
 
   Rng rng_;
   uint64_t seed_ = 0;
+  uint64_t seedHash_ = 0;     // mix64(seed_), hoisted out of startPixelSample
   uint64_t pixelKey_ = 0;     // hash of (seed, pixel)
   uint32_t sampleCount_ = 1;  // N: strata of 1-D dimensions
   uint32_t gridSide_ = 1;     // floor(sqrt(N)): 2-D dimensions use gridSide^2 strata

@@ -193,7 +193,10 @@ void buildShape(const SceneNode& node, Scene& scene, std::vector<std::string>& w
       scene.sphereLights.push_back(light);
     }
     // A sphere of radius 0 can neither be hit nor emit; keep its light record but no geometry.
-    if (sphere.radius > 0.f) scene.geometry.addSphere(sphere, objectId);
+    if (sphere.radius > 0.f) {
+      const auto index = static_cast<int32_t>(scene.geometry.addSphere(sphere, objectId));
+      if (emitter) scene.sphereLights.back().geometryIndex = index;
+    }
   } else if (node.type == "obj" || node.type == "plane" || node.type == "rock") {
     if (emitter)
       throw Error(emitter->file, emitter->line,
