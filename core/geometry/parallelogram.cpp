@@ -26,8 +26,10 @@ std::optional<Parallelogram> makeParallelogram(const Vec3& c, const Vec3& a, con
   const double len = glm::length(n);
   if (!(len > 0.0) || !std::isfinite(len)) return std::nullopt;
   n /= len;
-  const DVec3 du = glm::cross(e2, n) / glm::dot(e1, glm::cross(e2, n));
-  const DVec3 dv = glm::cross(n, e1) / glm::dot(e2, glm::cross(n, e1));
+  // Dual vectors: du is orthogonal to e2 and n with du · e1 = 1 (dv likewise).
+  const DVec3 perpE2 = glm::cross(e2, n), perpE1 = glm::cross(n, e1);
+  const DVec3 du = perpE2 / glm::dot(e1, perpE2);
+  const DVec3 dv = perpE1 / glm::dot(e2, perpE1);
   if (!std::isfinite(maxAbs(du)) || !std::isfinite(maxAbs(dv))) return std::nullopt;
   Parallelogram q{};
   q.p0 = c;
