@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "core/math/sincos_turns.h"
 #include "core/sampling/warp.h"
 
 namespace penumbra {
@@ -64,19 +65,23 @@ LightSample SphereLight::sampleArea(const Vec3& x, Vec2 u) const {
   const Vec3 n = Warp::squareToUniformSphere(u);
   ls.n = n;
   ls.p = sphere.center + sphere.radius * n;
-  const DVec3 toP = DVec3(ls.p) - DVec3(x);
-  const double dist = glm::length(toP);
-  if (!(dist > 0.0)) return ls;
-  const DVec3 wi = toP * (1.0 / dist);
-  const double cosP = -glm::dot(DVec3(n), wi);  // cos θp: light normal vs direction back to x
-  if (cosP == 0.0) return ls;
+  const DVec3 toP = DVec3(ls.p) - DVec3(x);  // exact: float inputs
+  const double dist2 = glm::dot(toP, toP);
+  const double nDotToP = glm::dot(DVec3(n), toP);  // −cos θp · dist, θp between n and the way back to x
+  if (!(dist2 > 0.0) || nDotToP == 0.0) return ls;
+  // pdf = dist² / (4πr² |cos θp|) = dist³ / (4πr² |n · toP|): one square root, and the two divisions
+  // below do not wait for each other (this runs once per camera sample).
+  const double dist = std::sqrt(dist2);
+  const double invDist = 1.0 / dist;
   const double pdf =
-      dist * dist / (4.0 * 3.14159265358979323846 * double(sphere.radius) * sphere.radius * std::abs(cosP));
+      dist2 * dist /
+      (4.0 * 3.14159265358979323846 * double(sphere.radius) * sphere.radius * std::fabs(nDotToP));
   if (!(pdf <= kMaxPdf)) return ls;  // beyond float: invalid, never an infinite pdf
-  ls.wi = Vec3(wi);
+  ls.wi = Vec3(toP * invDist);
   ls.dist = static_cast<float>(dist);
   ls.pdf = static_cast<float>(pdf);
-  ls.Le = eval(ls.p, ls.n, ls.wi);  // far side (cos θp ≤ 0): 0
+  // eval's one-sided test on the unrounded direction: far side (cos θp ≤ 0) emits nothing.
+  ls.Le = nDotToP < 0.0 ? radiance : Color3(0.f);
   return ls;
 }
 
@@ -102,9 +107,9 @@ LightSample SphereLight::sampleSolidAngle(const Vec3& x, Vec2 u) const {
   const double cosT = 1.0 - oneMinusCosT;
   const double sin2T = oneMinusCosT * (2.0 - oneMinusCosT);
   const double sinT = std::sqrt(sin2T);
-  // φ only needs float precision (it sets no cancellation-prone quantity); sincosf is much cheaper.
-  const float phi = 2.f * kPi * u.y;
-  const double cosPhi = std::cos(phi), sinPhi = std::sin(phi);
+  // φ only needs float precision (it sets no cancellation-prone quantity).
+  const SinCos phi = sinCosTurns(u.y);
+  const double cosPhi = phi.cos, sinPhi = phi.sin;
 
   // Angle α at the centre between (x − c) and (p − c) (pbrt-v4):
   // cos α = sin²θ / sin θmax + cos θ √(1 − sin²θ / sin²θmax), with 1 / sin θmax = d / r.

@@ -148,8 +148,8 @@ Vec2 Warp::tentToSquare(Vec2 p) {
 // ---- uniform disk (polar, r = sqrt(u1), phi = 2 pi u2): pdf = 1/pi for x^2+y^2 <= 1 --------------
 Vec2 Warp::squareToUniformDisk(Vec2 sample) {
   float r = safeSqrt(sample.x);
-  float phi = 2.f * kPi * sample.y;
-  return Vec2(r * std::cos(phi), r * std::sin(phi));
+  const SinCos phi = sinCosTurns(sample.y);
+  return Vec2(r * phi.cos, r * phi.sin);
 }
 
 float Warp::squareToUniformDiskPdf(Vec2 p) {
@@ -162,9 +162,7 @@ Vec2 Warp::uniformDiskToSquare(Vec2 p) {
 
 // ---- concentric disk (Shirley & Chiu 1997): squares to rings; pdf = 1/pi for x^2+y^2 <= 1 -------
 Vec2 Warp::squareToConcentricDisk(Vec2 sample) {
-  float r, theta;
-  concentricPolar(sample, r, theta);
-  return Vec2(r * std::cos(theta), r * std::sin(theta));
+  return concentricPoint(sample);
 }
 
 float Warp::squareToConcentricDiskPdf(Vec2 p) {

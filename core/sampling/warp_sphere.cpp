@@ -83,11 +83,12 @@ Vec2 Warp::uniformHemisphereToSquare(const Vec3& v) {
 // pdf = cos(theta) / pi = z / pi for z >= 0, else 0. The concentric disk never reaches the rim for
 // canonical inputs, so every sample has z >= ~2^-11.5 > 0 and a positive density.
 Vec3 Warp::squareToCosineHemisphere(Vec2 sample) {
-  float r, theta;
-  concentricPolar(sample, r, theta);
+  float r, thetaTurns;
+  concentricPolar(sample, r, thetaTurns);
   float rho = std::fabs(r);
+  const SinCos theta = sinCosTurns(thetaTurns);
   // z = sqrt(1 - rho^2) from (1 - rho)(1 + rho): exact-ish at the rim, where x^2 + y^2 may round to 1.
-  return Vec3(r * std::cos(theta), r * std::sin(theta), safeSqrt((1.f - rho) * (1.f + rho)));
+  return Vec3(r * theta.cos, r * theta.sin, safeSqrt((1.f - rho) * (1.f + rho)));
 }
 
 float Warp::squareToCosineHemispherePdf(const Vec3& v) {
@@ -130,8 +131,8 @@ Vec3 Warp::squareToBeckmann(Vec2 sample, float alpha) {
   float tan2 = -alpha * alpha * std::log1p(-sample.x);
   float cosTheta = 1.f / std::sqrt(1.f + tan2);
   float sinTheta = std::sqrt(tan2 / (1.f + tan2));
-  float phi = 2.f * kPi * sample.y;
-  return Vec3(sinTheta * std::cos(phi), sinTheta * std::sin(phi), cosTheta);
+  const SinCos phi = sinCosTurns(sample.y);
+  return Vec3(sinTheta * phi.cos, sinTheta * phi.sin, cosTheta);
 }
 
 float Warp::squareToBeckmannPdf(const Vec3& m, float alpha) {

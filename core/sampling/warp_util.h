@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/math/sincos_turns.h"
 #include "core/math/vec.h"
 
 namespace penumbra {
@@ -37,20 +38,28 @@ inline bool insideUnitDisk(Vec2 p) {
   return p.x * p.x + p.y * p.y <= 1.f + kSupportSlack;
 }
 
-// Shirley-Chiu concentric map in polar form: the point is r (cos theta, sin theta) with a signed
-// radius |r| <= 1 - 2^-24 (inputs are centred, so the rim is never reached).
-inline void concentricPolar(Vec2 sample, float& r, float& theta) {
+// Shirley-Chiu concentric map in polar form: the point is r (cos θ, sin θ) with a signed radius
+// |r| <= 1 - 2^-24 (inputs are centred, so the rim is never reached) and θ given in turns (θ / 2π).
+inline void concentricPolar(Vec2 sample, float& r, float& thetaTurns) {
   float a = centredSample(sample.x), b = centredSample(sample.y);
   if (a == 0.f && b == 0.f) {  // not reachable from grid inputs; avoids 0/0
     r = 0.f;
-    theta = 0.f;
+    thetaTurns = 0.f;
   } else if (std::fabs(a) > std::fabs(b)) {
     r = a;
-    theta = kPiOver4 * (b / a);
+    thetaTurns = 0.125f * (b / a);
   } else {
     r = b;
-    theta = kPiOver2 - kPiOver4 * (a / b);
+    thetaTurns = 0.25f - 0.125f * (a / b);
   }
+}
+
+// The point r (cos θ, sin θ) of concentricPolar.
+inline Vec2 concentricPoint(Vec2 sample) {
+  float r, thetaTurns;
+  concentricPolar(sample, r, thetaTurns);
+  const SinCos sc = sinCosTurns(thetaTurns);
+  return Vec2(r * sc.cos, r * sc.sin);
 }
 
 // 1 - z of a unit direction without cancellation near the pole: (x^2 + y^2) / (1 + z) for z > 0.
@@ -62,8 +71,8 @@ inline float oneMinusCosTheta(const Vec3& v) {
 // w (2 - w), which keeps full relative precision for tiny w.
 inline Vec3 directionFromOneMinusCos(float w, float u) {
   float sinTheta = std::sqrt(std::max(w * (2.f - w), 0.f));
-  float phi = 2.f * kPi * u;
-  return Vec3(sinTheta * std::cos(phi), sinTheta * std::sin(phi), 1.f - w);
+  const SinCos phi = sinCosTurns(u);
+  return Vec3(sinTheta * phi.cos, sinTheta * phi.sin, 1.f - w);
 }
 
 }  // namespace penumbra
