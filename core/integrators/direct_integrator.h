@@ -105,7 +105,8 @@ struct DirectIntegrator {
         float cosTheta = glm::dot(sp.ns, s.wi);
         if (!leavesSurface(sp, s.wi, cosTheta)) continue;
         // Every traced sample faces x (far-side area samples have Le = 0): the light cannot block it.
-        if (scene.geometry.occluded(sp.spawnRayTo(s.p, lightScale), light.geometryIndex)) continue;
+        if (scene.geometry.occluded(sp.spawnRayTowards(s.wi, s.dist, lightScale), light.geometryIndex))
+          continue;
         E += s.Le * (cosTheta / s.pdf);
       }
     }

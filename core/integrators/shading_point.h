@@ -48,6 +48,19 @@ struct ShadingPoint {
     r.tMax = dist - 2.f * kRayOffsetScale * std::max(targetScale, hit.offsetScale);
     return r;
   }
+
+  // The same shadow ray when the unit direction w and distance `dist` from hit.p to the target are
+  // already known (light sampling computes them): no square root or division on the critical path.
+  // The origin moves by the offset, so the ray may pass the target by that much sideways; it stops
+  // short by that much more.
+  Ray spawnRayTowards(const Vec3& w, float dist, float targetScale) const {
+    Ray r;
+    r.o = offsetRayOrigin(hit.p, ng, hit.offsetScale, w);
+    r.d = w;
+    r.tMin = 0.f;
+    r.tMax = dist - kRayOffsetScale * (2.f * std::max(targetScale, hit.offsetScale) + hit.offsetScale);
+    return r;
+  }
 };
 
 }  // namespace penumbra

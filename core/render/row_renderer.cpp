@@ -20,18 +20,33 @@ RowRenderer rowsFor(const RenderJob& job, Integrator integrator) {
   r.row = [camera, filter, scene, integrator](int y, uint32_t pass, Sampler& sampler, Film& film,
                                               uint64_t& badSamples) {
     const int width = camera.width();
+    // Software pipelining: pixel x + 1's stream, filter offset and camera ray (a serial chain of
+    // hashes, a table lookup, a square root and a division) are computed before pixel x's Li, so
+    // they overlap with it. Two samplers, because each pixel sample restarts its own stream; the
+    // image is the same as computing them in order.
+    Sampler next = sampler;
+    auto startPixel = [&](Sampler& s, int x, float& weight) {
+      s.startPixelSample(IVec2(x, y), pass);
+      Vec2 offset = filter.sample(s.next2D(), weight);
+      return camera.generateRay(Vec2(float(x) + 0.5f + offset.x, float(y) + 0.5f + offset.y));
+    };
+    Sampler* current = &sampler;
+    Sampler* upcoming = &next;
+    float weight;
+    Ray ray = startPixel(*current, 0, weight);
     for (int x = 0; x < width; ++x) {
-      sampler.startPixelSample(IVec2(x, y), pass);
-      float weight;
-      Vec2 offset = filter.sample(sampler.next2D(), weight);
-      Ray ray = camera.generateRay(Vec2(float(x) + 0.5f + offset.x, float(y) + 0.5f + offset.y));
-      Color3 L = integrator.Li(*scene, ray, sampler);
+      float nextWeight = 0.f;
+      Ray nextRay;
+      if (x + 1 < width) nextRay = startPixel(*upcoming, x + 1, nextWeight);
+      Color3 L = integrator.Li(*scene, ray, *current);
       // NaN, Inf or negative radiance is a bug somewhere: count it and add nothing.
-      if (!(L.x >= 0.f && L.y >= 0.f && L.z >= 0.f && std::isfinite(L.x + L.y + L.z))) {
+      if (L.x >= 0.f && L.y >= 0.f && L.z >= 0.f && std::isfinite(L.x + L.y + L.z))
+        film.add(x, y, L * weight);
+      else
         ++badSamples;
-        continue;
-      }
-      film.add(x, y, L * weight);
+      ray = nextRay;
+      weight = nextWeight;
+      std::swap(current, upcoming);
     }
   };
   r.preview = [camera, scene, integrator](int y0, int block, Sampler& sampler, Image& image) {
