@@ -41,8 +41,9 @@ void drawDisplayPanel(ViewerController& c, PanelState& st) {
   if (st.hoverValid && !snap.mean.empty()) {
     Color3 v = snap.mean.at(st.hoverX, st.hoverY);
     ImGui::Text("pixel (%d, %d)", st.hoverX, st.hoverY);
-    if (!snap.standardError.empty() && snap.standardError.width == snap.mean.width) {
-      Color3 e = snap.standardError.at(st.hoverX, st.hoverY);
+    const bool probed = snap.probe.x == st.hoverX && snap.probe.y == st.hoverY;
+    if (probed || (!snap.standardError.empty() && snap.standardError.width == snap.mean.width)) {
+      Color3 e = probed ? snap.probe.standardError : snap.standardError.at(st.hoverX, st.hoverY);
       ImGui::Text("R %.5g ± %.2g", v.x, e.x);
       ImGui::Text("G %.5g ± %.2g", v.y, e.y);
       ImGui::Text("B %.5g ± %.2g", v.z, e.z);

@@ -45,9 +45,13 @@ double processCpuMs() {
 // When the viewer draws (docs/viewer.md, "When the viewer redraws").
 constexpr double kFrameIntervalMs = 1000.0 / 60.0;     // at most one frame per 60 Hz display refresh
 constexpr double kSnapshotIntervalMs = 1000.0 / 30.0;  // new passes alone: at most 30 frames a second
-constexpr double kIdleWaitSeconds = 0.25;              // longest sleep (paces the scene file's check)
-constexpr double kStatsRefreshMs = 500;                // while rendering, a frame at least this often
-constexpr int kFramesAfterInput = 2;                   // ImGui settles hover and click state a frame later
+// On software GL a frame's CPU time comes out of the render threads' cores (llvmpipe rasterises on
+// them): frames that only show a new pass are spaced so that they take at most this share of all
+// cores (~9 ms frames on 2 cores: ~9 a second). Input, restarts and display changes still draw at once.
+constexpr double kPassFramesCpuShare = 0.04;
+constexpr double kIdleWaitSeconds = 0.25;  // longest sleep (paces the scene file's check)
+constexpr double kStatsRefreshMs = 500;    // while rendering, a frame at least this often
+constexpr int kFramesAfterInput = 2;       // ImGui settles hover and click state a frame later
 
 // Parts of a frame, timed separately by the bench's breakdown.
 enum Stage { kUi, kTonemap, kImage, kPanels, kPresent, kStages };
@@ -83,10 +87,13 @@ class ViewerApp {
 
   // Takes in what changed outside the UI since the last call: new snapshots (marked for tone mapping),
   // compare mode switched or restarted, the scene file changed on disk. True when a frame is needed.
-  bool update() {
+  bool update(bool requestSnapshot = true) {
     bool redraw = c_.checkFileChanged();
-    bool wantError = c_.display.falseColour == FalseColour::RelativeError || st_.hoverValid;
-    c_.pollSnapshot(wantError);
+    // The whole image's standard error only for the false-colour view; the pixel inspector gets its
+    // pixel's from the snapshot's probe (resolving 590 k pixels a pass for one cost the workers ~10 %).
+    const bool wantError = c_.display.falseColour == FalseColour::RelativeError;
+    c_.setProbePixel(st_.hoverValid ? st_.hoverX : -1, st_.hoverValid ? st_.hoverY : -1);
+    c_.pollSnapshot(wantError, requestSnapshot);
     if (c_.compareEnabled() != compareShown_ || c_.compareRestartCount() != compareRestart_) {
       display_.clearCompare();  // never show the other strategy's old image on the right
       compareShown_ = c_.compareEnabled();
@@ -152,6 +159,7 @@ class ViewerApp {
 
     lastFrameMs_ = msSince(t0);
     st_.frameMs = lastFrameMs_;
+    frameCostMs_ = framesDrawn_ == 0 ? lastFrameMs_ : 0.8 * frameCostMs_ + 0.2 * lastFrameMs_;
     ++framesDrawn_;
     shownRestart_ = c_.snapshot().mean.empty() ? 0 : c_.snapshotRestart();
     if (st_.requestSavePng) {
@@ -164,13 +172,22 @@ class ViewerApp {
     }
   }
 
+  // Shortest spacing of frames that only show a new pass (see kPassFramesCpuShare).
+  double passFrameIntervalMs() const {
+    if (display_.tonemapper() != Tonemapper::Cpu) return kSnapshotIntervalMs;  // hardware GL
+    const double cores = std::max(1u, std::thread::hardware_concurrency());
+    return std::max(kSnapshotIntervalMs, frameCostMs_ / (kPassFramesCpuShare * cores));
+  }
+
   // The interactive loop, until the window closes or `done()`. Event-driven: a frame is drawn when
   // input arrived (and kFramesAfterInput frames after it, and while an ImGui item is held), when a
-  // new snapshot arrived (at most every kSnapshotIntervalMs, except a restart's first image) or
+  // new snapshot arrived (at most every passFrameIntervalMs(), except a restart's first image) or
   // compare mode changed, every kStatsRefreshMs while rendering, and never sooner than
   // kFrameIntervalMs after the previous one; in between the thread sleeps in waitEvents, so an idle
-  // viewer costs nothing and a rendering one only the frames that show new passes. `continuous`
-  // draws every (paced) frame, as while a slider is dragged (the bench measures both).
+  // viewer costs nothing and a rendering one only the frames that show new passes. Snapshots are
+  // requested only from about a pass and a half before one is due, so the workers resolve only
+  // passes that will be shown. `continuous` draws every (paced) frame, as while a slider is dragged
+  // (the bench measures both).
   template <class Done>
   void run(Done done, bool continuous = false) {
     int pending = 1;           // frames owed to input (or to `continuous`)
@@ -186,16 +203,24 @@ class ViewerApp {
         platform_.waitEvents((kFrameIntervalMs - since) * 1e-3);
         continue;
       }
-      if (update()) snapshotDue = true;
       if (continuous) pending = std::max(pending, 1);
+      const double passInterval = passFrameIntervalMs();
+      const RenderProgress progress = c_.progress();
+      const double passMs = progress.spp > 0 ? 1e3 * progress.seconds / progress.spp : 0.0;
+      // Since the last frame; right after a restart the first pass is wanted at once.
+      const double requestAtMs = progress.spp <= 1 ? 0.0 : passInterval - 1.5 * passMs;
+      if (update(pending > 0 || since >= requestAtMs)) snapshotDue = true;
       // Slow passes (big images, heavy scenes): refresh the elapsed time and rates now and then.
       if (c_.rendering() && since >= kStatsRefreshMs) pending = std::max(pending, 1);
-      // New passes of the same accumulation are shown at most every kSnapshotIntervalMs; the first
-      // image of a new accumulation (the restart's preview) at once.
+      // New passes of the same accumulation are shown at most every passInterval; the first images of
+      // a new accumulation (the restart's preview, then its first pass) as soon as the 30 Hz cap allows.
       const bool firstOfRestart = c_.snapshotRestart() != shownRestart_ && !c_.snapshot().mean.empty();
-      const bool showSnapshot = snapshotDue && (firstOfRestart || since >= kSnapshotIntervalMs);
-      if (pending == 0 && !showSnapshot) {  // input, or the waker on a new snapshot, ends the wait
-        platform_.waitEvents(snapshotDue ? (kSnapshotIntervalMs - since) * 1e-3 : kIdleWaitSeconds);
+      const bool firstPass = c_.snapshot().spp == 1 && since >= kSnapshotIntervalMs;
+      const bool showSnapshot = snapshotDue && (firstOfRestart || firstPass || since >= passInterval);
+      if (pending == 0 && !showSnapshot) {  // input, the waker on a new snapshot, or a due request
+        double waitMs = snapshotDue ? passInterval - since : kIdleWaitSeconds * 1e3;
+        if (since < requestAtMs) waitMs = std::min(waitMs, requestAtMs - since);
+        platform_.waitEvents(std::max(waitMs, 1.0) * 1e-3);
         continue;
       }
       frame();
@@ -434,6 +459,7 @@ class ViewerApp {
   uint64_t seenSerial_ = ~0ull, seenCompareSerial_ = ~0ull, seenEvents_ = ~0ull;
   Clock::time_point lastFrameStart_{};
   double lastFrameMs_ = 0;
+  double frameCostMs_ = 0;  // running average of lastFrameMs_ (paces pass-only frames)
   uint64_t framesDrawn_ = 0;
   uint64_t shownRestart_ = 0;
   Clock::time_point stageT_{};
@@ -490,22 +516,23 @@ struct Phase {
 // carries the preview; counting whole passes over a fixed time would quantise by a pass, ~6 %).
 class PassClock {
  public:
+  // Pass boundaries are timed by the engine's clock when they happen, not when this loop sees them
+  // (a viewer that sleeps between frames sees them late).
   void tick(const RenderProgress& p) {
     if (p.spp == spp_) return;
     spp_ = p.spp;
-    auto now = Clock::now();
-    if (++boundaries_ == 2) first_ = now, firstSamples_ = p.samples;
-    if (boundaries_ >= 2) last_ = now, lastSamples_ = p.samples;
+    if (++boundaries_ == 2) first_ = p.passSeconds, firstSamples_ = p.samples;
+    if (boundaries_ >= 2) last_ = p.passSeconds, lastSamples_ = p.samples;
   }
   double samplesPerSecond() const {
-    double s = std::chrono::duration<double>(last_ - first_).count();
+    double s = last_ - first_;
     return s > 0 ? double(lastSamples_ - firstSamples_) / s : 0.0;
   }
 
  private:
   uint32_t spp_ = 0;
   int boundaries_ = 0;
-  Clock::time_point first_{}, last_{};
+  double first_ = 0, last_ = 0;
   uint64_t firstSamples_ = 0, lastSamples_ = 0;
 };
 

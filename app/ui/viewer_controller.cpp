@@ -134,8 +134,8 @@ void ViewerController::setPaused(bool paused) {
 namespace {
 
 // Fetches the engine's newest snapshot into `snap`; true when it changed.
-bool pollEngine(Engine& engine, FilmSnapshot& snap, bool wantStandardError) {
-  engine.requestSnapshot(wantStandardError);
+bool pollEngine(Engine& engine, FilmSnapshot& snap, bool wantStandardError, bool requestNext) {
+  if (requestNext) engine.requestSnapshot(wantStandardError);
   bool changed = engine.takeSnapshot(snap);  // the controller is each engine's only reader
   // The engine publishes only at pass boundaries where a snapshot was requested, so the final pass of
   // a finished accumulation may not have been published: read it from the (now idle) film.
@@ -154,10 +154,22 @@ bool pollEngine(Engine& engine, FilmSnapshot& snap, bool wantStandardError) {
 
 }  // namespace
 
-bool ViewerController::pollSnapshot(bool wantStandardError) {
-  bool changed = pollEngine(engine_, snapshot_, wantStandardError);
+void ViewerController::setProbePixel(int x, int y) {
+  probeX_ = x, probeY_ = y;
+  engine_.setProbePixel(x, y);
+}
+
+bool ViewerController::pollSnapshot(bool wantStandardError, bool requestNext) {
+  bool changed = pollEngine(engine_, snapshot_, wantStandardError, requestNext);
+  // A resting film (paused, finished) publishes no more passes: read the hovered pixel directly.
+  if (probeX_ >= 0 && (snapshot_.probe.x != probeX_ || snapshot_.probe.y != probeY_ || changed) &&
+      !snapshot_.mean.empty()) {
+    FilmSnapshot::Probe probe;
+    if (engine_.probeAtRest(probeX_, probeY_, probe) && engine_.progress().spp == snapshot_.spp)
+      snapshot_.probe = probe;
+  }
   if (changed) snapshotRestart_ = restarts_, ++snapshotSerial_;
-  if (compare_ && pollEngine(compareEngine_, compareSnapshot_, wantStandardError)) {
+  if (compare_ && pollEngine(compareEngine_, compareSnapshot_, wantStandardError, requestNext)) {
     changed = true;
     ++compareSnapshotSerial_;
   }

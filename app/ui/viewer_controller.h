@@ -58,9 +58,13 @@ class ViewerController {
   uint64_t restartCount() const { return restarts_; }
   Engine& engine() { return engine_; }
 
-  // Called once per UI frame: requests a snapshot and fetches it when a newer one was published.
-  // Returns true when snapshot() changed (the texture must be re-uploaded).
-  bool pollSnapshot(bool wantStandardError);
+  // Called once per UI frame: fetches the newest published snapshot and, with requestNext, asks the
+  // engines to publish another (resolving a pass costs the workers time: ask only when one will be
+  // shown soon). Returns true when snapshot() changed (the texture must be re-uploaded).
+  bool pollSnapshot(bool wantStandardError, bool requestNext = true);
+  // The pixel under the cursor (x < 0: none): snapshot().probe carries its statistics, from the next
+  // published pass, or at once while the accumulation is paused or finished.
+  void setProbePixel(int x, int y);
   const FilmSnapshot& snapshot() const { return snapshot_; }
   // Restart counter value the current snapshot belongs to.
   uint64_t snapshotRestart() const { return snapshotRestart_; }
@@ -149,6 +153,7 @@ class ViewerController {
   OrbitCamera orbit_;
   std::shared_ptr<PublishSignal> signal_ = std::make_shared<PublishSignal>();
   Engine engine_;
+  int probeX_ = -1, probeY_ = -1;  // setProbePixel
   FilmSnapshot snapshot_;
   uint64_t restarts_ = 0;
   uint64_t snapshotRestart_ = 0;

@@ -65,6 +65,7 @@ void Engine::start(std::shared_ptr<const RenderJob> job, RenderLimits limits, in
   threadCount_ = threads;
   pausedSeconds_ = 0.0;
   finalSeconds_ = 0.0;
+  passSeconds_ = 0.0;
   startTime_ = std::chrono::steady_clock::now();
   cpuAtStart_ = processCpuSeconds();
   pauseBegan_ = startTime_;
@@ -160,12 +161,38 @@ double Engine::elapsedNow() const {
 
 RenderProgress Engine::progress() const {
   RenderProgress p;
-  p.spp = spp_;
+  // passSeconds_ is written before spp_: re-read until both belong to the same boundary.
+  do {
+    p.spp = spp_;
+    p.passSeconds = passSeconds_;
+  } while (p.spp != spp_);
   p.finished = finished_;
   p.seconds = p.finished ? finalSeconds_.load() : elapsedNow();
   p.samples = uint64_t(p.spp) * uint64_t(std::max(film_.width(), 0)) * uint64_t(std::max(film_.height(), 0));
   p.badSamples = badSamples_;
   return p;
+}
+
+void Engine::setProbePixel(int x, int y) {
+  probePixel_ = x < 0 || y < 0 ? ~0ull : (uint64_t(uint32_t(x)) << 32) | uint32_t(y);
+}
+
+// The probe pixel's statistics from the film, which must be at rest (a pass boundary).
+static void fillProbe(const Film& film, uint32_t spp, uint64_t packed, FilmSnapshot::Probe& probe) {
+  probe = FilmSnapshot::Probe();
+  if (packed == ~0ull) return;
+  const int x = int(packed >> 32), y = int(uint32_t(packed));
+  if (x >= film.width() || y >= film.height()) return;
+  probe.x = x, probe.y = y;
+  film.pixelStatistics(spp, x, y, probe.mean, probe.standardError);
+}
+
+bool Engine::probeAtRest(int x, int y, FilmSnapshot::Probe& out) {
+  if (x < 0 || y < 0) return false;
+  std::lock_guard lk(passMutex_);
+  if (!restingAtBoundary_ && !finished_) return false;  // finished under passMutex_: no worker writes
+  fillProbe(film_, spp_, (uint64_t(uint32_t(x)) << 32) | uint32_t(y), out);
+  return out.x >= 0;
 }
 
 void Engine::requestSnapshot(bool withStandardError) {
@@ -199,6 +226,7 @@ void Engine::publishResolved() {
     snapshot_.standardError = Image();
   }
   snapshot_.spp = spp_;
+  fillProbe(film_, spp_, probePixel_, snapshot_.probe);
   snapshot_.seconds = elapsedNow();
   snapshot_.cpuSeconds = processCpuSeconds() - cpuAtStart_;
   ++snapshot_.version;
@@ -233,6 +261,7 @@ void Engine::publishSnapshot() {
   snapshot_.mean = std::move(mean);
   snapshot_.standardError = std::move(err);
   snapshot_.spp = spp;
+  fillProbe(film_, spp, probePixel_, snapshot_.probe);
   snapshot_.seconds = elapsedNow();
   snapshot_.cpuSeconds = processCpuSeconds() - cpuAtStart_;
   ++snapshot_.version;
@@ -241,6 +270,7 @@ void Engine::publishSnapshot() {
 // Runs in the last worker to finish a pass, with passMutex_ held and every other worker waiting.
 bool Engine::passBoundary() {
   if (cancel_) return true;
+  passSeconds_ = elapsedNow();
   spp_ = spp_ + 1;
   ++pass_;
   nextRow_ = 0;
@@ -318,7 +348,9 @@ void Engine::workerLoop(int /*workerIndex*/, bool preview) {
       arrived_ = 0;
       bool stop = passBoundary();
       if (signal_ && published_ && !stop) signal_->notify();
+      restingAtBoundary_ = true;  // the film is at rest while this worker waits (probeAtRest)
       while (!stop && paused_ && !cancel_ && !stopRequested_) passCv_.wait(lk);
+      restingAtBoundary_ = false;
       if (!stop && (cancel_ || stopRequested_)) stop = true;
       if (stop && !finished_.exchange(true)) finalSeconds_ = elapsedNow();
       if (signal_ && stop) signal_->notify();  // after `finished`, which viewers read

@@ -34,10 +34,11 @@ struct RenderLimits {
 inline constexpr int kPreviewBlock = 4;
 
 struct RenderProgress {
-  uint32_t spp = 0;         // completed passes
-  double seconds = 0.0;     // rendering time, pauses excluded
-  uint64_t samples = 0;     // camera samples accumulated
-  uint64_t badSamples = 0;  // NaN, Inf or negative values (dropped and counted)
+  uint32_t spp = 0;          // completed passes
+  double seconds = 0.0;      // rendering time, pauses excluded
+  double passSeconds = 0.0;  // rendering time when pass `spp` completed (rates independent of polling)
+  uint64_t samples = 0;      // camera samples accumulated
+  uint64_t badSamples = 0;   // NaN, Inf or negative values (dropped and counted)
   bool finished = false;
 };
 
@@ -51,7 +52,13 @@ struct FilmSnapshot {
   // machine (analysis/convergence.h). Includes whatever else the process runs (e.g. a UI thread).
   double cpuSeconds = 0.0;
   Image mean;
-  Image standardError;
+  Image standardError;  // only when requested (a whole-image resolve)
+  // One pixel's statistics at this boundary (Engine::setProbePixel): a pixel inspector's standard
+  // error without resolving the whole image's. x < 0: none.
+  struct Probe {
+    int x = -1, y = -1;
+    Color3 mean{0.f}, standardError{0.f};
+  } probe;
 };
 
 // Counts snapshot publications, so a viewer can sleep until one of its engines has something new
@@ -104,6 +111,11 @@ class Engine {
   // boundary without stopping the other workers; otherwise the last worker resolves the whole film at
   // the boundary. Interactive starts (RenderLimits::preview) resolve their first pass this way too.
   void requestSnapshot(bool withStandardError = false);
+  // The pixel whose statistics each published snapshot carries (FilmSnapshot::probe); x < 0: none.
+  void setProbePixel(int x, int y);
+  // That pixel's statistics now, if the film is at rest (paused at a pass boundary, or finished and
+  // joined); false otherwise.
+  bool probeAtRest(int x, int y, FilmSnapshot::Probe& out);
   // Copies the latest published snapshot into `out` if it is newer than out.version.
   bool latestSnapshot(FilmSnapshot& out) const;
   // The same for the engine's only reader, without copying the images: swaps them with out's (the
@@ -135,6 +147,8 @@ class Engine {
   std::atomic<bool> stopRequested_{false};
   std::atomic<bool> finished_{true};
   std::atomic<bool> paused_{false};
+  bool restingAtBoundary_ = false;           // under passMutex_: a worker waits paused at a pass boundary
+  std::atomic<uint64_t> probePixel_{~0ull};  // (x << 32) | y, ~0: none
   std::atomic<uint32_t> spp_{0};
   std::atomic<uint64_t> badSamples_{0};
   uint32_t pass_ = 0;
@@ -154,6 +168,7 @@ class Engine {
   std::atomic<double> pausedSeconds_{0.0};
   std::chrono::steady_clock::time_point pauseBegan_;
   std::atomic<double> finalSeconds_{0.0};
+  std::atomic<double> passSeconds_{0.0};  // written before spp_ at each boundary (see progress())
   double cpuAtStart_ = 0.0;
 
   // Snapshot publishing.

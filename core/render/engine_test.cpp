@@ -57,6 +57,71 @@ TEST(Engine, SeedChangesTheImage) {
   EXPECT_NE(a.rgb, b.rgb);
 }
 
+TEST(Engine, SnapshotsCarryTheProbePixelsStatistics) {
+  auto job = smallJob();
+  // A pixel whose samples vary (soft shadow or light sampling noise), found by a first render.
+  int px = -1, py = -1;
+  {
+    Engine first;
+    first.start(job, RenderLimits{6, 0.0}, 2);
+    first.wait();
+    Image err = first.film().standardError(6);
+    for (int y = 0; y < err.height && px < 0; ++y)
+      for (int x = 0; x < err.width && px < 0; ++x)
+        if (err.at(x, y).x > 0.f) px = x, py = y;
+  }
+  ASSERT_GE(px, 0);
+  Engine engine;
+  engine.setProbePixel(px, py);
+  engine.start(job, RenderLimits{6, 0.0}, 2);
+  for (int i = 0; i < 3; ++i) engine.requestSnapshot();
+  engine.wait();
+  FilmSnapshot snap;
+  ASSERT_TRUE(engine.latestSnapshot(snap));
+  ASSERT_EQ(snap.spp, 6u);
+  EXPECT_EQ(snap.probe.x, px);
+  EXPECT_EQ(snap.probe.y, py);
+  Color3 mean, se;
+  engine.film().pixelStatistics(6, px, py, mean, se);
+  EXPECT_EQ(snap.probe.mean, mean);
+  EXPECT_EQ(snap.probe.standardError, se);
+  EXPECT_EQ(snap.probe.mean, snap.mean.at(px, py));
+  EXPECT_TRUE(snap.standardError.empty());  // no whole-image resolve was asked for
+  EXPECT_GT(se.x + se.y + se.z, 0.f);
+
+  // At rest (finished) any pixel can be read at once; out of the image there is nothing.
+  FilmSnapshot::Probe probe;
+  ASSERT_TRUE(engine.probeAtRest(3, 2, probe));
+  engine.film().pixelStatistics(6, 3, 2, mean, se);
+  EXPECT_EQ(probe.mean, mean);
+  EXPECT_FALSE(engine.probeAtRest(48, 0, probe));
+  engine.setProbePixel(-1, 0);
+}
+
+TEST(Engine, ProbeWaitsWhileTheFilmIsBeingWritten) {
+  auto job = smallJob();
+  Engine engine;
+  engine.start(job, RenderLimits{0, 0.0}, 2);  // unlimited: running until cancelled
+  FilmSnapshot::Probe probe;
+  EXPECT_FALSE(engine.probeAtRest(1, 1, probe));
+  engine.setPaused(true);
+  // Paused takes effect at the next pass boundary; then the film is at rest.
+  EXPECT_TRUE(eventually([&] { return engine.probeAtRest(1, 1, probe); }));
+  EXPECT_EQ(probe.x, 1);
+  engine.cancel();
+}
+
+TEST(Engine, PassSecondsTimeEachBoundary) {
+  auto job = smallJob();
+  Engine engine;
+  engine.start(job, RenderLimits{5, 0.0}, 2);
+  engine.wait();
+  RenderProgress p = engine.progress();
+  EXPECT_EQ(p.spp, 5u);
+  EXPECT_GT(p.passSeconds, 0.0);
+  EXPECT_LE(p.passSeconds, p.seconds);
+}
+
 TEST(Engine, CancelStopsQuicklyAndRestartBeginsAtZero) {
   auto job = smallJob();
   Engine engine;

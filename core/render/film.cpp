@@ -33,23 +33,36 @@ Image Film::mean(uint32_t spp) const {
   return img;
 }
 
+namespace {
+
+// Standard error of the mean of n samples with sum s and sum of squares s2 (0 below 2 samples).
+float standardErrorOf(double s, double s2, uint32_t spp) {
+  if (spp < 2) return 0.f;
+  double n = spp, m = s / n;
+  // Unbiased sample variance of the samples, then of their mean.
+  double var = std::max(0.0, (s2 - n * m * m) / (n - 1.0));
+  return float(std::sqrt(var / n));
+}
+
+}  // namespace
+
 void Film::resolveStandardError(uint32_t spp, Image& out, int y0, int y1) const {
   for (int y = y0; y < y1; ++y) {
     for (int x = 0; x < width_; ++x) {
       size_t i = size_t(y) * width_ + x;
       const double* s = &sums_[i * 6];
       float* o = &out.rgb[i * 3];
-      for (int c = 0; c < 3; ++c) {
-        if (spp < 2) {
-          o[c] = 0.f;
-          continue;
-        }
-        double n = spp, m = s[c] / n;
-        // Unbiased sample variance of the samples, then of their mean.
-        double var = std::max(0.0, (s[c + 3] - n * m * m) / (n - 1.0));
-        o[c] = float(std::sqrt(var / n));
-      }
+      for (int c = 0; c < 3; ++c) o[c] = standardErrorOf(s[c], s[c + 3], spp);
     }
+  }
+}
+
+void Film::pixelStatistics(uint32_t spp, int x, int y, Color3& mean, Color3& standardError) const {
+  const double* s = &sums_[(size_t(y) * width_ + x) * 6];
+  const double inv = spp > 0 ? 1.0 / spp : 0.0;
+  for (int c = 0; c < 3; ++c) {
+    mean[c] = float(s[c] * inv);
+    standardError[c] = standardErrorOf(s[c], s[c + 3], spp);
   }
 }
 

@@ -39,6 +39,8 @@ class Film {
   // Standard error of the mean (per channel) for rows [y0, y1); zero below 2 samples.
   void resolveStandardError(uint32_t spp, Image& out, int y0, int y1) const;
   Image standardError(uint32_t spp) const;
+  // Mean and standard error of one pixel (as resolveMean / resolveStandardError would give them).
+  void pixelStatistics(uint32_t spp, int x, int y, Color3& mean, Color3& standardError) const;
 
  private:
   int width_ = 0, height_ = 0;

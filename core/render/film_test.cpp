@@ -16,6 +16,13 @@ TEST(Film, MeanAndStandardErrorOfKnownSamples) {
   // sample variance of 1..4 is 5/3; standard error sqrt(5/3/4)
   EXPECT_NEAR(se.at(1, 0).x, std::sqrt(5.0 / 12.0), 1e-6);
   EXPECT_EQ(mean.at(0, 0).x, 0.f);
+
+  Color3 m, e;  // one pixel's statistics agree with the whole-image resolves bit for bit
+  film.pixelStatistics(4, 1, 0, m, e);
+  EXPECT_EQ(m, mean.at(1, 0));
+  EXPECT_EQ(e, se.at(1, 0));
+  film.pixelStatistics(1, 1, 0, m, e);
+  EXPECT_EQ(e, Color3(0.f));  // below two samples there is no estimate of the error
 }
 
 TEST(Film, AMillionSamplesInOnePixelDoNotDrift) {
