@@ -159,6 +159,37 @@ TEST(ViewerController, MeasureChangeRestartsAccumulationExposureDoesNot) {
   EXPECT_EQ(c.engine().job()->scene.get(), c.scene().scene.get());
 }
 
+TEST(ViewerController, HoveredPixelStatisticsWithoutTheWholeImagesError) {
+  ui::ViewerController c(smallDefaultScene(), {}, 2);
+  c.setProbePixel(30, 20);
+  c.start();
+  // Snapshots come from passes after the probe was set; none of them resolves the whole error image.
+  auto probed = [&] {
+    c.pollSnapshot(false);
+    return c.snapshot().probe.x == 30 && c.snapshot().spp >= 2;
+  };
+  auto t0 = std::chrono::steady_clock::now();
+  while (!probed() && std::chrono::steady_clock::now() - t0 < std::chrono::seconds(30))
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  ASSERT_TRUE(probed());
+  EXPECT_EQ(c.snapshot().probe.y, 20);
+  EXPECT_EQ(c.snapshot().probe.mean, c.snapshot().mean.at(30, 20));
+  EXPECT_TRUE(c.snapshot().standardError.empty());
+
+  // Paused: the film rests at a pass boundary, so another pixel is read at once.
+  c.setPaused(true);
+  c.setProbePixel(5, 6);
+  t0 = std::chrono::steady_clock::now();
+  while (c.snapshot().probe.x != 5 && std::chrono::steady_clock::now() - t0 < std::chrono::seconds(30)) {
+    c.pollSnapshot(false);
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  EXPECT_EQ(c.snapshot().probe.x, 5);
+  EXPECT_EQ(c.snapshot().probe.y, 6);
+  EXPECT_EQ(c.snapshot().probe.mean, c.snapshot().mean.at(5, 6));
+  c.setPaused(false);
+}
+
 TEST(ViewerController, CameraAndSamplerChangesRestartAndLiveXmlRoundTrips) {
   ui::ViewerController c(smallDefaultScene(), {}, 1);
   c.start();

@@ -248,6 +248,7 @@ bool Engine::takeSnapshot(FilmSnapshot& out) {
   out.spp = snapshot_.spp;
   out.seconds = snapshot_.seconds;
   out.cpuSeconds = snapshot_.cpuSeconds;
+  out.probe = snapshot_.probe;
   return true;
 }
 
@@ -316,6 +317,7 @@ void Engine::workerLoop(int /*workerIndex*/, bool preview) {
         std::lock_guard sl(snapshotMutex_);
         snapshot_.mean = std::move(preview_);  // the preview is done with
         snapshot_.standardError = Image();
+        snapshot_.probe = FilmSnapshot::Probe();  // no pass yet
         snapshot_.spp = 0;
         snapshot_.seconds = elapsedNow();
         snapshot_.cpuSeconds = processCpuSeconds() - cpuAtStart_;
