@@ -49,9 +49,10 @@ constexpr double kSnapshotIntervalMs = 1000.0 / 30.0;  // new passes alone: at m
 // them): frames that only show a new pass are spaced so that they take at most this share of all
 // cores (~9 ms frames on 2 cores: ~9 a second). Input, restarts and display changes still draw at once.
 constexpr double kPassFramesCpuShare = 0.04;
-constexpr double kIdleWaitSeconds = 0.25;  // longest sleep (paces the scene file's check)
-constexpr double kStatsRefreshMs = 500;    // while rendering, a frame at least this often
-constexpr int kFramesAfterInput = 2;       // ImGui settles hover and click state a frame later
+constexpr double kLongestPassIntervalMs = 250;  // but never fewer than 4 new passes shown a second
+constexpr double kIdleWaitSeconds = 0.25;       // longest sleep (paces the scene file's check)
+constexpr double kStatsRefreshMs = 500;         // while rendering, a frame at least this often
+constexpr int kFramesAfterInput = 2;            // ImGui settles hover and click state a frame later
 
 // Parts of a frame, timed separately by the bench's breakdown.
 enum Stage { kUi, kTonemap, kImage, kPanels, kPresent, kStages };
@@ -176,7 +177,8 @@ class ViewerApp {
   double passFrameIntervalMs() const {
     if (display_.tonemapper() != Tonemapper::Cpu) return kSnapshotIntervalMs;  // hardware GL
     const double cores = std::max(1u, std::thread::hardware_concurrency());
-    return std::max(kSnapshotIntervalMs, frameCostMs_ / (kPassFramesCpuShare * cores));
+    return std::clamp(frameCostMs_ / (kPassFramesCpuShare * cores), kSnapshotIntervalMs,
+                      kLongestPassIntervalMs);
   }
 
   // The interactive loop, until the window closes or `done()`. Event-driven: a frame is drawn when
