@@ -17,19 +17,24 @@ struct SinCos {
   float sin, cos;
 };
 
+// sin and cos of |x| <= π/4: the polynomials alone (Cephes sinf / cosf minimax coefficients).
+inline SinCos sinCosQuarterPi(float x) {
+  const float x2 = x * x;
+  const float s = x + x * x2 * (-1.6666654611e-1f + x2 * (8.3321608736e-3f + x2 * -1.9515295891e-4f));
+  const float c =
+      1.f - 0.5f * x2 +
+      x2 * x2 * (4.166664568298827e-2f + x2 * (-1.388731625493765e-3f + x2 * 2.443315711809948e-5f));
+  return {s, c};
+}
+
 inline SinCos sinCosTurns(float turns) {
   const float quarters = 4.f * turns;  // exact: a power-of-two scale
   // Round to nearest by the 1.5·2^23 trick (std::nearbyint is a libm call without SSE4.1); beyond
   // 2^22 quarters every float is already (nearly) whole and no precision is left to keep anyway.
   constexpr float kRoundingBias = 0x1.8p23f;
   const float q = std::fabs(quarters) < 0x1p22f ? (quarters + kRoundingBias) - kRoundingBias : quarters;
-  const float x = (quarters - q) * kPiOver2;  // quarters − q is exact; |x| ≤ π/4
-  const float x2 = x * x;
-  // Minimax polynomials on [−π/4, π/4] (Cephes sinf / cosf coefficients).
-  const float s = x + x * x2 * (-1.6666654611e-1f + x2 * (8.3321608736e-3f + x2 * -1.9515295891e-4f));
-  const float c =
-      1.f - 0.5f * x2 +
-      x2 * x2 * (4.166664568298827e-2f + x2 * (-1.388731625493765e-3f + x2 * 2.443315711809948e-5f));
+  const SinCos r = sinCosQuarterPi((quarters - q) * kPiOver2);  // quarters − q is exact
+  const float s = r.sin, c = r.cos;
   // Rotate by q quarter turns: (sin, cos) of x + q·π/2. Done on the bits, without branches: the
   // quadrant of a random azimuth is unpredictable. std::max/min (not fmax/fmin, which are libm calls
   // without SSE4.1) clamp the conversion into range; NaN maps to the bound (x is NaN then anyway).

@@ -162,7 +162,8 @@ Vec2 Warp::uniformDiskToSquare(Vec2 p) {
 
 // ---- concentric disk (Shirley & Chiu 1997): squares to rings; pdf = 1/pi for x^2+y^2 <= 1 -------
 Vec2 Warp::squareToConcentricDisk(Vec2 sample) {
-  return concentricPoint(sample);
+  float rho;
+  return concentricPoint(sample, rho);
 }
 
 float Warp::squareToConcentricDiskPdf(Vec2 p) {

@@ -83,12 +83,10 @@ Vec2 Warp::uniformHemisphereToSquare(const Vec3& v) {
 // pdf = cos(theta) / pi = z / pi for z >= 0, else 0. The concentric disk never reaches the rim for
 // canonical inputs, so every sample has z >= ~2^-11.5 > 0 and a positive density.
 Vec3 Warp::squareToCosineHemisphere(Vec2 sample) {
-  float r, thetaTurns;
-  concentricPolar(sample, r, thetaTurns);
-  float rho = std::fabs(r);
-  const SinCos theta = sinCosTurns(thetaTurns);
+  float rho;
+  const Vec2 p = concentricPoint(sample, rho);
   // z = sqrt(1 - rho^2) from (1 - rho)(1 + rho): exact-ish at the rim, where x^2 + y^2 may round to 1.
-  return Vec3(r * theta.cos, r * theta.sin, safeSqrt((1.f - rho) * (1.f + rho)));
+  return Vec3(p.x, p.y, safeSqrt((1.f - rho) * (1.f + rho)));
 }
 
 float Warp::squareToCosineHemispherePdf(const Vec3& v) {

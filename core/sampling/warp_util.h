@@ -38,28 +38,21 @@ inline bool insideUnitDisk(Vec2 p) {
   return p.x * p.x + p.y * p.y <= 1.f + kSupportSlack;
 }
 
-// Shirley-Chiu concentric map in polar form: the point is r (cos θ, sin θ) with a signed radius
-// |r| <= 1 - 2^-24 (inputs are centred, so the rim is never reached) and θ given in turns (θ / 2π).
-inline void concentricPolar(Vec2 sample, float& r, float& thetaTurns) {
-  float a = centredSample(sample.x), b = centredSample(sample.y);
-  if (a == 0.f && b == 0.f) {  // not reachable from grid inputs; avoids 0/0
-    r = 0.f;
-    thetaTurns = 0.f;
-  } else if (std::fabs(a) > std::fabs(b)) {
-    r = a;
-    thetaTurns = 0.125f * (b / a);
-  } else {
-    r = b;
-    thetaTurns = 0.25f - 0.125f * (a / b);
+// Shirley-Chiu concentric map: the point r (cos θ, sin θ) with θ = π/4 · b/a where |a| > |b|, else
+// π/2 − π/4 · a/b, for the centred sample (a, b); |r| = max(|a|, |b|) <= 1 - 2^-24 (the rim is never
+// reached) is returned in `rho`. θ's two branches differ only by swapping sin and cos, so the
+// unpredictable choice is made by selects and the trigonometry is one polynomial pair.
+inline Vec2 concentricPoint(Vec2 sample, float& rho) {
+  const float a = centredSample(sample.x), b = centredSample(sample.y);
+  const bool aDominant = std::fabs(a) > std::fabs(b);
+  const float r = aDominant ? a : b;
+  if (r == 0.f) {  // a == b == 0: not reachable from grid inputs; avoids 0/0
+    rho = 0.f;
+    return Vec2(0.f);
   }
-}
-
-// The point r (cos θ, sin θ) of concentricPolar.
-inline Vec2 concentricPoint(Vec2 sample) {
-  float r, thetaTurns;
-  concentricPolar(sample, r, thetaTurns);
-  const SinCos sc = sinCosTurns(thetaTurns);
-  return Vec2(r * sc.cos, r * sc.sin);
+  const SinCos sc = sinCosQuarterPi(kPiOver4 * ((aDominant ? b : a) / r));
+  rho = std::fabs(r);
+  return Vec2(r * (aDominant ? sc.cos : sc.sin), r * (aDominant ? sc.sin : sc.cos));
 }
 
 // 1 - z of a unit direction without cancellation near the pole: (x^2 + y^2) / (1 + z) for z > 0.
