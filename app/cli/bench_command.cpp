@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <thread>
+#include <vector>
 
 #include "app/cli/commands.h"
 #include "app/cli/scene_options.h"
@@ -23,21 +24,37 @@ struct BenchOptions {
   int threads = 0;
 };
 
-// Median of `repeats` runs of `seconds` each: camera samples per second.
-double measure(const LoadedScene& s, const RenderSettings& settings, int threads, const BenchOptions& o) {
-  std::vector<double> rates;
+// One timed run of `seconds`: camera samples per second.
+double timedRun(const LoadedScene& s, const RenderSettings& settings, int threads, double seconds) {
+  auto job = std::make_shared<RenderJob>();
+  job->scene = s.scene;
+  job->settings = settings;
+  Engine engine;
+  engine.start(job, RenderLimits{0, seconds}, threads);
+  engine.wait();
+  RenderProgress p = engine.progress();
+  return double(p.samples) / p.seconds;
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+// Camera samples per second at 1 thread and at `all`, and the speed-up. The two thread counts
+// alternate run by run, and the speed-up is the median of each pair's ratio: on a shared machine
+// whose speed drifts, both sides of a ratio are measured in the same seconds.
+struct Scaling {
+  double one = 0, all = 0, speedUp = 0;
+};
+Scaling measure(const LoadedScene& s, const RenderSettings& settings, int all, const BenchOptions& o) {
+  std::vector<double> one, many, ratio;
   for (int r = 0; r < o.repeats; ++r) {
-    auto job = std::make_shared<RenderJob>();
-    job->scene = s.scene;
-    job->settings = settings;
-    Engine engine;
-    engine.start(job, RenderLimits{0, o.seconds}, threads);
-    engine.wait();
-    RenderProgress p = engine.progress();
-    rates.push_back(double(p.samples) / p.seconds);
+    one.push_back(timedRun(s, settings, 1, o.seconds));
+    many.push_back(timedRun(s, settings, all, o.seconds));
+    ratio.push_back(many.back() / one.back());
   }
-  std::sort(rates.begin(), rates.end());
-  return rates[rates.size() / 2];
+  return {median(one), median(many), median(ratio)};
 }
 
 std::string locateScene(const std::string& given, const std::string& repoRelative) {
@@ -52,8 +69,10 @@ std::string locateScene(const std::string& given, const std::string& repoRelativ
 
 int runBench(const BenchOptions& o) {
   int all = o.threads > 0 ? o.threads : int(std::max(1u, std::thread::hardware_concurrency()));
-  std::printf("penumbra bench: median of %d runs of %.1f s; %d hardware threads\n\n", o.repeats, o.seconds,
-              all);
+  std::printf(
+      "penumbra bench: median of %d runs of %.1f s; %d hardware threads; 1-thread and all-thread runs\n"
+      "alternate, the speed-up is the median of their pairwise ratios\n\n",
+      o.repeats, o.seconds, all);
 
   LoadedScene sphere = o.sphereScene.empty()
                            ? loadSceneFromString(defaultSceneXml(), "<built-in hw2 sphere>", ".")
@@ -73,9 +92,9 @@ int runBench(const BenchOptions& o) {
     s.integrator.samples = 1;
     s.integrator.measure = st.measure;
     s.integrator.warp = st.warp;
-    double one = measure(sphere, s, 1, o), many = measure(sphere, s, all, o);
-    std::printf("%-28s %14.2f %14.2f %8.2fx\n", strategyLabel(s.integrator).c_str(), one * 1e-6, many * 1e-6,
-                many / one);
+    Scaling m = measure(sphere, s, all, o);
+    std::printf("%-28s %14.2f %14.2f %8.2fx\n", strategyLabel(s.integrator).c_str(), m.one * 1e-6,
+                m.all * 1e-6, m.speedUp);
   }
 
   std::string aoPath = locateScene(o.aoScene, "scenes/standin/rock-ao.xml");
@@ -88,10 +107,10 @@ int runBench(const BenchOptions& o) {
   double rays = double(s.integrator.samples);
   std::printf("\n%-28s %14s %14s %9s\n", "AO rays (shadow + camera)", "1 thread M/s", "all threads",
               "speed-up");
-  double one = measure(ao, s, 1, o), many = measure(ao, s, all, o);
+  Scaling m = measure(ao, s, all, o);
   std::printf("%-28s %14.2f %14.2f %8.2fx\n",
-              (std::to_string(ao.scene->geometry.triangleCount()) + " triangles").c_str(), one * rays * 1e-6,
-              many * rays * 1e-6, many / one);
+              (std::to_string(ao.scene->geometry.triangleCount()) + " triangles").c_str(),
+              m.one * rays * 1e-6, m.all * rays * 1e-6, m.speedUp);
   std::printf("(%s, %s, %d shading samples per camera sample; AO rays/s excludes camera rays)\n",
               aoPath.c_str(), strategyLabel(s.integrator).c_str(), s.integrator.samples);
   return 0;
