@@ -136,6 +136,8 @@ namespace {
 // Fetches the engine's newest snapshot into `snap`; true when it changed.
 bool pollEngine(Engine& engine, FilmSnapshot& snap, bool wantStandardError, bool requestNext) {
   if (requestNext) engine.requestSnapshot(wantStandardError);
+  // Paused where no snapshot was requested: publish the pass the film holds.
+  if (engine.paused()) engine.publishAtRest();
   bool changed = engine.takeSnapshot(snap);  // the controller is each engine's only reader
   // The engine publishes only at pass boundaries where a snapshot was requested, so the final pass of
   // a finished accumulation may not have been published: read it from the (now idle) film.

@@ -195,6 +195,19 @@ bool Engine::probeAtRest(int x, int y, FilmSnapshot::Probe& out) {
   return out.x >= 0;
 }
 
+bool Engine::publishAtRest() {
+  std::lock_guard lk(passMutex_);
+  if (!restingAtBoundary_) return false;
+  {
+    std::lock_guard sl(snapshotMutex_);
+    const bool errorMissing = snapshotWantsError_ && snapshot_.standardError.empty() && spp_ >= 2;
+    if (snapshot_.spp == spp_ && !snapshot_.mean.empty() && !errorMissing) return false;
+  }
+  publishSnapshot();
+  if (signal_) signal_->notify();
+  return true;
+}
+
 void Engine::requestSnapshot(bool withStandardError) {
   if (withStandardError) {
     snapshotWantsError_ = true;

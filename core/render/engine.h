@@ -116,6 +116,10 @@ class Engine {
   // That pixel's statistics now, if the film is at rest (paused at a pass boundary, or finished and
   // joined); false otherwise.
   bool probeAtRest(int x, int y, FilmSnapshot::Probe& out);
+  // While paused at a pass boundary, publishes that pass if it was not (no snapshot was requested
+  // when it ended) or lacks a requested standard error, so a viewer shows what the film holds. False
+  // when not resting or already published.
+  bool publishAtRest();
   // Copies the latest published snapshot into `out` if it is newer than out.version.
   bool latestSnapshot(FilmSnapshot& out) const;
   // The same for the engine's only reader, without copying the images: swaps them with out's (the

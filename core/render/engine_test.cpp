@@ -108,7 +108,16 @@ TEST(Engine, ProbeWaitsWhileTheFilmIsBeingWritten) {
   // Paused takes effect at the next pass boundary; then the film is at rest.
   EXPECT_TRUE(eventually([&] { return engine.probeAtRest(1, 1, probe); }));
   EXPECT_EQ(probe.x, 1);
+  // No snapshot was requested: the resting pass is published on demand, once.
+  FilmSnapshot snap;
+  engine.latestSnapshot(snap);
+  EXPECT_NE(snap.spp, engine.progress().spp);
+  EXPECT_TRUE(engine.publishAtRest());
+  EXPECT_FALSE(engine.publishAtRest());
+  ASSERT_TRUE(engine.latestSnapshot(snap));
+  EXPECT_EQ(snap.spp, engine.progress().spp);
   engine.cancel();
+  EXPECT_FALSE(engine.publishAtRest());
 }
 
 TEST(Engine, PassSecondsTimeEachBoundary) {
