@@ -47,7 +47,7 @@ constexpr double kFrameIntervalMs = 1000.0 / 60.0;     // at most one frame per 
 constexpr double kSnapshotIntervalMs = 1000.0 / 30.0;  // new passes alone: at most 30 frames a second
 // On software GL a frame's CPU time comes out of the render threads' cores (llvmpipe rasterises on
 // them): frames that only show a new pass are spaced so that they take at most this share of all
-// cores (~9 ms frames on 2 cores: ~9 a second). Input, restarts and display changes still draw at once.
+// cores (~10 ms frames on 2 cores: ~8 a second). Input, restarts and display changes still draw at once.
 constexpr double kPassFramesCpuShare = 0.04;
 constexpr double kLongestPassIntervalMs = 250;  // but never fewer than 4 new passes shown a second
 constexpr double kIdleWaitSeconds = 0.25;       // longest sleep (paces the scene file's check)

@@ -173,8 +173,13 @@ RenderProgress Engine::progress() const {
   return p;
 }
 
+// A pixel as one atomic word: (x << 32) | y; ~0 for none.
+static uint64_t packPixel(int x, int y) {
+  return x < 0 || y < 0 ? ~0ull : (uint64_t(uint32_t(x)) << 32) | uint32_t(y);
+}
+
 void Engine::setProbePixel(int x, int y) {
-  probePixel_ = x < 0 || y < 0 ? ~0ull : (uint64_t(uint32_t(x)) << 32) | uint32_t(y);
+  probePixel_ = packPixel(x, y);
 }
 
 // The probe pixel's statistics from the film, which must be at rest (a pass boundary).
@@ -191,7 +196,7 @@ bool Engine::probeAtRest(int x, int y, FilmSnapshot::Probe& out) {
   if (x < 0 || y < 0) return false;
   std::lock_guard lk(passMutex_);
   if (!restingAtBoundary_ && !finished_) return false;  // finished under passMutex_: no worker writes
-  fillProbe(film_, spp_, (uint64_t(uint32_t(x)) << 32) | uint32_t(y), out);
+  fillProbe(film_, spp_, packPixel(x, y), out);
   return out.x >= 0;
 }
 
@@ -199,9 +204,10 @@ bool Engine::publishAtRest() {
   std::lock_guard lk(passMutex_);
   if (!restingAtBoundary_) return false;
   {
+    // By what was published, not by snapshot_'s images: takeSnapshot swaps those with old buffers.
     std::lock_guard sl(snapshotMutex_);
-    const bool errorMissing = snapshotWantsError_ && snapshot_.standardError.empty() && spp_ >= 2;
-    if (snapshot_.spp == spp_ && !snapshot_.mean.empty() && !errorMissing) return false;
+    const bool errorMissing = snapshotWantsError_ && !publishedError_ && spp_ >= 2;
+    if (snapshot_.spp == spp_ && !errorMissing) return false;
   }
   publishSnapshot();
   if (signal_) signal_->notify();
@@ -238,8 +244,17 @@ void Engine::publishResolved() {
   } else {
     snapshot_.standardError = Image();
   }
-  snapshot_.spp = spp_;
-  fillProbe(film_, spp_, probePixel_, snapshot_.probe);
+  stampSnapshot(spp_, resolveError_);
+}
+
+// The rest of a publication, under snapshotMutex_, once the images are in place.
+void Engine::stampSnapshot(uint32_t spp, bool withError) {
+  snapshot_.spp = spp;
+  publishedError_ = withError;
+  if (spp > 0)
+    fillProbe(film_, spp, probePixel_, snapshot_.probe);
+  else
+    snapshot_.probe = FilmSnapshot::Probe();  // the preview: no pass yet
   snapshot_.seconds = elapsedNow();
   snapshot_.cpuSeconds = processCpuSeconds() - cpuAtStart_;
   ++snapshot_.version;
@@ -274,11 +289,7 @@ void Engine::publishSnapshot() {
   std::lock_guard lk(snapshotMutex_);
   snapshot_.mean = std::move(mean);
   snapshot_.standardError = std::move(err);
-  snapshot_.spp = spp;
-  fillProbe(film_, spp, probePixel_, snapshot_.probe);
-  snapshot_.seconds = elapsedNow();
-  snapshot_.cpuSeconds = processCpuSeconds() - cpuAtStart_;
-  ++snapshot_.version;
+  stampSnapshot(spp, withError);
 }
 
 // Runs in the last worker to finish a pass, with passMutex_ held and every other worker waiting.
@@ -330,11 +341,7 @@ void Engine::workerLoop(int /*workerIndex*/, bool preview) {
         std::lock_guard sl(snapshotMutex_);
         snapshot_.mean = std::move(preview_);  // the preview is done with
         snapshot_.standardError = Image();
-        snapshot_.probe = FilmSnapshot::Probe();  // no pass yet
-        snapshot_.spp = 0;
-        snapshot_.seconds = elapsedNow();
-        snapshot_.cpuSeconds = processCpuSeconds() - cpuAtStart_;
-        ++snapshot_.version;
+        stampSnapshot(0, false);
       }
       if (signal_ && !cancel_) signal_->notify();
       ++generation_;

@@ -137,6 +137,7 @@ class Engine {
   bool passBoundary();  // run by the last worker to finish a pass; returns true to stop
   void publishSnapshot();
   void publishResolved();
+  void stampSnapshot(uint32_t spp, bool withError);
   void prepareResolve(bool mean, bool error);
   double elapsedNow() const;
 
@@ -185,6 +186,7 @@ class Engine {
   Image pendingMean_, pendingError_;
   mutable std::mutex snapshotMutex_;
   FilmSnapshot snapshot_;
+  bool publishedError_ = false;  // snapshot_ was published with its standard error (snapshotMutex_)
 };
 
 }  // namespace penumbra
