@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "app/cli/commands.h"
+#include "app/cli/cpu_usage.h"
 #include "app/cli/scene_options.h"
 #include "core/render/engine.h"
 
@@ -42,19 +43,60 @@ double median(std::vector<double> v) {
 }
 
 // Camera samples per second at 1 thread and at `all`, and the speed-up. The two thread counts
-// alternate run by run, and the speed-up is the median of each pair's ratio: on a shared machine
-// whose speed drifts, both sides of a ratio are measured in the same seconds.
+// alternate run by run in the order 1,N, N,1, 1,N, ... (a linear drift of the machine's speed
+// cancels), and the speed-up is the median of each pair's ratio: on a shared machine whose speed
+// drifts, both sides of a ratio are measured in the same seconds. The range of the ratios and how
+// much CPU the runs actually got are reported beside it, so a contended figure shows as one.
 struct Scaling {
-  double one = 0, all = 0, speedUp = 0;
+  double one = 0, all = 0, speedUp = 0, speedUpMin = 0, speedUpMax = 0;
+  CpuShare allRuns;  // CPU the all-thread runs got, and host steal over the whole measurement
 };
 Scaling measure(const LoadedScene& s, const RenderSettings& settings, int all, const BenchOptions& o) {
   std::vector<double> one, many, ratio;
+  CpuClock allBusy{};  // summed over the all-thread runs only
+  const CpuClock first = readCpuClock();
+  auto run = [&](int threads) {
+    const CpuClock before = readCpuClock();
+    double rate = timedRun(s, settings, threads, o.seconds);
+    if (threads == all) {
+      const CpuClock after = readCpuClock();
+      allBusy.wallSeconds += after.wallSeconds - before.wallSeconds;
+      allBusy.processSeconds += after.processSeconds - before.processSeconds;
+    }
+    (threads == 1 ? one : many).push_back(rate);
+  };
   for (int r = 0; r < o.repeats; ++r) {
-    one.push_back(timedRun(s, settings, 1, o.seconds));
-    many.push_back(timedRun(s, settings, all, o.seconds));
+    if (r % 2 == 0) {
+      run(1);
+      run(all);
+    } else {
+      run(all);
+      run(1);
+    }
     ratio.push_back(many.back() / one.back());
   }
-  return {median(one), median(many), median(ratio)};
+  Scaling m{median(one),
+            median(many),
+            median(ratio),
+            *std::min_element(ratio.begin(), ratio.end()),
+            *std::max_element(ratio.begin(), ratio.end()),
+            cpuShareBetween(first, readCpuClock(), all)};
+  m.allRuns.coresGot = cpuShareBetween(CpuClock{}, allBusy, all).coresGot;
+  return m;
+}
+
+void printHeader(const char* what) {
+  std::printf("%-28s %12s %12s %20s %9s %6s\n", what, "1 thread M/s", "all threads", "speed-up (range)",
+              "CPU got", "steal");
+}
+
+void printRow(const std::string& label, const Scaling& m, double scale) {
+  char range[32];
+  std::snprintf(range, sizeof range, "%.2fx (%.2f-%.2f)", m.speedUp, m.speedUpMin, m.speedUpMax);
+  char steal[16] = "n/a";
+  if (m.allRuns.steal >= 0) std::snprintf(steal, sizeof steal, "%.1f%%", 100 * m.allRuns.steal);
+  std::printf("%-28s %12.2f %12.2f %20s %8.0f%% %6s\n", label.c_str(), m.one * scale, m.all * scale, range,
+              100 * m.allRuns.coresGot, steal);
 }
 
 std::string locateScene(const std::string& given, const std::string& repoRelative) {
@@ -70,15 +112,16 @@ std::string locateScene(const std::string& given, const std::string& repoRelativ
 int runBench(const BenchOptions& o) {
   int all = o.threads > 0 ? o.threads : int(std::max(1u, std::thread::hardware_concurrency()));
   std::printf(
-      "penumbra bench: median of %d runs of %.1f s; %d hardware threads; 1-thread and all-thread runs\n"
-      "alternate, the speed-up is the median of their pairwise ratios\n\n",
+      "penumbra bench: median of %d runs of %.1f s; %d hardware threads. 1-thread and all-thread runs\n"
+      "alternate (1,N, N,1, ...); speed-up: median (and range) of their pairwise ratios. CPU got: CPU\n"
+      "time of the all-thread runs over wall time x threads. steal: the host's steal time over all CPU\n"
+      "time while the figure was measured. Below ~97%% or above ~1%% the machine was contended.\n\n",
       o.repeats, o.seconds, all);
 
   LoadedScene sphere = o.sphereScene.empty()
                            ? loadSceneFromString(defaultSceneXml(), "<built-in hw2 sphere>", ".")
                            : loadScene(o.sphereScene);
-  std::printf("%-28s %14s %14s %9s\n", "direct strategy (768x768)", "1 thread M/s", "all threads",
-              "speed-up");
+  printHeader("direct strategy (768x768)");
   struct Strategy {
     DirectMeasure measure;
     HemisphereWarp warp;
@@ -93,8 +136,7 @@ int runBench(const BenchOptions& o) {
     s.integrator.measure = st.measure;
     s.integrator.warp = st.warp;
     Scaling m = measure(sphere, s, all, o);
-    std::printf("%-28s %14.2f %14.2f %8.2fx\n", strategyLabel(s.integrator).c_str(), m.one * 1e-6,
-                m.all * 1e-6, m.speedUp);
+    printRow(strategyLabel(s.integrator), m, 1e-6);
   }
 
   std::string aoPath = locateScene(o.aoScene, "scenes/standin/rock-ao.xml");
@@ -105,12 +147,10 @@ int runBench(const BenchOptions& o) {
   LoadedScene ao = loadScene(aoPath);
   const RenderSettings& s = ao.settings;
   double rays = double(s.integrator.samples);
-  std::printf("\n%-28s %14s %14s %9s\n", "AO rays (shadow + camera)", "1 thread M/s", "all threads",
-              "speed-up");
+  std::printf("\n");
+  printHeader("AO rays (shadow + camera)");
   Scaling m = measure(ao, s, all, o);
-  std::printf("%-28s %14.2f %14.2f %8.2fx\n",
-              (std::to_string(ao.scene->geometry.triangleCount()) + " triangles").c_str(),
-              m.one * rays * 1e-6, m.all * rays * 1e-6, m.speedUp);
+  printRow(std::to_string(ao.scene->geometry.triangleCount()) + " triangles", m, rays * 1e-6);
   std::printf("(%s, %s, %d shading samples per camera sample; AO rays/s excludes camera rays)\n",
               aoPath.c_str(), strategyLabel(s.integrator).c_str(), s.integrator.samples);
   return 0;
