@@ -1,17 +1,31 @@
 #include <imgui.h>
 
+#include <cmath>
+
 #include "app/ui/panels.h"
 
 namespace penumbra::ui {
+
+namespace {
+// Float noise from deriving a point through the camera matrix (a target of 0 shown as -4.77e-07)
+// is shown as 0: below 1e-5 of the camera's scale nothing is meaningful at three digits anyway.
+glm::vec3 forDisplay(glm::vec3 p, float scale) {
+  for (int i = 0; i < 3; ++i)
+    if (std::fabs(p[i]) < 1e-5f * scale) p[i] = 0.f;
+  return p;
+}
+}  // namespace
 
 void drawCameraPanel(ViewerController& c, PanelState&) {
   if (!ImGui::CollapsingHeader("Camera", ImGuiTreeNodeFlags_DefaultOpen)) return;
   float fov = c.settings().camera.fovDegrees;
   if (ImGui::SliderFloat("fov", &fov, 5.f, 120.f, "%.1f deg")) c.setFov(fov);
   const glm::mat4& m = c.settings().camera.toWorld;
-  ImGui::Text("origin %.3g %.3g %.3g", m[3].x, m[3].y, m[3].z);
   const OrbitCamera& o = c.orbitCamera();
-  ImGui::Text("target %.3g %.3g %.3g  (dist %.3g)", o.target.x, o.target.y, o.target.z, o.distance);
+  const float scale = glm::length(glm::vec3(m[3])) + o.distance;
+  const glm::vec3 origin = forDisplay(glm::vec3(m[3]), scale), target = forDisplay(o.target, scale);
+  ImGui::Text("origin %.3g %.3g %.3g", origin.x, origin.y, origin.z);
+  ImGui::Text("target %.3g %.3g %.3g  (dist %.3g)", target.x, target.y, target.z, o.distance);
   if (ImGui::Button("Reset to the scene's camera")) c.resetCamera();
   ImGui::TextDisabled("left drag: orbit, right/middle drag: pan, wheel: dolly");
 }
