@@ -115,7 +115,8 @@ int runBench(const BenchOptions& o) {
       "penumbra bench: median of %d runs of %.1f s; %d hardware threads. 1-thread and all-thread runs\n"
       "alternate (1,N, N,1, ...); speed-up: median (and range) of their pairwise ratios. CPU got: CPU\n"
       "time of the all-thread runs over wall time x threads. steal: the host's steal time over all CPU\n"
-      "time while the figure was measured. Below ~97%% or above ~1%% the machine was contended.\n\n",
+      "time while the figure was measured. Below ~97%% or above ~1%%, the figure was contended; a busy\n"
+      "neighbour on the host's cores shows in neither, only as a slower 1-thread figure.\n\n",
       o.repeats, o.seconds, all);
 
   LoadedScene sphere = o.sphereScene.empty()
