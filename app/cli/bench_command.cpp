@@ -11,6 +11,7 @@
 #include "app/cli/commands.h"
 #include "app/cli/cpu_usage.h"
 #include "app/cli/scene_options.h"
+#include "core/analysis/order_statistics.h"
 #include "core/render/engine.h"
 
 namespace penumbra::cli {
@@ -39,11 +40,6 @@ double timedRun(const LoadedScene& s, const RenderSettings& settings, int thread
   return double(p.samples) / p.seconds;
 }
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
-
 // Camera samples per second at 1 thread and at `all`, and the speed-up. The two thread counts
 // alternate run by run in the order 1,N, N,1, 1,N, ... (a linear drift of the machine's speed
 // cancels), and the speed-up is the median of each pair's ratio: on a shared machine whose speed
@@ -55,15 +51,15 @@ struct Scaling {
 };
 Scaling measure(const LoadedScene& s, const RenderSettings& settings, int all, const BenchOptions& o) {
   std::vector<double> one, many, ratio;
-  CpuClock allBusy{};  // summed over the all-thread runs only
+  double allWall = 0, allCpu = 0;  // seconds, summed over the all-thread runs only
   const CpuClock first = readCpuClock();
   auto run = [&](int threads) {
     const CpuClock before = readCpuClock();
     double rate = timedRun(s, settings, threads, o.seconds);
     if (threads == all) {
       const CpuClock after = readCpuClock();
-      allBusy.wallSeconds += after.wallSeconds - before.wallSeconds;
-      allBusy.processSeconds += after.processSeconds - before.processSeconds;
+      allWall += after.wallSeconds - before.wallSeconds;
+      allCpu += after.processSeconds - before.processSeconds;
     }
     (threads == 1 ? one : many).push_back(rate);
   };
@@ -83,7 +79,7 @@ Scaling measure(const LoadedScene& s, const RenderSettings& settings, int all, c
             *std::min_element(ratio.begin(), ratio.end()),
             *std::max_element(ratio.begin(), ratio.end()),
             cpuShareBetween(first, readCpuClock(), all)};
-  m.allRuns.coresGot = cpuShareBetween(CpuClock{}, allBusy, all).coresGot;
+  m.allRuns.coresGot = allCpu / (allWall * all);
   return m;
 }
 

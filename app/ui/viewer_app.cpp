@@ -24,6 +24,7 @@
 #include "app/ui/warp_inspector.h"
 #include "core/analysis/convergence.h"
 #include "core/analysis/error_metrics.h"
+#include "core/analysis/order_statistics.h"
 #include "core/image/image_io.h"
 #include "core/image/tonemap.h"
 #include "core/math/error.h"
@@ -471,18 +472,6 @@ class ViewerApp {
   std::thread waker_;
 };
 
-double median(std::vector<double> v) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
-
-double percentile90(std::vector<double> v) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  return v[v.size() * 9 / 10];
-}
-
 // CPU time of this process's threads, split by role (Linux /proc; ms). The UI thread is the main
 // thread; the GL rasteriser's threads are Mesa's "llvmpipe-N"; everything else (the render workers,
 // which come and go with every restart) is the process total minus those two.
@@ -660,7 +649,7 @@ int runBench(platform::Platform& p, ViewerController& c, ViewerApp& app) {
       "bench: watching the accumulation (event-driven, no input): %.1f frames/s drawn, frame time median "
       "%.2f ms, p90 %.2f ms; CPU: UI thread %.1f %% + GL threads %.1f %% of the cores; throughput %.1f %% "
       "lost to the UI\n",
-      median(watchRate), median(watchFrames), percentile90(watchFrames), median(watchUi), median(watchGl),
+      median(watchRate), median(watchFrames), percentile(watchFrames, 0.9), median(watchUi), median(watchGl),
       median(watchLost));
   std::printf(
       "bench: dragging the exposure (a new tone mapping every frame, paced to 60 Hz): %.1f frames/s drawn, "
@@ -668,7 +657,7 @@ int runBench(platform::Platform& p, ViewerController& c, ViewerApp& app) {
       "fps), p90 %.2f ms; CPU: UI thread %.1f %% + GL threads %.1f %% of the cores; throughput %.1f %% lost "
       "to the UI\n",
       median(busyRate), median(busyFrames), 1000.0 / std::max(median(busyFrames), 1e-9),
-      percentile90(busyFrames), median(busyUi), median(busyGl), median(busyLost));
+      percentile(busyFrames, 0.9), median(busyUi), median(busyGl), median(busyLost));
   std::printf(
       "bench: restart latency (control change -> first frame of the new estimate on screen) median %.1f ms, "
       "max %.1f ms (the change itself: cancel and restart %.1f ms; the engine's preview published %.1f ms "
