@@ -1,18 +1,17 @@
 #include "app/cli/cpu_usage.h"
 
 #include <chrono>
-#include <ctime>
 #include <fstream>
 #include <string>
+
+#include "core/render/engine.h"
 
 namespace penumbra::cli {
 
 CpuClock readCpuClock() {
   CpuClock c;
   c.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-  timespec ts;
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-  c.processSeconds = double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+  c.processSeconds = processCpuSeconds();
   // First line: "cpu  user nice system idle iowait irq softirq steal guest guest_nice" (guest time is
   // already counted in user and nice, so it is not added again).
   std::ifstream stat("/proc/stat");

@@ -11,13 +11,11 @@
 
 namespace penumbra {
 
-namespace {
 double processCpuSeconds() {
   timespec ts;
   clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
   return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
 }
-}  // namespace
 
 void PublishSignal::notify() {
   {

@@ -42,6 +42,9 @@ struct RenderProgress {
   bool finished = false;
 };
 
+// CPU time of all this process's threads, in seconds (what FilmSnapshot::cpuSeconds counts).
+double processCpuSeconds();
+
 // The current mean (and standard error) as published at a pass boundary.
 struct FilmSnapshot {
   uint64_t version = 0;
