@@ -47,7 +47,8 @@ double timedRun(const LoadedScene& s, const RenderSettings& settings, int thread
 // much CPU the runs actually got are reported beside it, so a contended figure shows as one.
 struct Scaling {
   double one = 0, all = 0, speedUp = 0, speedUpMin = 0, speedUpMax = 0;
-  CpuShare allRuns;  // CPU the all-thread runs got, and host steal over the whole measurement
+  double coresGot = 0;  // CpuShare::coresGot of the all-thread runs
+  double steal = -1;    // CpuShare::steal over the whole measurement (< 0: unknown)
 };
 Scaling measure(const LoadedScene& s, const RenderSettings& settings, int all, const BenchOptions& o) {
   std::vector<double> one, many, ratio;
@@ -73,14 +74,13 @@ Scaling measure(const LoadedScene& s, const RenderSettings& settings, int all, c
     }
     ratio.push_back(many.back() / one.back());
   }
-  Scaling m{median(one),
-            median(many),
-            median(ratio),
-            *std::min_element(ratio.begin(), ratio.end()),
-            *std::max_element(ratio.begin(), ratio.end()),
-            cpuShareBetween(first, readCpuClock(), all)};
-  m.allRuns.coresGot = allCpu / (allWall * all);
-  return m;
+  return {median(one),
+          median(many),
+          median(ratio),
+          *std::min_element(ratio.begin(), ratio.end()),
+          *std::max_element(ratio.begin(), ratio.end()),
+          allCpu / (allWall * all),
+          cpuShareBetween(first, readCpuClock(), all).steal};
 }
 
 void printHeader(const char* what) {
@@ -92,9 +92,9 @@ void printRow(const std::string& label, const Scaling& m, double scale) {
   char range[32];
   std::snprintf(range, sizeof range, "%.2fx (%.2f-%.2f)", m.speedUp, m.speedUpMin, m.speedUpMax);
   char steal[16] = "n/a";
-  if (m.allRuns.steal >= 0) std::snprintf(steal, sizeof steal, "%.1f%%", 100 * m.allRuns.steal);
+  if (m.steal >= 0) std::snprintf(steal, sizeof steal, "%.1f%%", 100 * m.steal);
   std::printf("%-28s %12.2f %12.2f %20s %8.0f%% %6s\n", label.c_str(), m.one * scale, m.all * scale, range,
-              100 * m.allRuns.coresGot, steal);
+              100 * m.coresGot, steal);
 }
 
 std::string locateScene(const std::string& given, const std::string& repoRelative) {

@@ -46,9 +46,4 @@ inline SinCos sinCosTurns(float turns) {
   return {std::bit_cast<float>(sinBits), std::bit_cast<float>(cosBits)};
 }
 
-// sin and cos of an angle in radians of moderate size (|x| ≲ 1e5), through turns.
-inline SinCos sinCosRadians(float radians) {
-  return sinCosTurns(radians * kInv2Pi);
-}
-
 }  // namespace penumbra
