@@ -10,9 +10,9 @@
 #include <vector>
 
 #include "core/analysis/ray_estimate.h"
-#include "core/render/scene.h"
 #include "core/sampling/sampler.h"
 #include "core/scene/scene_builder.h"
+#include "core/world/scene.h"
 
 namespace penumbra::test {
 

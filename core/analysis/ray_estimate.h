@@ -7,8 +7,8 @@
 #include <cstdint>
 
 #include "core/geometry/ray.h"
-#include "core/render/scene.h"
 #include "core/sampling/sampler.h"
+#include "core/world/scene.h"
 
 namespace penumbra::analysis {
 

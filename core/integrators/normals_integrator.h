@@ -3,8 +3,8 @@
 
 #include <glm/common.hpp>
 
-#include "core/render/scene.h"
 #include "core/sampling/sampler.h"
+#include "core/world/scene.h"
 
 namespace penumbra {
 

@@ -6,7 +6,7 @@
 #include "core/geometry/surface_hit.h"
 #include "core/math/float_util.h"
 #include "core/math/frame.h"
-#include "core/render/scene.h"
+#include "core/world/scene.h"
 
 namespace penumbra {
 

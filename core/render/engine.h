@@ -14,7 +14,7 @@
 #include "core/image/image.h"
 #include "core/render/film.h"
 #include "core/render/render_settings.h"
-#include "core/render/scene.h"
+#include "core/world/scene.h"
 
 namespace penumbra {
 

@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "core/render/render_settings.h"
-#include "core/render/scene.h"
 #include "core/scene/scene_desc.h"
+#include "core/world/scene.h"
 
 namespace penumbra {
 
