@@ -74,10 +74,12 @@ TEST(ConvergeCli, ReportFilesExistAndParse) {
 }
 
 TEST(ConvergeCli, RejectsUnknownStrategy) {
-  test::CommandResult r =
-      penumbraCli("converge '" + analyticScene() + "' --time 0.1 --strategies bogus -o /tmp/penumbra-x");
+  fs::path dir = fs::temp_directory_path() / ("penumbra-converge-bogus-" + std::to_string(::getpid()));
+  test::CommandResult r = penumbraCli("converge '" + analyticScene() +
+                                      "' --time 0.1 --strategies bogus -o '" + dir.string() + "'");
   EXPECT_EQ(r.exitCode, 2) << r.out;
   EXPECT_NE(r.out.find("unknown strategy"), std::string::npos) << r.out;
+  fs::remove_all(dir);
 }
 
 TEST(ConvergeCli, RenderReferenceWritesMeanAndStandardError) {

@@ -357,8 +357,8 @@ TEST(SphereLight, EvalIsOneSided) {
   EXPECT_EQ(l.eval(Vec3(0, 0, 1), Vec3(0, 0, 1), Vec3(1, 0, 0)), Color3(0));
 }
 
-// Found by `penumbra check` (light-sin2-underflow): 4π r² underflows for r = 1e-25 at distance 1 and
-// the area pdf (computed in double) used to be returned as +inf. It is now an invalid sample.
+// As in `penumbra check`'s light-sin2-underflow: 4π r² underflows for r = 1e-25 at distance 1; the
+// area pdf (computed in double) must then make an invalid sample (pdf 0), never +inf.
 TEST(SphereLight, AreaPdfOfAnUnderflowingLightIsNeverInfinite) {
   SphereLight light;
   light.sphere.center = Vec3(0.f, 0.f, 1.f);
@@ -373,8 +373,8 @@ TEST(SphereLight, AreaPdfOfAnUnderflowingLightIsNeverInfinite) {
   }
 }
 
-// Found by `penumbra check` (cone-sin2-1e-12): directions sampled at the rim of a very narrow cone
-// round (as floats) to just outside it, and pdfSolidAngle returned 0 for them.
+// As in `penumbra check`'s cone-sin2-1e-12: directions sampled at the rim of a very narrow cone round
+// (as floats) to just outside it; pdfSolidAngle must still accept them (not return 0).
 TEST(SphereLight, PdfSolidAngleAcceptsEveryDirectionItSampled) {
   for (double sin2 : {1e-8, 1e-12}) {
     SphereLight light;
