@@ -19,12 +19,6 @@ using namespace penumbra;
 
 namespace {
 
-std::string tempDir() {
-  fs::path d = fs::temp_directory_path() / ("penumbra-viewer-controller-test-" + std::to_string(::getpid()));
-  fs::create_directories(d);
-  return d.string();
-}
-
 LoadedScene smallDefaultScene() {
   return loadSceneFromString(
       defaultSceneXml(), "<built-in scene>", ".",
@@ -159,7 +153,9 @@ TEST(ViewerController, CameraAndSamplerChangesRestartAndLiveXmlRoundTrips) {
 }
 
 TEST(ViewerController, InvalidSceneKeepsTheLastGoodOneAndShowsFileAndLine) {
-  std::string bad = tempDir() + "/bad.xml";
+  std::string bad =
+      (fs::temp_directory_path() / ("penumbra-viewer-controller-" + std::to_string(::getpid()) + "-bad.xml"))
+          .string();
   std::ofstream(bad)
       << "<scene>\n  <integrator type=\"direct\">\n    <integer name=\"nSamples\" value=\"x\"/>\n"
          "  </integrator>\n</scene>\n";
@@ -167,8 +163,9 @@ TEST(ViewerController, InvalidSceneKeepsTheLastGoodOneAndShowsFileAndLine) {
   c.start();
   auto scene = c.scene().scene;
   EXPECT_FALSE(c.openScene(bad));
-  EXPECT_NE(c.sceneError().find("bad.xml:3"), std::string::npos) << c.sceneError();
+  EXPECT_NE(c.sceneError().find("-bad.xml:3"), std::string::npos) << c.sceneError();
   EXPECT_EQ(c.scene().scene, scene);
+  fs::remove(bad);
 }
 
 TEST(ViewerCompare, EnablingStartsASecondAccumulationDisablingStopsIt) {

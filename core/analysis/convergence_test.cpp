@@ -30,21 +30,14 @@
 
 #include "core/analysis/error_metrics.h"
 #include "core/analysis/reference.h"
-#include "core/scene/scene_builder.h"
+#include "core/analysis/test_scenes_fixture.h"
 
 namespace penumbra {
 namespace {
 
-std::string analyticScene() {
-  return PENUMBRA_SOURCE_DIR "/scenes/analytic/plane-sphere-light.xml";
-}
-std::string sphereScene() {
-  return PENUMBRA_SOURCE_DIR "/scenes/hw2/Tests/sphere-area.xml";
-}
-
-LoadedScene loadSmall(const std::string& path, int size) {
-  return loadScene(path, {{"camera.width", std::to_string(size)}, {"camera.height", std::to_string(size)}});
-}
+using test::analyticScene;
+using test::loadSmall;
+using test::sphereScene;
 
 TEST(Convergence, MseSlopeAgainstTimeOnAnalyticScene) {
   // 80x80: a pass (~3 ms) is long against the fixed per-pass cost (barrier, snapshot), which

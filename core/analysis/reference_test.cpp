@@ -10,23 +10,16 @@
 #include <string>
 #include <vector>
 
-#include "core/scene/scene_builder.h"
+#include "core/analysis/test_scenes_fixture.h"
 
 namespace penumbra {
 namespace {
 
 namespace fs = std::filesystem;
 
-std::string analyticScene() {
-  return PENUMBRA_SOURCE_DIR "/scenes/analytic/plane-sphere-light.xml";
-}
-std::string sphereScene() {
-  return PENUMBRA_SOURCE_DIR "/scenes/hw2/Tests/sphere-area.xml";
-}
-
-LoadedScene loadSmall(const std::string& path, int size) {
-  return loadScene(path, {{"camera.width", std::to_string(size)}, {"camera.height", std::to_string(size)}});
-}
+using test::analyticScene;
+using test::loadSmall;
+using test::sphereScene;
 
 TEST(Reference, ClosedFormAgreesWithRendering) {
   // The closed form of the analytic scene against a rendered solid-angle reference: the normalised

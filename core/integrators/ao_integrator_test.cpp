@@ -9,10 +9,7 @@
 namespace penumbra {
 namespace {
 
-using test::addSphere;
-using test::finish;
-using test::planeScene;
-using test::rayDownOnto;
+using namespace test;  // the hand-built scenes
 
 template <HemisphereWarp W>
 Color3 sample(const Scene& scene, const Ray& ray, uint32_t index, int samples = 1) {

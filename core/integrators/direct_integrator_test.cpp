@@ -9,10 +9,7 @@
 namespace penumbra {
 namespace {
 
-using test::addSphere;
-using test::finish;
-using test::planeScene;
-using test::rayDownOnto;
+using namespace test;  // the hand-built scenes
 
 template <DirectStrategy S>
 Color3 once(const Scene& scene, const Ray& ray, uint64_t seed = 1) {
