@@ -26,20 +26,18 @@ void expectError(const std::string& body, int line, const std::string& needle) {
 TEST(SceneBuilder, SeedSpellingsOfTheIntegrators) {
   auto ao = fromXml(R"(<integrator type="ao"><integer name="shadingSamples" value="4"/>
                        <string name="sampler" value="uniform"/></integrator>)");
-  EXPECT_EQ(ao.settings.integrator.type, IntegratorType::Ao);
+  EXPECT_EQ(ao.settings.integrator.strategy, Strategy::AoUniform);
   EXPECT_EQ(ao.settings.integrator.samples, 4);
-  EXPECT_EQ(ao.settings.integrator.warp, HemisphereWarp::Uniform);
   auto ao2 = fromXml(R"(<integrator type="ao"><integer name="nSamples" value="2"/>
                         <string name="warp-type" value="cosine-hemisphere"/></integrator>)");
   EXPECT_EQ(ao2.settings.integrator.samples, 2);
-  EXPECT_EQ(ao2.settings.integrator.warp, HemisphereWarp::Cosine);
+  EXPECT_EQ(ao2.settings.integrator.strategy, Strategy::AoCosine);
   auto d = fromXml(R"(<integrator type="direct"><integer name="nSamples" value="3"/>
                       <string name="measure" value="solidAngle"/></integrator>)");
-  EXPECT_EQ(d.settings.integrator.measure, DirectMeasure::SolidAngle);
+  EXPECT_EQ(d.settings.integrator.strategy, Strategy::DirectSolidAngle);
   auto h = fromXml(R"(<integrator type="direct"><string name="measure" value="hemisphere"/>
                       <string name="warp-type" value="uniform-hemisphere"/></integrator>)");
-  EXPECT_EQ(h.settings.integrator.measure, DirectMeasure::Hemisphere);
-  EXPECT_EQ(h.settings.integrator.warp, HemisphereWarp::Uniform);
+  EXPECT_EQ(h.settings.integrator.strategy, Strategy::DirectUniformHemisphere);
 }
 
 TEST(SceneBuilder, BadCountsAreRejectedWithTheirLine) {
@@ -97,7 +95,7 @@ TEST(SceneBuilder, SmallScenesPayForNoBvh) {
 TEST(SceneBuilder, OverridesReachTheSettings) {
   LoadedScene s = loadSceneFromString(defaultSceneXml(), "default", ".",
                                       {{"integrator.measure", "area"}, {"sampler.sampleCount", "7"}});
-  EXPECT_EQ(s.settings.integrator.measure, DirectMeasure::Area);
+  EXPECT_EQ(s.settings.integrator.strategy, Strategy::DirectArea);
   EXPECT_EQ(s.settings.sampleCount, 7u);
 }
 

@@ -1,0 +1,57 @@
+#include "core/sampling/sampler_table.h"
+
+#include <array>
+
+namespace penumbra {
+
+namespace {
+
+// Indexed by SamplerKind: the row of kind k is kRows[k] (checked by sampler_table_test).
+constexpr std::array kRows = {
+    SamplerRow{SamplerKind::Independent,
+               {{"independent"}},
+               "independent",
+               "A fresh pseudo-random number for every dimension of every sample (PCG32).",
+               false},
+    SamplerRow{SamplerKind::Stratified,
+               {{"stratified"}},
+               "stratified",
+               "Jittered strata: sampleCount strata per 1-D dimension, floor(sqrt(sampleCount))^2 per 2-D "
+               "pair, in a hashed random order per pixel and dimension; fresh jitter beyond sampleCount.",
+               true},
+};
+static_assert(kRows.size() == kSamplerKindCount);
+
+}  // namespace
+
+std::span<const SamplerRow> samplerTable() {
+  return kRows;
+}
+
+const SamplerRow& samplerRow(SamplerKind kind) {
+  return kRows[size_t(kind)];
+}
+
+const SamplerRow* findSampler(std::string_view name) {
+  for (const SamplerRow& r : kRows)
+    if (r.name.accepts(name)) return &r;
+  return nullptr;
+}
+
+std::string acceptedSamplerNames() {
+  std::string out;
+  for (const SamplerRow& r : kRows) (out += out.empty() ? "" : ", ") += r.name.joined();
+  return out;
+}
+
+const char* samplerKindName(SamplerKind kind) {
+  return samplerRow(kind).name.canonical().data();
+}
+
+bool parseSamplerKind(const std::string& name, SamplerKind& out) {
+  const SamplerRow* r = findSampler(name);
+  if (r) out = r->kind;
+  return r != nullptr;
+}
+
+}  // namespace penumbra
