@@ -1,5 +1,6 @@
-// Per-point Monte Carlo estimates of an integrator with their standard error: the shared helper of
-// the closed-form tests (tests/) and the stiff-case catalogue (`penumbra check`).
+// Per-point Monte Carlo estimates of an integrator with their standard error (estimateRay, from
+// core/render/ray_estimator.h) and the rays that reach a point: the shared helpers of the
+// closed-form tests (tests/) and the stiff-case catalogue (`penumbra check`).
 #pragma once
 
 #include <glm/geometric.hpp>
