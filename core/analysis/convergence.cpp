@@ -22,7 +22,8 @@ double cpuClock(clockid_t id) {
 
 namespace {
 // Every name --strategies accepts for a row: its label with or without the integrator type, its
-// short name, and each spelling of the property value that selects it in a scene file.
+// short name, and each spelling of its most specific selecting value in a scene file (solidAngle,
+// uniform).
 bool namesStrategy(const StrategyRow& row, const std::string& name) {
   std::string_view label = row.label;
   if (name == label || name == row.shortName || name == label.substr(label.find('/') + 1)) return true;
