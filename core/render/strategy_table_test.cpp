@@ -43,14 +43,17 @@ TEST(StrategyTable, RowsOfOneTypeAreSelectedUnambiguously) {
       EXPECT_EQ(a.samplesProperty.names, b.samplesProperty.names) << a.label << " vs " << b.label;
       EXPECT_EQ(a.select[0].name.names, b.select[0].name.names) << a.label << " vs " << b.label;
       bool sameFirst = a.select[0].value.names == b.select[0].value.names;
-      if (sameFirst)
+      if (sameFirst) {
         EXPECT_EQ(a.select[1].name.names, b.select[1].name.names) << a.label << " vs " << b.label;
-      if (&a != &b)
+      }
+      if (&a != &b) {
         EXPECT_FALSE(sameFirst && a.select[1].value.names == b.select[1].value.names)
             << a.label << " and " << b.label << " are selected by the same values";
+      }
       // No spelling of one row's value may select another row.
-      if (!sameFirst)
+      if (!sameFirst) {
         for (std::string_view v : a.select[0].value.list()) EXPECT_FALSE(b.select[0].value.accepts(v)) << v;
+      }
     }
     // One default among the rows that share each level's context.
     for (size_t level = 0; level < 2; ++level) {
@@ -70,7 +73,9 @@ TEST(StrategyTable, FallbacksApplyEverywhere) {
     EXPECT_TRUE(strategyApplies(r.fallback, false)) << r.label;
     EXPECT_TRUE(sameIntegratorType(r.strategy, r.fallback)) << r.label;
     EXPECT_EQ(applicableStrategy(r.strategy, true), r.strategy) << r.label;
-    if (r.needs == SceneNeed::Nothing) EXPECT_EQ(r.fallback, r.strategy) << r.label;
+    if (r.needs == SceneNeed::Nothing) {
+      EXPECT_EQ(r.fallback, r.strategy) << r.label;
+    }
   }
   // Light sampling needs area lights; without them the scene renders by hemisphere sampling.
   EXPECT_EQ(applicableStrategy(Strategy::DirectArea, false), Strategy::DirectCosineHemisphere);

@@ -6,21 +6,32 @@ namespace penumbra {
 
 namespace {
 
-// Indexed by SamplerKind: the row of kind k is kRows[k] (checked by sampler_table_test).
+// In enum order (checked below): the row of kind k is kRows[k], and the viewer lists them so.
 constexpr std::array kRows = {
-    SamplerRow{SamplerKind::Independent,
-               {{"independent"}},
-               "independent",
-               "A fresh pseudo-random number for every dimension of every sample (PCG32).",
-               false},
-    SamplerRow{SamplerKind::Stratified,
-               {{"stratified"}},
-               "stratified",
-               "Jittered strata: sampleCount strata per 1-D dimension, floor(sqrt(sampleCount))^2 per 2-D "
-               "pair, in a hashed random order per pixel and dimension; fresh jitter beyond sampleCount.",
-               true},
+    SamplerRow{
+        .kind = SamplerKind::Independent,
+        .name = {{"independent"}},
+        .label = "independent",
+        .description = "A fresh pseudo-random number for every dimension of every sample (PCG32).",
+        .usesSampleCount = false,
+    },
+    SamplerRow{
+        .kind = SamplerKind::Stratified,
+        .name = {{"stratified"}},
+        .label = "stratified",
+        .description =
+            "Jittered strata: sampleCount strata per 1-D dimension, floor(sqrt(sampleCount))^2 per "
+            "2-D pair, in a hashed random order per pixel and dimension; fresh jitter beyond "
+            "sampleCount.",
+        .usesSampleCount = true,
+    },
 };
-static_assert(kRows.size() == kSamplerKindCount);
+static_assert(kRows.size() == size_t(kSamplerKindCount));
+static_assert([] {
+  for (size_t i = 0; i < kRows.size(); ++i)
+    if (size_t(kRows[i].kind) != i) return false;
+  return true;
+}());
 
 }  // namespace
 
