@@ -7,6 +7,7 @@
 #include <cstdint>
 
 #include "core/geometry/ray.h"
+#include "core/math/float_util.h"
 #include "core/sampling/sampler.h"
 #include "core/world/scene.h"
 
@@ -18,7 +19,7 @@ struct Estimate {
 };
 
 // Runs `integrator.Li(ray)` n times with independent sample streams and returns the mean (of the
-// red channel) and its standard error.
+// red channel) and its standard error; samples invalid in any channel are counted and left out.
 template <class Integrator>
 Estimate estimateRay(const Scene& scene, const Integrator& integrator, const Ray& ray, int n, uint64_t seed) {
   Sampler sampler(SamplerKind::Independent, 1, seed);
@@ -27,7 +28,7 @@ Estimate estimateRay(const Scene& scene, const Integrator& integrator, const Ray
   for (int i = 0; i < n; ++i) {
     sampler.startPixelSample(IVec2(7, 11), uint32_t(i));
     Color3 L = integrator.Li(scene, ray, sampler);
-    if (!(L.x >= 0.f) || !std::isfinite(L.x)) {
+    if (!isValidRadiance(L)) {
       ++e.bad;
       continue;
     }

@@ -33,6 +33,12 @@ inline bool isFinite(const Vec3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
 
+// A radiance sample fit to accumulate: every channel non-negative and finite. NaN, Inf or a negative
+// value is a bug somewhere; callers count it and drop it.
+inline bool isValidRadiance(const Color3& L) {
+  return L.x >= 0.f && L.y >= 0.f && L.z >= 0.f && std::isfinite(L.x + L.y + L.z);
+}
+
 // Relative offset used to move ray origins off surfaces: 16 ulps of the magnitude of the numbers the
 // hit point came from, so the same scene at 1e-4 and 1e4 units behaves identically. Small enough for
 // a shading point 1e-6 r outside a sphere light; large enough that spheres (re-projected hit points)
