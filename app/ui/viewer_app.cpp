@@ -16,6 +16,7 @@
 
 #include "app/platform/platform.h"
 #include "app/ui/image_display.h"
+#include "app/ui/key_bindings.h"
 #include "app/ui/panels.h"
 #include "app/ui/viewer_bench.h"
 #include "app/ui/warp_inspector.h"
@@ -315,10 +316,8 @@ class ViewerApp : public BenchViewer {
       if (ImGui::IsMouseClicked(ImGuiMouseButton_Left) && nearDivider) draggingDivider_ = true;
     }
     if (!ImGui::IsMouseDown(ImGuiMouseButton_Left)) draggingDivider_ = false;
-    if (draggingDivider_) {
-      float w = std::max(layout_.width * layout_.zoom, 1.f);
-      c_.display.compareDivider = std::clamp((io.MousePos.x - layout_.x) / w, 0.f, 1.f);
-    }
+    const unsigned held = io.KeyCtrl ? kCtrl : kNoModifier;
+    if (draggingDivider_) perform(Trigger::LeftDragOnDivider, held);
     // Pixel inspector and camera: only when the cursor is over the image area, not over a panel.
     st_.hoverValid = false;
     ImVec2 m = io.MousePos;
@@ -334,59 +333,67 @@ class ViewerApp : public BenchViewer {
       }
     }
     if (!io.WantCaptureMouse) {
-      ImVec2 d = io.MouseDelta;
-      if (ImGui::IsMouseDragging(ImGuiMouseButton_Left) && !draggingDivider_ && (d.x != 0 || d.y != 0))
-        c_.orbit(d.x, d.y);
+      const bool moved = io.MouseDelta.x != 0 || io.MouseDelta.y != 0;
+      if (ImGui::IsMouseDragging(ImGuiMouseButton_Left) && !draggingDivider_ && moved)
+        perform(Trigger::LeftDrag, held);
       if ((ImGui::IsMouseDragging(ImGuiMouseButton_Right) ||
            ImGui::IsMouseDragging(ImGuiMouseButton_Middle)) &&
-          (d.x != 0 || d.y != 0))
-        c_.pan(d.x / std::max(layout_.zoom, 1e-3f), d.y / std::max(layout_.zoom, 1e-3f));
-      if (io.MouseWheel != 0 && overArea) {
-        if (io.KeyCtrl) {
-          c_.display.zoom = std::clamp(c_.display.zoom * std::pow(1.25f, io.MouseWheel), 1.f / 16, 16.f);
-          if (c_.display.fit) c_.display.zoom = layout_.zoom * std::pow(1.25f, io.MouseWheel);
-          c_.display.fit = false;
-        } else {
-          c_.dolly(io.MouseWheel);
-        }
-      }
+          moved)
+        perform(Trigger::RightOrMiddleDrag, held);
+      if (io.MouseWheel != 0 && overArea) perform(Trigger::Wheel, held);
     }
-    if (!io.WantTextInput) {
-      for (ImWchar ch : io.InputQueueCharacters) {
-        switch (ch) {
-          case ' ':
-            c_.setPaused(!c_.paused());
-            break;
-          case 'r':
-          case 'R':
-            c_.restart();
-            break;
-          case 's':
-          case 'S':
-            st_.requestSavePng = true;
-            break;
-          case 'f':
-          case 'F':
-            c_.display.fit = true;
-            c_.display.panX = c_.display.panY = 0;
-            break;
-          case '+':
-          case '=':
-            c_.display.exposure += 0.5f;
-            break;
-          case '-':
-          case '_':
-            c_.display.exposure -= 0.5f;
-            break;
-          case 'h':
-          case 'H':
-          case '?':
-            st_.showHelp = !st_.showHelp;
-            break;
-          default:
-            break;
-        }
-      }
+    if (!io.WantTextInput)
+      for (ImWchar ch : io.InputQueueCharacters) perform(Trigger::Key, held, ch);
+  }
+
+  // Does what the key-binding table binds to this input (nothing when it binds nothing).
+  void perform(Trigger trigger, unsigned held, char32_t ch = 0) {
+    const KeyBinding* binding = findBinding(trigger, held, ch);
+    if (!binding) return;
+    const ImGuiIO& io = ImGui::GetIO();
+    const ImVec2 d = io.MouseDelta;
+    DisplaySettings& display = c_.display;
+    switch (binding->action) {
+      case ViewerAction::TogglePause:
+        c_.setPaused(!c_.paused());
+        break;
+      case ViewerAction::Restart:
+        c_.restart();
+        break;
+      case ViewerAction::SavePng:
+        st_.requestSavePng = true;
+        break;
+      case ViewerAction::FitImage:
+        display.fit = true;
+        display.panX = display.panY = 0;
+        break;
+      case ViewerAction::ExposureUp:
+        display.exposure += 0.5f;
+        break;
+      case ViewerAction::ExposureDown:
+        display.exposure -= 0.5f;
+        break;
+      case ViewerAction::ToggleHelp:
+        st_.showHelp = !st_.showHelp;
+        break;
+      case ViewerAction::Orbit:
+        c_.orbit(d.x, d.y);
+        break;
+      case ViewerAction::MoveDivider:
+        display.compareDivider =
+            std::clamp((io.MousePos.x - layout_.x) / std::max(layout_.width * layout_.zoom, 1.f), 0.f, 1.f);
+        break;
+      case ViewerAction::Pan:
+        c_.pan(d.x / std::max(layout_.zoom, 1e-3f), d.y / std::max(layout_.zoom, 1e-3f));
+        break;
+      case ViewerAction::Dolly:
+        c_.dolly(io.MouseWheel);
+        break;
+      case ViewerAction::ZoomDisplay:
+        display.zoom = std::clamp(display.zoom * std::pow(1.25f, io.MouseWheel), 1.f / 16, 16.f);
+        if (display.fit) display.zoom = layout_.zoom * std::pow(1.25f, io.MouseWheel);
+        display.fit = false;
+        break;
     }
   }
 
