@@ -358,7 +358,7 @@ class ViewerApp : public BenchViewer {
         c_.setPaused(!c_.paused());
         break;
       case ViewerAction::Restart:
-        c_.restart();
+        c_.start();
         break;
       case ViewerAction::SavePng:
         st_.requestSavePng = true;

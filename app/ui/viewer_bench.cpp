@@ -105,7 +105,7 @@ enum class Mode { EngineAlone, Watching, Redrawing };
 
 Phase runPhase(BenchViewer& app, ViewerController& c, double seconds, Mode mode) {
   Phase r;
-  c.restart();
+  c.start();
   PassClock passes;
   CpuSplit c0 = cpuSplit();
   auto t0 = Clock::now();

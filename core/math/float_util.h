@@ -1,4 +1,5 @@
-// Robust float helpers: square roots that never see a negative, 1 - cos from sin^2, ray origin offsets.
+// Robust float helpers: square roots that never see a negative, 1 - cos from sin^2, ray origin offsets,
+// the validity of a radiance sample.
 #pragma once
 
 #include <algorithm>
@@ -13,12 +14,6 @@ inline float safeSqrt(float x) {
 }
 inline double safeSqrt(double x) {
   return std::sqrt(std::max(x, 0.0));
-}
-inline float safeAcos(float x) {
-  return std::acos(std::clamp(x, -1.f, 1.f));
-}
-inline float safeAsin(float x) {
-  return std::asin(std::clamp(x, -1.f, 1.f));
 }
 
 // 1 - sqrt(1 - s2) without cancellation for small s2 (= s2 / (1 + sqrt(1 - s2))).
