@@ -39,6 +39,7 @@ RowRenderer rowsFor(const RenderJob& job, Integrator integrator) {
       Ray nextRay;
       if (x + 1 < width) nextRay = startPixel(*upcoming, x + 1, nextWeight);
       Color3 L = integrator.Li(*scene, ray, *current);
+      // NaN, Inf or negative radiance is a bug somewhere: count it and add nothing.
       if (isValidRadiance(L))
         film.add(x, y, L * weight);
       else
