@@ -18,6 +18,7 @@
 #include "app/ui/image_display.h"
 #include "app/ui/key_bindings.h"
 #include "app/ui/panels.h"
+#include "app/ui/ui_clock.h"
 #include "app/ui/viewer_bench.h"
 #include "app/ui/warp_inspector.h"
 #include "core/analysis/convergence.h"
@@ -29,11 +30,6 @@
 namespace penumbra::ui {
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double msSince(Clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
 
 // When the viewer draws (docs/viewer.md, "When the viewer redraws").
 constexpr double kFrameIntervalMs = 1000.0 / 60.0;     // at most one frame per 60 Hz display refresh

@@ -13,17 +13,13 @@
 #define GL_GLEXT_PROTOTYPES 1
 #include <GL/gl.h>
 
+#include "app/ui/ui_clock.h"
 #include "core/analysis/order_statistics.h"
 #include "core/render/cpu_clock.h"
 
 namespace penumbra::ui {
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double msSince(Clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
 
 constexpr const char* kStageNames[kFrameStages] = {"ImGui build (NewFrame..Render)", "tone map + upload",
                                                    "panel fill, background, image copy", "ImGui draw",
