@@ -190,7 +190,6 @@ void TevStreamer::pullFromEngine(std::unique_lock<std::mutex>& lock) {
 void TevStreamer::scheduleNext(Clock::time_point began, double workSeconds, int threads) {
   const double interval =
       std::max(options_.minIntervalSeconds, workSeconds / (options_.costShare * std::max(threads, 1)));
-  if (getenv("TEV_DEBUG")) fprintf(stderr, "work %.1f ms -> interval %.2f s\n", workSeconds * 1e3, interval);
   nextDue_ = began + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(interval));
 }
 
