@@ -1,7 +1,7 @@
 // Streams a progressive render to tev from a thread of its own: connects, creates the image, then
 // sends it as tiles (tev_protocol.h) whenever an update is due. Nothing here blocks a render thread:
-// the engine is only asked for snapshots (Engine::requestSnapshot / takeSnapshot), and every socket
-// operation has a deadline. The first failure (tev not running, refusing, gone, not reading) prints
+// the engine is only asked for snapshots (Engine::requestNextPassSnapshot / takeSnapshot), and every
+// socket operation has a deadline. The first failure (tev not running, refusing, gone, not reading) prints
 // one warning and ends the stream; whoever renders carries on.
 #pragma once
 
@@ -28,16 +28,15 @@ struct TevFrame {
 };
 
 struct TevStreamOptions {
-  // Pacing: after each update the next is due once the work it cost (below) is costShare of the
-  // render threads' time since it began, and never sooner than minIntervalSeconds. The work: this
-  // thread's CPU time (copying, encoding, sending), and, when following an engine, the snapshot's
-  // resolve, measured as the time the engine spent publishing it (FilmSnapshot::seconds minus the
-  // pass boundary's RenderProgress::passSeconds) times threads + 2: every worker waits at that
-  // boundary, and one request makes the engine resolve the next two passes row by row as well.
+  // Pacing: after each update the next is due once the work it cost is costShare of the render
+  // threads' time since it began, and never sooner than minIntervalSeconds. The work: this thread's
+  // CPU time (copying, encoding, sending) and, following an engine, the workers' resolve of the
+  // snapshot (Engine::requestNextPassSnapshot: inside the pass, no worker waits), counted as twice
+  // this thread's (tev_streamer.cpp).
   double minIntervalSeconds = 0.25;
   double costShare = 0.01;
-  // Following an engine, every errorEvery-th update also carries the standard error (it costs the
-  // engine about four times what the mean does); the last frame always does.
+  // Following an engine, every errorEvery-th update also carries the standard error (resolving it
+  // costs the workers about five times what the mean does); the last frame always does.
   int errorEvery = 4;
   double connectSeconds = 3;  // to connect
   double stallSeconds = 5;    // longest wait for tev to take bytes mid-stream
@@ -54,9 +53,9 @@ class TevStreamer {
   TevStreamer(const TevStreamer&) = delete;
   TevStreamer& operator=(const TevStreamer&) = delete;
 
-  // From now on, whenever an update is due, asks `engine` for a snapshot with standard error and sends
-  // it as `name`. The streamer becomes the engine's only snapshot reader (it uses takeSnapshot); call
-  // finish() before the engine is destroyed.
+  // From now on, whenever an update is due, asks `engine` for a snapshot (the standard error with every
+  // errorEvery-th) and sends it as `name`, with the stderr layer. The streamer becomes the engine's only
+  // snapshot reader (it uses takeSnapshot); call finish() before the engine is destroyed.
   void follow(Engine& engine, std::string name);
   // A snapshot someone else reads (the viewer's), as R, G, B. Copied and sent only when an update is
   // due and it is newer than the last one taken, so it is cheap to call on every poll.

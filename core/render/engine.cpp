@@ -60,6 +60,8 @@ void Engine::start(std::shared_ptr<const RenderJob> job, RenderLimits limits, in
   pass_ = 0;
   arrived_ = 0;
   stopAll_ = false;
+  nextPassRequested_ = false;
+  nextPassWantsError_ = false;
   threadCount_ = threads;
   pausedSeconds_ = 0.0;
   finalSeconds_ = 0.0;
@@ -221,6 +223,11 @@ void Engine::requestSnapshot(bool withStandardError) {
   snapshotRequested_ = true;
 }
 
+void Engine::requestNextPassSnapshot(bool withStandardError) {
+  if (withStandardError) nextPassWantsError_ = true;
+  nextPassRequested_ = true;
+}
+
 void Engine::prepareResolve(bool mean, bool error) {
   resolveMean_ = mean;
   resolveError_ = mean && error;
@@ -313,6 +320,10 @@ bool Engine::passBoundary() {
   bool error = e != errorRequestsSeen_[0] || errorRequestsSeen_[0] != errorRequestsSeen_[1];
   requestsSeen_[1] = requestsSeen_[0], requestsSeen_[0] = r;
   errorRequestsSeen_[1] = errorRequestsSeen_[0], errorRequestsSeen_[0] = e;
+  if (!stop && nextPassRequested_.exchange(false)) {
+    mean = true;
+    error = nextPassWantsError_.exchange(false) || error;
+  }
   prepareResolve(mean, error);
   return stop;
 }

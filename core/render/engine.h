@@ -114,6 +114,12 @@ class Engine {
   // boundary without stopping the other workers; otherwise the last worker resolves the whole film at
   // the boundary. Interactive starts (RenderLimits::preview) resolve their first pass this way too.
   void requestSnapshot(bool withStandardError = false);
+  // For a reader that wants a snapshot now and then without holding up the workers (streaming to an
+  // external viewer): the pass after the running one is resolved row by row as it renders and
+  // published at its end (with its standard error if asked), and no later pass is. Unlike
+  // requestSnapshot, no worker waits at a boundary for a serial resolve; the price is up to two
+  // passes of latency.
+  void requestNextPassSnapshot(bool withStandardError = false);
   // The pixel whose statistics each published snapshot carries (FilmSnapshot::probe); x < 0: none.
   void setProbePixel(int x, int y);
   // That pixel's statistics now, if the film is at rest (paused at a pass boundary, or finished and
@@ -182,6 +188,9 @@ class Engine {
   // Snapshot publishing.
   std::atomic<bool> snapshotRequested_{false};
   std::atomic<bool> snapshotWantsError_{false};
+  // requestNextPassSnapshot: resolve the pass after the next boundary (with its standard error).
+  std::atomic<bool> nextPassRequested_{false};
+  std::atomic<bool> nextPassWantsError_{false};
   std::atomic<uint64_t> requests_{0}, errorRequests_{0};
   uint64_t requestsSeen_[2] = {0, 0}, errorRequestsSeen_[2] = {0, 0};  // at the last two boundaries
   bool published_ = false;  // by the pass boundary being run (notify signal_ once it is over)
