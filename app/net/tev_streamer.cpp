@@ -125,24 +125,30 @@ void TevStreamer::run() {
       busy_ = true;
       lk.unlock();
       const auto began = Clock::now();
-      const double cpu0 = threadCpuSeconds();
+      const double cpu0 = threadCpuSeconds(), processCpu0 = processCpuSeconds();
       const bool ok = transmit(frame.name, frame.mean, frame.standardError, !frame.standardError.empty());
       lk.lock();
       busy_ = false;
       ++completed_;
-      if (ok) scheduleNext(began, threadCpuSeconds() - cpu0, cores);
+      if (ok) scheduleNext(began, processCpu0, threadCpuSeconds() - cpu0, cores);
       cv_.notify_all();
       continue;
     }
     if (stop_) break;
-    if (engine_ && Clock::now() >= nextDue_) {
+    if (!engine_) {
+      cv_.wait(lk);
+      continue;
+    }
+    const auto now = Clock::now();
+    const double cpuLeft = cpuDue_ - processCpuSeconds();
+    if (now >= nextDue_ && cpuLeft <= 0) {
       pullFromEngine(lk);
       continue;
     }
-    if (engine_)
-      cv_.wait_until(lk, nextDue_);
-    else
-      cv_.wait(lk);
+    // Until the interval has passed, then in steps of what the CPU still owed takes at full speed.
+    const double step = std::clamp(cpuLeft / std::max(engine_->threadCount(), 1), 0.01, 0.5);
+    cv_.wait_until(lk, std::max(nextDue_, now + std::chrono::duration_cast<Clock::duration>(
+                                                    std::chrono::duration<double>(step))));
   }
   if (failed_) return;
   lk.unlock();
@@ -162,7 +168,7 @@ void TevStreamer::pullFromEngine(std::unique_lock<std::mutex>& lock) {
   busy_ = true;
   lock.unlock();
   const auto began = Clock::now();
-  const double cpu0 = threadCpuSeconds();
+  const double cpu0 = threadCpuSeconds(), processCpu0 = processCpuSeconds();
   engine->takeSnapshot(snapshot_);  // drop an older publication: the update shows a pass still to come
   engine->requestNextPassSnapshot(withError);
   bool fresh = false;
@@ -185,14 +191,16 @@ void TevStreamer::pullFromEngine(std::unique_lock<std::mutex>& lock) {
   }
   busy_ = false;
   const double own = threadCpuSeconds() - cpu0;
-  if (ok) scheduleNext(began, own * (1 + kEngineWorkPerOwn), engine->threadCount());
+  if (ok) scheduleNext(began, processCpu0, own * (1 + kEngineWorkPerOwn), engine->threadCount());
   cv_.notify_all();
 }
 
-void TevStreamer::scheduleNext(Clock::time_point began, double workSeconds, int threads) {
+void TevStreamer::scheduleNext(Clock::time_point began, double beganProcessCpu, double workSeconds,
+                               int threads) {
   const double interval =
       std::max(options_.minIntervalSeconds, workSeconds / (options_.costShare * std::max(threads, 1)));
   nextDue_ = began + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(interval));
+  cpuDue_ = beganProcessCpu + workSeconds / options_.costShare;
 }
 
 // Runs on the sending thread, unlocked. On a failure, ends the stream with its warning.

@@ -29,10 +29,11 @@ struct TevFrame {
 
 struct TevStreamOptions {
   // Pacing: after each update the next is due once the work it cost is costShare of the render
-  // threads' time since it began, and never sooner than minIntervalSeconds. The work: this thread's
-  // CPU time (copying, encoding, sending) and, following an engine, the workers' resolve of the
-  // snapshot (Engine::requestNextPassSnapshot: inside the pass, no worker waits), counted as twice
-  // this thread's (tev_streamer.cpp).
+  // threads' time since it began, and never sooner than minIntervalSeconds. Following an engine, that
+  // time is also counted in process CPU time, so a render that gets less than its cores (a busy
+  // machine) is updated less often. The work: this thread's CPU time (copying, encoding, sending) and,
+  // following an engine, the workers' resolve of the snapshot (Engine::requestNextPassSnapshot: inside
+  // the pass, no worker waits), counted as twice this thread's (tev_streamer.cpp).
   double minIntervalSeconds = 0.25;
   double costShare = 0.01;
   // Following an engine, every errorEvery-th update also carries the standard error (resolving it
@@ -76,8 +77,10 @@ class TevStreamer {
   // errorLayer: the image has the stderr layer (its tiles are sent when standardError is not empty).
   bool transmit(const std::string& name, const Image& mean, const Image& standardError, bool errorLayer);
   void fail(const std::string& why, bool continuing);
-  // Under mutex_: when the next update is due, from when this one began and the work it cost.
-  void scheduleNext(std::chrono::steady_clock::time_point began, double workSeconds, int threads);
+  // Under mutex_: when the next update is due, from when this one began (wall clock and process CPU
+  // time) and the work it cost.
+  void scheduleNext(std::chrono::steady_clock::time_point began, double beganProcessCpu, double workSeconds,
+                    int threads);
 
   DisplayServer server_;
   TevStreamOptions options_;
@@ -92,7 +95,8 @@ class TevStreamer {
   uint64_t submitted_ = 0, completed_ = 0;  // frames given to send() / finish(), and handled
   uint64_t offeredVersion_ = ~0ull;
   std::string offeredName_;
-  std::chrono::steady_clock::time_point nextDue_;
+  std::chrono::steady_clock::time_point nextDue_;  // no update before this
+  double cpuDue_ = 0;  // following an engine, nor before the process has used this much CPU time
   uint64_t updates_ = 0;
 
   // Touched by the sending thread only.
