@@ -3,10 +3,11 @@
 # stand-in tev (tools/tev_sink.py, on 127.0.0.1), N runs each, in one session so both see the same
 # machine. Prints each run's render seconds (the summary line) and process CPU seconds, then the
 # medians and their ratios.
-#   tools/display_server_cost.sh [BINARY] [RUNS]    (defaults: build/penumbra, 5)
+#   tools/display_server_cost.sh [BINARY] [RUNS] [SPP]    (defaults: build/penumbra, 5, 64)
 set -eu
 BIN=${1:-build/penumbra}
 RUNS=${2:-5}
+SPP=${3:-64}
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 SCENE="$ROOT/scenes/hw2/Tests/sphere-area.xml"
 OUT=$(mktemp -d)
@@ -18,7 +19,7 @@ ADDR=$(sed -n 's/^listening on //p' "$OUT/sink.log")
 [ -n "$ADDR" ] || { echo "tev_sink.py did not start" >&2; exit 1; }
 run() {  # $1: label, rest: extra arguments
   label=$1; shift
-  /usr/bin/time -f "%U %S" -o "$OUT/time" "$BIN" render "$SCENE" --spp 64 --threads 2 -o "$OUT/x.pfm" "$@" \
+  /usr/bin/time -f "%U %S" -o "$OUT/time" "$BIN" render "$SCENE" --spp "$SPP" --threads 2 -o "$OUT/x.pfm" "$@" \
     > "$OUT/line" 2> "$OUT/err"
   secs=$(sed -n 's/.* spp, \([0-9.]*\) s,.*/\1/p' "$OUT/line")
   cpu=$(awk '{print $1 + $2}' "$OUT/time")
