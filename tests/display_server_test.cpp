@@ -186,6 +186,15 @@ TEST_F(DisplayServer, MalformedValuesAreArgumentErrorsBeforeRendering) {
     EXPECT_FALSE(std::filesystem::exists(out)) << spec;
     EXPECT_EQ(r.out.find("spp,"), std::string::npos) << spec << ": rendered\n" << r.out;
   }
+  // The same check in converge and view, before they load anything.
+  test::CommandResult c =
+      penumbra("converge /nonexistent.xml --spp 1 --display-server no_such_host -o " + file("c"));
+  EXPECT_EQ(c.exitCode, 2) << c.out;
+  EXPECT_NE(c.out.find("--display-server no_such_host: "), std::string::npos) << c.out;
+  test::CommandResult v =
+      penumbra("view /nonexistent.xml --frames 1 --display-server no_such_host", PENUMBRA_OFFSCREEN_BINARY);
+  EXPECT_EQ(v.exitCode, 2) << v.out;
+  EXPECT_NE(v.out.find("--display-server no_such_host: "), std::string::npos) << v.out;
 }
 
 TEST_F(DisplayServer, ConvergeStreamsEachStrategysFinalImage) {

@@ -33,11 +33,12 @@ void logLine(const std::string& s) {
 }
 
 int runConverge(const ConvergeOptions& o) {
-  std::unique_ptr<net::TevStreamer> tev = openStream(o.display.resolve());  // each strategy's final image
+  std::optional<net::DisplayServer> displayServer = o.display.resolve();
   LoadedScene loaded = o.scene.load();
   if (o.spp == 0 && o.seconds <= 0) throw Error("converge: give --time SECONDS or --spp N");
   std::vector<IntegratorDesc> strategies = parseStrategies(loaded.settings.integrator, o.strategies);
   if (o.seed == kReferenceSeed) throw Error("converge: --seed must differ from the reference's seed");
+  std::unique_ptr<net::TevStreamer> tev = openStream(displayServer);  // each strategy's final image
   ReferenceRequest rq;
   rq.path = o.reference;
   rq.cacheDir = o.cacheDir;

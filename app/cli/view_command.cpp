@@ -83,8 +83,7 @@ int runView(ViewOptions o) {
     if (o.offscreen) execOffscreen(o);
   }
 
-  std::unique_ptr<net::TevStreamer> tev =
-      openStream(o.display.resolve());  // before the scene: bad hosts exit 2
+  std::optional<net::DisplayServer> displayServer = o.display.resolve();  // a bad host exits with 2
   LoadedScene loaded = o.scene.load();  // throws penumbra::Error (exit code 2) on a bad scene
   ui::ViewerOptions vo;
   vo.bench = o.bench;
@@ -100,6 +99,7 @@ int runView(ViewOptions o) {
         vo.windowWidth < 64 || vo.windowHeight < 64)
       throw Error("--window " + o.window + ": expected WIDTHxHEIGHT, e.g. 1280x800");
   }
+  std::unique_ptr<net::TevStreamer> tev = openStream(displayServer);
   if (tev) vo.onSnapshot = [&tev](const ui::ViewerController& c, bool last) { streamToTev(*tev, c, last); };
   return ui::runViewer(std::move(loaded), o.scene.overrides(), vo);
 }
