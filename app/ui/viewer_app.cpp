@@ -454,6 +454,7 @@ void writeScreenshot(platform::Platform& p, const std::string& path) {
 
 int runViewer(LoadedScene scene, ViewerController::Overrides overrides, const ViewerOptions& o) {
   ViewerController controller(std::move(scene), std::move(overrides), o.threads);
+  if (o.onSnapshot) controller.onSnapshotPolled = [&o](const ViewerController& c) { o.onSnapshot(c, false); };
   const CameraDesc& cam = controller.settings().camera;
   platform::WindowOptions wo;
   wo.width = o.windowWidth > 0 ? o.windowWidth : kSidebarWidth + std::clamp(cam.width, 512, 1280);
@@ -496,6 +497,7 @@ int runViewer(LoadedScene scene, ViewerController::Overrides overrides, const Vi
         std::printf("wrote %s (%s, %u spp)\n", o.screenshot.c_str(), p->name(), controller.progress().spp);
       }
     }
+    if (o.onSnapshot) o.onSnapshot(controller, true);
     controller.engine().cancel();
   }
   ImGui::DestroyContext();

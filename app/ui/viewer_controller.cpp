@@ -177,6 +177,7 @@ bool ViewerController::pollSnapshot(bool wantStandardError, bool requestNext) {
     changed = true;
     ++compareSnapshotSerial_;
   }
+  if (onSnapshotPolled) onSnapshotPolled(*this);
   return changed;
 }
 

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <string>
 #include <utility>
@@ -65,6 +66,8 @@ class ViewerController {
   // published pass, or at once while the accumulation is paused or finished.
   void setProbePixel(int x, int y);
   const FilmSnapshot& snapshot() const { return snapshot_; }
+  // Called at the end of every pollSnapshot (e.g. to stream the image to tev: app/cli/view_command.cpp).
+  std::function<void(const ViewerController&)> onSnapshotPolled;
   // Restart counter value the current snapshot belongs to.
   uint64_t snapshotRestart() const { return snapshotRestart_; }
   // Count of changes of snapshot() / compareSnapshot() (each side is tone mapped only when it changed).

@@ -68,6 +68,14 @@ class Engine {
   // boundary without stopping the other workers; otherwise the last worker resolves the whole film at
   // the boundary. Interactive starts (RenderLimits::preview) resolve their first pass this way too.
   void requestSnapshot(bool withStandardError = false) { publisher_.request(withStandardError); }
+  // For a reader that wants a snapshot now and then without holding up the workers (streaming to an
+  // external viewer): the pass after the running one is resolved row by row as it renders and
+  // published at its end (with its standard error if asked), and no later pass is. Unlike
+  // requestSnapshot, no worker waits at a boundary for a serial resolve; the price is up to two
+  // passes of latency.
+  void requestNextPassSnapshot(bool withStandardError = false) {
+    publisher_.requestNextPass(withStandardError);
+  }
   // The pixel whose statistics each published snapshot carries (FilmSnapshot::probe); x < 0: none.
   void setProbePixel(int x, int y) { publisher_.setProbePixel(x, y); }
   // That pixel's statistics now, if the film is at rest (paused at a pass boundary, or finished and

@@ -224,6 +224,37 @@ TEST(Engine, SnapshotsArePublishedOnRequest) {
   EXPECT_EQ(snap.standardError.width, 48);
 }
 
+// A one-off request of the next pass is published once, with its standard error, at the end of the
+// pass after the running one (not at the next boundary, and no later pass with it), and equals the film.
+TEST(Engine, NextPassSnapshotIsPublishedOnceAfterThatPass) {
+  auto job = smallJob();
+  Engine engine;
+  engine.start(job, RenderLimits{100000, 0.0}, 2);
+  FilmSnapshot::Probe probe;
+  auto resting = [&] { return engine.probeAtRest(0, 0, probe); };  // a worker waits at a boundary
+  engine.setPaused(true);
+  ASSERT_TRUE(eventually(resting));
+  FilmSnapshot before;
+  engine.takeSnapshot(before);
+  const uint32_t spp = engine.progress().spp;
+  engine.requestNextPassSnapshot(true);  // during the pass after this boundary
+  engine.setPaused(false);
+  ASSERT_TRUE(eventually([&] { return engine.progress().spp >= spp + 6; }));
+  engine.setPaused(true);
+  ASSERT_TRUE(eventually(resting));
+  FilmSnapshot got;
+  ASSERT_TRUE(engine.takeSnapshot(got));
+  engine.cancel();
+  EXPECT_EQ(got.version, before.version + 1) << "not published exactly once";
+  EXPECT_EQ(got.spp, spp + 2);
+  ASSERT_EQ(got.standardError.width, 48);
+  Engine reference;
+  reference.start(job, RenderLimits{got.spp, 0.0}, 1);
+  reference.wait();
+  EXPECT_EQ(got.mean.rgb, reference.film().mean(got.spp).rgb);
+  EXPECT_EQ(got.standardError.rgb, reference.film().standardError(got.spp).rgb);
+}
+
 TEST(Engine, TimeLimitStopsTheRender) {
   auto job = smallJob();
   Engine engine;

@@ -53,7 +53,14 @@ bool SnapshotPublisher::take(FilmSnapshot& out) {
   return true;
 }
 
+void SnapshotPublisher::requestNextPass(bool withStandardError) {
+  if (withStandardError) nextPassWantsError_ = true;
+  nextPassRequested_ = true;
+}
+
 void SnapshotPublisher::restart() {
+  nextPassRequested_ = false;
+  nextPassWantsError_ = false;
   std::lock_guard lk(mutex_);
   snapshot_.spp = 0;
   snapshot_.seconds = 0;
@@ -81,10 +88,14 @@ bool SnapshotPublisher::atPassBoundary(const Film& film, uint32_t spp, bool last
   // Resolve the next pass row by row while requests keep coming (one since either of the last two
   // boundaries): a viewer asks again right after it fetched a snapshot, i.e. early in the next pass.
   const uint64_t r = requests_, e = errorRequests_;
-  const bool mean = !last && (r != requestsSeen_[0] || requestsSeen_[0] != requestsSeen_[1]);
-  const bool error = e != errorRequestsSeen_[0] || errorRequestsSeen_[0] != errorRequestsSeen_[1];
+  bool mean = !last && (r != requestsSeen_[0] || requestsSeen_[0] != requestsSeen_[1]);
+  bool error = e != errorRequestsSeen_[0] || errorRequestsSeen_[0] != errorRequestsSeen_[1];
   requestsSeen_[1] = requestsSeen_[0], requestsSeen_[0] = r;
   errorRequestsSeen_[1] = errorRequestsSeen_[0], errorRequestsSeen_[0] = e;
+  if (!last && nextPassRequested_.exchange(false)) {
+    mean = true;
+    error = nextPassWantsError_.exchange(false) || error;
+  }
   prepareResolve(mean, error, film);
   return published;
 }

@@ -43,6 +43,9 @@ class SnapshotPublisher {
 
   // Any thread.
   void request(bool withStandardError);
+  // The pass after the running one is resolved row by row and published at its end; no later pass is
+  // (a reader that wants a snapshot now and then without holding up the workers).
+  void requestNextPass(bool withStandardError);
   void setProbePixel(int x, int y);
   bool latest(FilmSnapshot& out) const;
   bool take(FilmSnapshot& out);
@@ -76,6 +79,8 @@ class SnapshotPublisher {
   std::atomic<uint64_t> probePixel_{~0ull};  // (x << 32) | y, ~0: none
   std::atomic<bool> requested_{false};
   std::atomic<bool> wantsError_{false};
+  std::atomic<bool> nextPassRequested_{false};
+  std::atomic<bool> nextPassWantsError_{false};
   std::atomic<uint64_t> requests_{0}, errorRequests_{0};
   uint64_t requestsSeen_[2] = {0, 0}, errorRequestsSeen_[2] = {0, 0};  // at the last two boundaries
   bool resolveMean_ = false, resolveError_ = false;  // the current pass resolves its rows into:
