@@ -28,6 +28,7 @@
 #include <variant>
 #include <vector>
 
+#include "app/net/tev_client.h"
 #include "app/net/tev_protocol.h"
 
 namespace penumbra::test {
@@ -260,5 +261,23 @@ class FakeTev {
   std::vector<std::string> problems_;
   int packets_ = 0, accepted_ = 0, ended_ = 0;
 };
+
+// The display server at 127.0.0.1:port.
+inline net::DisplayServer serverAt(int port) {
+  return net::resolveDisplayServer("127.0.0.1:" + std::to_string(port));
+}
+
+// A bound port nobody listens on (connections to it are refused while `fd` stays open).
+inline int unusedPort(int& fd) {
+  fd = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  socklen_t len = sizeof a;
+  if (::bind(fd, reinterpret_cast<sockaddr*>(&a), sizeof a) != 0 ||
+      ::getsockname(fd, reinterpret_cast<sockaddr*>(&a), &len) != 0)
+    return -1;
+  return ntohs(a.sin_port);
+}
 
 }  // namespace penumbra::test

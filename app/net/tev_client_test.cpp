@@ -19,6 +19,8 @@ namespace penumbra::net {
 namespace {
 
 using test::FakeTev;
+using test::serverAt;
+using test::unusedPort;
 
 TEST(DisplayServerSpec, HostAloneTakesTevsPort) {
   DisplayServer s = resolveDisplayServer("127.0.0.1");
@@ -52,23 +54,6 @@ TEST(DisplayServerSpec, MalformedValuesNameWhatWasExpected) {
           << e.what();
     }
   }
-}
-
-DisplayServer serverAt(int port) {
-  return resolveDisplayServer("127.0.0.1:" + std::to_string(port));
-}
-
-// A bound port nobody listens on (connections to it are refused while `fd` stays open).
-int unusedPort(int& fd) {
-  fd = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
-  sockaddr_in a{};
-  a.sin_family = AF_INET;
-  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  socklen_t len = sizeof a;
-  if (::bind(fd, reinterpret_cast<sockaddr*>(&a), sizeof a) != 0 ||
-      ::getsockname(fd, reinterpret_cast<sockaddr*>(&a), &len) != 0)
-    return -1;
-  return ntohs(a.sin_port);
 }
 
 TEST(TevConnection, WritesAndEndsAStreamThePeerReadToTheEnd) {

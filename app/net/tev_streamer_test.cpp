@@ -15,23 +15,8 @@ namespace penumbra::net {
 namespace {
 
 using test::FakeTev;
-
-DisplayServer serverAt(int port) {
-  return resolveDisplayServer("127.0.0.1:" + std::to_string(port));
-}
-
-// A bound port nobody listens on (connections to it are refused while `fd` stays open).
-int unusedPort(int& fd) {
-  fd = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
-  sockaddr_in a{};
-  a.sin_family = AF_INET;
-  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  socklen_t len = sizeof a;
-  if (::bind(fd, reinterpret_cast<sockaddr*>(&a), sizeof a) != 0 ||
-      ::getsockname(fd, reinterpret_cast<sockaddr*>(&a), &len) != 0)
-    return -1;
-  return ntohs(a.sin_port);
-}
+using test::serverAt;
+using test::unusedPort;
 
 // The streamer's own paths, in process: frames sent with send() arrive whole; a refused connection is
 // one warning and send() returns at once afterwards.
