@@ -53,41 +53,79 @@ FloatArray points(const py::handle& input, const char* argument, py::ssize_t min
   return a;
 }
 
-py::array_t<float> warpArray(const std::string& name, const py::handle& u, std::optional<double> param) {
+// The output array: a new one, or `out` (NumPy's convention: a float32 C-contiguous array of the
+// result's shape, reused so that repeated calls do not fault in fresh pages every time).
+py::array_t<float> outputArray(const py::object& out, std::vector<py::ssize_t> shape) {
+  if (out.is_none()) return py::array_t<float>(shape);
+  auto a = py::array_t<float, py::array::c_style>::ensure(out);
+  if (!a || !py::isinstance<py::array_t<float>>(out) || !a.writeable() ||
+      !(py::cast<py::array>(out).flags() & py::array::c_style))
+    throw py::type_error("out: expected a writeable C-contiguous float32 array");
+  bool same = a.ndim() == py::ssize_t(shape.size());
+  for (size_t i = 0; same && i < shape.size(); ++i) same = a.shape(i) == shape[i];
+  if (!same) throw py::value_error("out: expected the result's shape");
+  return py::reinterpret_borrow<py::array_t<float>>(out);
+}
+
+// One loop per warp, its function called directly (the type is resolved once, not per point).
+template <typename F>
+void warpLoop(F f, const float* src, float* dst, py::ssize_t n, py::ssize_t dims) {
+  for (py::ssize_t i = 0; i < n; ++i) {
+    Vec3 v = f(Vec2(src[2 * i], src[2 * i + 1]));
+    dst[dims * i] = v.x;
+    dst[dims * i + 1] = v.y;
+    if (dims == 3) dst[dims * i + 2] = v.z;
+  }
+}
+
+void warpAll(WarpChoice w, const float* src, float* dst, py::ssize_t n) {
+  const float p = w.param;
+  auto flat = [](Vec2 (*f)(Vec2)) { return [f](Vec2 u) { return Vec3(f(u), 0.f); }; };
+  switch (w.type) {
+    case WarpType::UniformSquare:
+      return warpLoop(flat(&Warp::squareToUniformSquare), src, dst, n, 2);
+    case WarpType::Tent:
+      return warpLoop(flat(&Warp::squareToTent), src, dst, n, 2);
+    case WarpType::UniformDisk:
+      return warpLoop(flat(&Warp::squareToUniformDisk), src, dst, n, 2);
+    case WarpType::ConcentricDisk:
+      return warpLoop(flat(&Warp::squareToConcentricDisk), src, dst, n, 2);
+    case WarpType::UniformSphere:
+      return warpLoop(&Warp::squareToUniformSphere, src, dst, n, 3);
+    case WarpType::UniformHemisphere:
+      return warpLoop(&Warp::squareToUniformHemisphere, src, dst, n, 3);
+    case WarpType::CosineHemisphere:
+      return warpLoop(&Warp::squareToCosineHemisphere, src, dst, n, 3);
+    case WarpType::UniformCone:
+      return warpLoop([p](Vec2 u) { return Warp::squareToUniformCone(u, p); }, src, dst, n, 3);
+    case WarpType::Beckmann:
+      return warpLoop([p](Vec2 u) { return Warp::squareToBeckmann(u, p); }, src, dst, n, 3);
+  }
+}
+
+py::array_t<float> warpArray(const std::string& name, const py::handle& u, std::optional<double> param,
+                             const py::object& out) {
   WarpChoice w = choose(name, param);
   FloatArray in = points(u, "u", 2, 2);
   const py::ssize_t n = in.shape(0);
-  const py::ssize_t dims = warpIsSpherical(w.type) ? 3 : 2;
-  py::array_t<float> out({n, dims});
+  py::array_t<float> result = outputArray(out, {n, warpIsSpherical(w.type) ? 3 : 2});
   const float* src = in.data();
-  float* dst = out.mutable_data();
+  float* dst = result.mutable_data();
   {
     py::gil_scoped_release release;
-    if (dims == 3) {
-      for (py::ssize_t i = 0; i < n; ++i) {
-        Vec3 v = Warp::warp(w.type, Vec2(src[2 * i], src[2 * i + 1]), w.param);
-        dst[3 * i] = v.x;
-        dst[3 * i + 1] = v.y;
-        dst[3 * i + 2] = v.z;
-      }
-    } else {
-      for (py::ssize_t i = 0; i < n; ++i) {
-        Vec3 v = Warp::warp(w.type, Vec2(src[2 * i], src[2 * i + 1]), w.param);
-        dst[2 * i] = v.x;
-        dst[2 * i + 1] = v.y;
-      }
-    }
+    warpAll(w, src, dst, n);
   }
-  return out;
+  return result;
 }
 
-py::array_t<float> pdfArray(const std::string& name, const py::handle& v, std::optional<double> param) {
+py::array_t<float> pdfArray(const std::string& name, const py::handle& v, std::optional<double> param,
+                            const py::object& out) {
   WarpChoice w = choose(name, param);
   FloatArray in = points(v, "v", 2, 3);
   const py::ssize_t n = in.shape(0), cols = in.shape(1);
-  py::array_t<float> out{n};
+  py::array_t<float> result = outputArray(out, {n});
   const float* src = in.data();
-  float* dst = out.mutable_data();
+  float* dst = result.mutable_data();
   {
     py::gil_scoped_release release;
     for (py::ssize_t i = 0; i < n; ++i) {
@@ -95,7 +133,7 @@ py::array_t<float> pdfArray(const std::string& name, const py::handle& v, std::o
       dst[i] = Warp::pdf(w.type, Vec3(p[0], p[1], cols == 3 ? p[2] : 0.f), w.param);
     }
   }
-  return out;
+  return result;
 }
 
 struct Chi2Report {
@@ -198,12 +236,15 @@ void bindWarp(py::module_& m) {
         "n uniform points in [0, 1)^2, float32 (n, 2): the PCG32 stream `penumbra warp --dump N --seed "
         "SEED` and chi2_test() draw, so warp(name, random_points(n, seed)) equals the CLI's dump.");
   m.def("warp", &warpArray, py::arg("name"), py::arg("u"), py::arg("param") = py::none(),
+        py::arg("out") = py::none(),
         "Warp uniform points u, an (N, 2) array in [0, 1)^2, with warp `name` (see warp_names()). "
         "Returns float32 (N, 2) for planar warps, (N, 3) for warps onto the sphere. param: "
-        "uniform-cone cos(theta_max) in [-1, 1) (default 0.5), beckmann alpha > 0 (default 0.2).");
+        "uniform-cone cos(theta_max) in [-1, 1) (default 0.5), beckmann alpha > 0 (default 0.2). out: "
+        "a float32 array of the result's shape to write into (and return), as NumPy's out=.");
   m.def("pdf", &pdfArray, py::arg("name"), py::arg("v"), py::arg("param") = py::none(),
+        py::arg("out") = py::none(),
         "The density of warp `name` at points v, (N, 2) or (N, 3) (z = 0 for planar warps): per unit "
-        "area on the plane, per steradian on the sphere. Returns float32 (N,).");
+        "area on the plane, per steradian on the sphere. Returns float32 (N,). out: as for warp().");
 
   py::class_<Chi2Report>(m, "Chi2Result", "The outcome of chi2_test(), as `penumbra warp` prints it.")
       .def_readonly("warp", &Chi2Report::warp)

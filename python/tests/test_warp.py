@@ -102,3 +102,17 @@ def test_sample_points():
         penumbra.sample_points("nope", 4)
     with pytest.raises(ValueError, match="dims"):
         penumbra.sample_points("independent", 4, dims=(1, 2))
+
+
+def test_out_arrays_are_filled_and_checked():
+    u = penumbra.random_points(100, seed=4)
+    out = np.empty((100, 3), np.float32)
+    assert penumbra.warp("uniform-sphere", u, out=out) is out
+    assert np.array_equal(out, penumbra.warp("uniform-sphere", u))
+    pdf_out = np.empty(100, np.float32)
+    assert penumbra.pdf("uniform-sphere", out, out=pdf_out) is pdf_out
+    assert np.allclose(pdf_out, 1 / (4 * np.pi))
+    with pytest.raises(ValueError, match="out"):
+        penumbra.warp("uniform-sphere", u, out=np.empty((100, 2), np.float32))
+    with pytest.raises(TypeError, match="out"):
+        penumbra.warp("uniform-sphere", u, out=np.empty((100, 3), np.float64))
