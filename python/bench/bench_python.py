@@ -13,6 +13,7 @@
 """
 import argparse
 import json
+import resource
 import pathlib
 import re
 import statistics
@@ -29,22 +30,30 @@ WARPS = {"cosine-hemisphere": ("cosine_hemisphere", None), "uniform-disk": ("uni
 
 
 def bench_render(runs, build):
-    cli_engine, cli_wall, py_engine, py_wall = [], [], [], []
+    cli_engine, cli_wall, py_engine, py_wall, cli_cpu, py_cpu = [], [], [], [], [], []
     with tempfile.TemporaryDirectory() as tmp:
         for _ in range(runs):
+            c = resource.getrusage(resource.RUSAGE_CHILDREN)
             t = time.perf_counter()
             out = subprocess.run([str(build / "penumbra"), "render", str(SCENE), "--spp", "16", "-o",
                                   f"{tmp}/cli.exr"], capture_output=True, text=True, check=True).stdout
             cli_wall.append(time.perf_counter() - t)
+            c2 = resource.getrusage(resource.RUSAGE_CHILDREN)
+            cli_cpu.append(c2.ru_utime + c2.ru_stime - c.ru_utime - c.ru_stime)
             cli_engine.append(float(re.search(r"spp, ([0-9.]+) s", out).group(1)))
+            c = time.process_time()
             t = time.perf_counter()
             r = penumbra.load_scene(str(SCENE)).render(spp=16)
             r.save(f"{tmp}/py.exr")
             py_wall.append(time.perf_counter() - t)
+            py_cpu.append(time.process_time() - c)
             py_engine.append(r.seconds)
-    for name, c, p in (("engine seconds", cli_engine, py_engine), ("whole job wall", cli_wall, py_wall)):
+    for name, c, p in (("engine seconds", cli_engine, py_engine), ("whole job wall", cli_wall, py_wall),
+                       ("whole job CPU", cli_cpu, py_cpu)):
         mc, mp = statistics.median(c), statistics.median(p)
-        print(f"render 16 spp, {name:15s}: CLI {mc:.3f} s  Python {mp:.3f} s  Python/CLI {mp / mc:.3f}"
+        pairs = statistics.median(b / a for a, b in zip(c, p))
+        print(f"render 16 spp, {name:15s}: CLI {mc:.3f} s  Python {mp:.3f} s  Python/CLI {mp / mc:.3f} "
+              f"(median of pairs {pairs:.3f})"
               f"   (CLI {' '.join(f'{x:.3f}' for x in c)}; Python {' '.join(f'{x:.3f}' for x in p)})")
 
 
