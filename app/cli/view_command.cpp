@@ -5,11 +5,7 @@
 // wrong library). `penumbra view --offscreen`, and `penumbra view` on a machine without a display,
 // re-execute the sibling penumbra-offscreen with the same options, so users see one command.
 // This file is compiled into each executable (not into penumbra_cli, which the tests link without GL).
-#include <unistd.h>
-#include <cerrno>
 #include <cstdio>
-#include <cstring>
-#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -39,8 +35,8 @@ struct ViewOptions {
 
 constexpr const char* kFallbackScreenshot = "penumbra-view.png";
 
-// Re-runs this command in penumbra-offscreen; returns only on failure.
-[[noreturn]] void execOffscreen(const ViewOptions& o) {
+// This command's arguments for penumbra-offscreen.
+std::vector<std::string> offscreenArgs(const ViewOptions& o) {
   std::vector<std::string> args = {"view"};
   if (!o.scene.scenePath.empty()) args.push_back(o.scene.scenePath);
   for (const std::string& s : o.scene.sets) args.insert(args.end(), {"--set", s});
@@ -54,20 +50,14 @@ constexpr const char* kFallbackScreenshot = "penumbra-view.png";
   if (o.threads > 0) args.insert(args.end(), {"--threads", std::to_string(o.threads)});
   if (!o.window.empty()) args.insert(args.end(), {"--window", o.window});
   if (!o.compare.empty()) args.insert(args.end(), {"--compare", o.compare});
-  platform::execOffscreen(args);
+  return args;
 }
 
 int runView(ViewOptions o) {
   const bool offscreenBuild = platform::isOffscreenBuild();
-  if (!offscreenBuild) {
-    std::string why;
-    if (!o.offscreen && !platform::displayAvailable(why)) {
-      std::fprintf(stderr, "penumbra view: %s; rendering offscreen instead (OSMesa) and writing %s\n",
-                   why.c_str(), o.screenshot.empty() ? kFallbackScreenshot : o.screenshot.c_str());
-      o.offscreen = true;
-    }
-    if (o.offscreen) execOffscreen(o);
-  }
+  platform::runOffscreenUnlessWindowed("penumbra view", o.offscreen,
+                                       o.screenshot.empty() ? kFallbackScreenshot : o.screenshot,
+                                       [&] { return offscreenArgs(o); });
 
   LoadedScene loaded = o.scene.load();  // throws penumbra::Error (exit code 2) on a bad scene
   ui::ViewerOptions vo;

@@ -1,6 +1,6 @@
 // The interactive viewer: a Platform (GLFW window or OSMesa buffer), the ViewerController (engine,
 // scene, live settings), the GL image display and the ImGui panels, and the frame loop that ties
-// them together. Also the offscreen screenshot mode and the --bench measurements.
+// them together. Also the offscreen screenshot mode; --bench runs app/ui/viewer_bench.h on it.
 #pragma once
 
 #include <string>

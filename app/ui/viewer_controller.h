@@ -51,7 +51,6 @@ class ViewerController {
 
   // ---- rendering -------------------------------------------------------------------------------
   void start();  // (re)starts accumulation with the live settings and limits
-  void restart() { start(); }
   void setPaused(bool paused);
   bool paused() const { return engine_.paused(); }
   RenderProgress progress() const { return engine_.progress(); }
@@ -102,7 +101,6 @@ class ViewerController {
   void setSettings(const RenderSettings& s);
   const RenderLimits& limits() const { return limits_; }
   void setLimits(const RenderLimits& l);
-  bool useTimeBudget() const { return useTimeBudget_; }
 
   // ---- camera ----------------------------------------------------------------------------------
   void orbit(float dxPixels, float dyPixels);
