@@ -1,4 +1,5 @@
 #include "app/ui/warp_inspector.h"
+#include "app/ui/panel_text.h"
 
 #include <algorithm>
 #include <chrono>
@@ -285,15 +286,15 @@ void WarpInspector::drawControls() {
     ImGui::SetTooltip(
         "Judge the samples by a wrong density (e.g. the uniform one of the same domain)\nto see a "
         "rejection.");
-  ImGui::TextDisabled("judged by %s", judgeDescription(s).c_str());
+  hintText("judged by %s", judgeDescription(s).c_str());
   if (ImGui::Button("Reset view")) resetView();
   ImGui::SameLine();
-  ImGui::TextDisabled("drag: rotate, wheel: zoom");
+  hintText("drag: rotate, wheel: zoom");
 
   ImGui::Separator();
   ImGui::TextUnformatted("Chi-square test");
   if (!shownVerdict_) {
-    ImGui::TextDisabled("computing...");
+    hintText("computing...");
     return;
   }
   const WarpVerdict& v = *shownVerdict_;
@@ -318,7 +319,7 @@ void WarpInspector::drawControls() {
   if (!upToDate())
     ImGui::TextColored(ImVec4(1.f, 0.8f, 0.3f, 1.f), "computing...");
   else
-    ImGui::TextDisabled("%d points + quadrature: %.0f ms", 1 << v.settings.log2Points, v.seconds * 1e3);
+    hintText("%d points + quadrature: %.0f ms", 1 << v.settings.log2Points, v.seconds * 1e3);
 }
 
 void WarpInspector::drawView(float width, float height) {
