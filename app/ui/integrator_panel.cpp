@@ -51,6 +51,12 @@ void drawIntegratorPanel(ViewerController& c, PanelState&) {
   // Compare mode: a second strategy right of a draggable divider, equal shares of time.
   ImGui::Separator();
   ImGui::TextUnformatted("Compare");
+  if (c.compareChoices().empty()) {  // e.g. simple, normals: nothing to compare with
+    hintText("%s has no sampling strategies to compare", strategyLabel(c.settings().integrator).c_str());
+    if (c.compareEnabled()) c.setCompare(false);
+    ImGui::TextUnformatted("");  // the rows the checkbox and combo take otherwise
+    return;
+  }
   bool on = c.compareEnabled();
   if (ImGui::Checkbox("split view", &on)) c.setCompare(on);
   IntegratorDesc r = c.compareIntegrator();
@@ -68,9 +74,7 @@ void drawIntegratorPanel(ViewerController& c, PanelState&) {
   if (c.compareEnabled()) {
     float pct = c.display.compareDivider * 100.f;
     if (ImGui::SliderFloat("divider", &pct, 0.f, 100.f, "%.0f %%")) c.display.compareDivider = pct / 100.f;
-    ImGui::PushTextWrapPos(0.f);
     hintText("%d thread(s) per side, equal time; drag the line in the image", c.engineThreads());
-    ImGui::PopTextWrapPos();
   }
 }
 
