@@ -5,6 +5,7 @@
 // wrong library). `penumbra view --offscreen`, and `penumbra view` on a machine without a display,
 // re-execute the sibling penumbra-offscreen with the same options, so users see one command.
 // This file is compiled into each executable (not into penumbra_cli, which the tests link without GL).
+#include <chrono>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -74,7 +75,10 @@ int runView(ViewOptions o) {
                                        [&] { return offscreenArgs(o); });
 
   std::optional<net::DisplayServer> displayServer = o.display.resolve();  // a bad host exits with 2
+  const auto loadStart = std::chrono::steady_clock::now();
   LoadedScene loaded = o.scene.load();  // throws penumbra::Error (exit code 2) on a bad scene
+  const double loadSeconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - loadStart).count();
   ui::ViewerOptions vo;
   vo.bench = o.bench;
   vo.threads = o.threads;
@@ -91,6 +95,7 @@ int runView(ViewOptions o) {
   }
   std::unique_ptr<net::TevStreamer> tev = openStream(displayServer);
   if (tev) vo.onSnapshot = [&tev](const ui::ViewerController& c, bool last) { streamToTev(*tev, c, last); };
+  vo.loadSeconds = loadSeconds;
   return ui::runViewer(std::move(loaded), o.scene.overrides(), vo);
 }
 

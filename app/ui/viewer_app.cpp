@@ -488,6 +488,7 @@ void writeScreenshot(platform::Platform& p, const std::string& path) {
 
 int runViewer(LoadedScene scene, ViewerController::Overrides overrides, const ViewerOptions& o) {
   ViewerController controller(std::move(scene), std::move(overrides), o.threads);
+  if (o.loadSeconds > 0) controller.noteLoadSeconds(o.loadSeconds);
   if (o.onSnapshot) controller.onSnapshotPolled = [&o](const ViewerController& c) { o.onSnapshot(c, false); };
   const CameraDesc& cam = controller.settings().camera;
   platform::WindowOptions wo;

@@ -11,6 +11,7 @@
 namespace penumbra::ui {
 
 struct ViewerOptions {
+  double loadSeconds = 0;  // how long loading the scene took (shown in the Scene panel)
   int frames = 0;          // stop after this many frames (0: until the window closes)
   std::string screenshot;  // write the final frame (UI included) here as PNG
   bool bench = false;

@@ -397,12 +397,16 @@ void ViewerController::rememberRecent(const std::string& path) {
 
 void ViewerController::adoptLoaded(LoadedScene loaded, const std::string& path, double seconds) {
   adoptScene(std::move(loaded));
-  loadSeconds_ = seconds;
   rememberRecent(path);
+  noteLoadSeconds(seconds);
+  start();
+}
+
+void ViewerController::noteLoadSeconds(double seconds) {
+  loadSeconds_ = seconds;
   char buf[96];
   std::snprintf(buf, sizeof buf, "loaded in %.2f s (parse, meshes, BVH build)", seconds);
   sceneStatus_ = buf;
-  start();
 }
 
 static double secondsSince(std::chrono::steady_clock::time_point t0) {

@@ -154,6 +154,8 @@ class ViewerController {
   bool finishLoading();
   // Wall time of the current scene's load: parsing, meshes and the BVH build.
   double loadSeconds() const { return loadSeconds_; }
+  // For a scene loaded before the controller existed (the command line's): shown as for openScene.
+  void noteLoadSeconds(double seconds);
   // Reloads the same file, keeping the live settings the user changed (camera, integrator, sampler,
   // limits) unless the file changed the same setting; sceneStatus() says what was kept.
   bool reloadScene();
