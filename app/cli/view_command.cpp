@@ -30,6 +30,7 @@ struct ViewOptions {
   bool bench = false;
   bool noWait = false;
   bool printLayout = false;
+  bool openWarpInspector = false;
   int threads = 0;
   std::string compare;
   std::string window;  // WxH
@@ -61,6 +62,7 @@ std::vector<std::string> offscreenArgs(const ViewOptions& o) {
   if (o.bench) args.push_back("--bench");
   if (o.noWait) args.push_back("--no-wait");
   if (o.printLayout) args.push_back("--print-layout");
+  if (o.openWarpInspector) args.push_back("--open-warp-inspector");
   if (o.threads > 0) args.insert(args.end(), {"--threads", std::to_string(o.threads)});
   if (!o.window.empty()) args.insert(args.end(), {"--window", o.window});
   if (!o.compare.empty()) args.insert(args.end(), {"--compare", o.compare});
@@ -83,6 +85,7 @@ int runView(ViewOptions o) {
   vo.bench = o.bench;
   vo.threads = o.threads;
   vo.printLayout = o.printLayout;
+  vo.openWarpInspector = o.openWarpInspector;
   vo.compare = o.compare;
   vo.screenshot = o.screenshot;
   if (offscreenBuild && vo.screenshot.empty() && !o.bench) vo.screenshot = kFallbackScreenshot;
@@ -123,6 +126,9 @@ void addViewCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("--window", opts->window, "Window / offscreen buffer size, e.g. 1280x800");
   opts->display.addTo(*cmd);
   cmd->add_flag("--print-layout", opts->printLayout, "Print where the image is drawn (for tests)")->group("");
+  cmd->add_flag("--open-warp-inspector", opts->openWarpInspector,
+                "Start with the warp inspector open (screenshots)")
+      ->group("");
   cmd->callback([opts, &exitCode] { exitCode = runView(*opts); });
 }
 

@@ -239,6 +239,7 @@ class ViewerApp : public BenchViewer {
   }
 
   const ImageLayout& layout() const { return layout_; }
+  void openWarpInspector() { showWarpInspector_ = true; }
   const ImageDisplay& display() const { return display_; }
 
   // BenchViewer.
@@ -505,6 +506,7 @@ int runViewer(LoadedScene scene, ViewerController::Overrides overrides, const Vi
   {
     std::unique_ptr<platform::Platform> p = platform::createPlatform(wo);
     ViewerApp app(*p, controller);
+    if (o.openWarpInspector) app.openWarpInspector();
     if (!o.compare.empty()) {
       controller.setCompareIntegrator(controller.parseCompareStrategy(o.compare));
       controller.setCompare(true);  // starts both sides

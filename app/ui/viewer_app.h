@@ -18,8 +18,9 @@ struct ViewerOptions {
   bool waitForTarget = false;  // before the screenshot, wait until the accumulation reaches its limit
   int windowWidth = 0, windowHeight = 0;  // 0: fit the image beside the panels
   int threads = 0;
-  std::string compare;       // non-empty: start in compare mode with this strategy on the right
-  bool printLayout = false;  // print "image-rect X Y W H ZOOM" (tests)
+  std::string compare;             // non-empty: start in compare mode with this strategy on the right
+  bool openWarpInspector = false;  // start with the warp inspector window open (screenshots)
+  bool printLayout = false;        // print "image-rect X Y W H ZOOM" (tests)
   // After every snapshot poll (last = false) and once when the viewer closes (last = true).
   std::function<void(const ViewerController&, bool last)> onSnapshot;
 };
