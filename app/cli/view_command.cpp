@@ -5,6 +5,7 @@
 // wrong library). `penumbra view --offscreen`, and `penumbra view` on a machine without a display,
 // re-execute the sibling penumbra-offscreen with the same options, so users see one command.
 // This file is compiled into each executable (not into penumbra_cli, which the tests link without GL).
+#include <chrono>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -29,6 +30,7 @@ struct ViewOptions {
   bool bench = false;
   bool noWait = false;
   bool printLayout = false;
+  bool openWarpInspector = false;
   int threads = 0;
   std::string compare;
   std::string window;  // WxH
@@ -60,6 +62,7 @@ std::vector<std::string> offscreenArgs(const ViewOptions& o) {
   if (o.bench) args.push_back("--bench");
   if (o.noWait) args.push_back("--no-wait");
   if (o.printLayout) args.push_back("--print-layout");
+  if (o.openWarpInspector) args.push_back("--open-warp-inspector");
   if (o.threads > 0) args.insert(args.end(), {"--threads", std::to_string(o.threads)});
   if (!o.window.empty()) args.insert(args.end(), {"--window", o.window});
   if (!o.compare.empty()) args.insert(args.end(), {"--compare", o.compare});
@@ -74,11 +77,15 @@ int runView(ViewOptions o) {
                                        [&] { return offscreenArgs(o); });
 
   std::optional<net::DisplayServer> displayServer = o.display.resolve();  // a bad host exits with 2
+  const auto loadStart = std::chrono::steady_clock::now();
   LoadedScene loaded = o.scene.load();  // throws penumbra::Error (exit code 2) on a bad scene
+  const double loadSeconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - loadStart).count();
   ui::ViewerOptions vo;
   vo.bench = o.bench;
   vo.threads = o.threads;
   vo.printLayout = o.printLayout;
+  vo.openWarpInspector = o.openWarpInspector;
   vo.compare = o.compare;
   vo.screenshot = o.screenshot;
   if (offscreenBuild && vo.screenshot.empty() && !o.bench) vo.screenshot = kFallbackScreenshot;
@@ -91,6 +98,7 @@ int runView(ViewOptions o) {
   }
   std::unique_ptr<net::TevStreamer> tev = openStream(displayServer);
   if (tev) vo.onSnapshot = [&tev](const ui::ViewerController& c, bool last) { streamToTev(*tev, c, last); };
+  vo.loadSeconds = loadSeconds;
   return ui::runViewer(std::move(loaded), o.scene.overrides(), vo);
 }
 
@@ -118,6 +126,9 @@ void addViewCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("--window", opts->window, "Window / offscreen buffer size, e.g. 1280x800");
   opts->display.addTo(*cmd);
   cmd->add_flag("--print-layout", opts->printLayout, "Print where the image is drawn (for tests)")->group("");
+  cmd->add_flag("--open-warp-inspector", opts->openWarpInspector,
+                "Start with the warp inspector open (screenshots)")
+      ->group("");
   cmd->callback([opts, &exitCode] { exitCode = runView(*opts); });
 }
 

@@ -76,6 +76,7 @@ class GlfwWindow final : public Platform {
     else
       glfwPollEvents();
   }
+  void setTitle(const std::string& title) override { glfwSetWindowTitle(window_, title.c_str()); }
   void wake() override { glfwPostEmptyEvent(); }
   std::uint64_t eventCount() const override { return events_; }
   bool shouldClose() const override { return glfwWindowShouldClose(window_); }

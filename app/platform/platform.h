@@ -40,6 +40,8 @@ class Platform {
   virtual void endFrame() = 0;
   // The last drawn frame as RGB8, top row first.
   virtual std::vector<std::uint8_t> readPixels(int& width, int& height) = 0;
+  // The window's title (no-op offscreen).
+  virtual void setTitle(const std::string&) {}
   // Files dropped onto the window (GLFW only).
   std::function<void(const std::vector<std::string>&)> onDrop;
   // Renderer name reported by GL (for --bench and logs).

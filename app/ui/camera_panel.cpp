@@ -1,7 +1,9 @@
 #include <imgui.h>
 
+#include <algorithm>
 #include <cmath>
 
+#include "app/ui/panel_text.h"
 #include "app/ui/panels.h"
 
 namespace penumbra::ui {
@@ -23,11 +25,15 @@ void drawCameraPanel(ViewerController& c, PanelState&) {
   const glm::mat4& m = c.settings().camera.toWorld;
   const OrbitCamera& o = c.orbitCamera();
   const float scale = glm::length(glm::vec3(m[3])) + o.distance;
-  const glm::vec3 origin = forDisplay(glm::vec3(m[3]), scale), target = forDisplay(o.target, scale);
+  const glm::vec3 origin = forDisplay(glm::vec3(m[3]), scale), target = forDisplay(c.shownTarget(), scale);
   ImGui::Text("origin %.3g %.3g %.3g", origin.x, origin.y, origin.z);
   ImGui::Text("target %.3g %.3g %.3g  (dist %.3g)", target.x, target.y, target.z, o.distance);
+  // Where the camera is relative to the orbit's horizon (the orbit stops at the scene's horizon).
+  const glm::vec3 dir = glm::normalize(glm::vec3(m[3]) - c.shownTarget());
+  const float elevationDeg = glm::degrees(std::asin(std::clamp(glm::dot(dir, o.worldUp), -1.f, 1.f)));
+  ImGui::Text("elevation %.1f deg%s", elevationDeg, o.minElevationSin >= 0.f ? " (orbit stays above 0)" : "");
   if (ImGui::Button("Reset to the scene's camera")) c.resetCamera();
-  ImGui::TextDisabled("left drag: orbit, right/middle drag: pan, wheel: dolly");
+  hintText("left drag: orbit, right/middle drag: pan, wheel: dolly");
 }
 
 }  // namespace penumbra::ui

@@ -8,6 +8,7 @@
 
 #include <imgui.h>
 
+#include "app/ui/panel_text.h"
 #include "app/ui/panels.h"
 
 namespace penumbra::ui {
@@ -28,7 +29,7 @@ void drawPlot(const ConvergenceTracker& t, bool noLight) {
       xmin = std::min(xmin, x), xmax = std::max(xmax, x), ymin = std::min(ymin, y), ymax = std::max(ymax, y);
     }
   if (!(xmax > 0)) {
-    ImGui::TextDisabled("waiting for the first pass...");
+    hintText("waiting for the first pass...");
     return;
   }
   double lx0 = std::floor(std::log10(xmin)), lx1 = std::max(std::ceil(std::log10(xmax)), lx0 + 1);
@@ -114,7 +115,7 @@ void drawConvergencePanel(ViewerController& c, PanelState& st) {
     ImGui::SameLine();
     if (ImGui::Button("Clear curves")) t.clearCurves();
     drawPlot(t, st.convergenceNoLight);
-    ImGui::TextDisabled("RMSE; *: current; grey: slope -1/2. Switch the strategy to add a curve.");
+    hintText("RMSE; *: current; grey: slope -1/2. Switch the strategy to add a curve.");
   }
   if (ImGui::Button("Load reference")) t.loadReference(c, st.referencePath);
   ImGui::SameLine();

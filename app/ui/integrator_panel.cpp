@@ -3,6 +3,7 @@
 
 #include <imgui.h>
 
+#include "app/ui/panel_text.h"
 #include "app/ui/panels.h"
 
 namespace penumbra::ui {
@@ -26,11 +27,13 @@ void drawIntegratorPanel(ViewerController& c, PanelState&) {
     }
     ImGui::EndCombo();
   }
+  // Fixed height: the fallback line and the samples field keep their rows whatever the strategy, so
+  // the sections below never move when it changes.
   Strategy rendered = applicableStrategy(d.strategy, areaLights);
+  if (rendered == d.strategy) ImGui::TextUnformatted("");
   if (rendered != d.strategy) {
-    ImGui::TextDisabled("%s %s: %s", std::string(strategyRow(d.strategy).label).c_str(),
-                        sceneNeedText(strategyRow(d.strategy).needs),
-                        std::string(strategyRow(rendered).label).c_str());
+    hintText("%s %s: %s", std::string(strategyRow(d.strategy).label).c_str(),
+             sceneNeedText(strategyRow(d.strategy).needs), std::string(strategyRow(rendered).label).c_str());
     d.strategy = rendered;
   }
   const Spellings& samples = strategyRow(d.strategy).samplesProperty;
@@ -40,20 +43,28 @@ void drawIntegratorPanel(ViewerController& c, PanelState&) {
                         ImGuiInputTextFlags_EnterReturnsTrue) ||
         ImGui::IsItemDeactivatedAfterEdit())
       d.samples = std::clamp(n, 1, 1 << 16);
+  } else {
+    ImGui::TextDisabled("(no shading samples)");
   }
   c.setSettings(s);  // restarts only if something changed
 
   // Compare mode: a second strategy right of a draggable divider, equal shares of time.
   ImGui::Separator();
   ImGui::TextUnformatted("Compare");
+  if (c.compareChoices().empty()) {  // e.g. simple, normals: nothing to compare with
+    hintText("%s has no sampling strategies to compare", strategyLabel(c.settings().integrator).c_str());
+    if (c.compareEnabled()) c.setCompare(false);
+    ImGui::TextUnformatted("");  // the rows the checkbox and combo take otherwise
+    return;
+  }
   bool on = c.compareEnabled();
   if (ImGui::Checkbox("split view", &on)) c.setCompare(on);
   IntegratorDesc r = c.compareIntegrator();
-  // The strategies with shading samples (the Monte Carlo estimators), with the same scene, camera and
-  // sampler as the left side.
-  if (ImGui::BeginCombo("right side", strategyLabel(r).c_str())) {
-    for (const StrategyRow& row : strategyTable()) {
-      if (row.samplesProperty.empty() || !strategyApplies(row.strategy, areaLights)) continue;
+  // The controller's choices: the left side's integrator type, with shading samples, applicable to
+  // the scene; the combo shows exactly what the right side renders.
+  if (ImGui::BeginCombo("right side", strategyLabel(c.renderedCompareIntegrator()).c_str())) {
+    for (Strategy s : c.compareChoices()) {
+      const StrategyRow& row = strategyRow(s);
       if (ImGui::Selectable(std::string(row.label).c_str(), row.strategy == r.strategy))
         c.setCompareIntegrator(IntegratorDesc{row.strategy, r.samples});
       if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", std::string(row.description).c_str());
@@ -63,7 +74,7 @@ void drawIntegratorPanel(ViewerController& c, PanelState&) {
   if (c.compareEnabled()) {
     float pct = c.display.compareDivider * 100.f;
     if (ImGui::SliderFloat("divider", &pct, 0.f, 100.f, "%.0f %%")) c.display.compareDivider = pct / 100.f;
-    ImGui::TextDisabled("%d thread(s) per side; drag the line in the image", c.engineThreads());
+    hintText("%d thread(s) per side, equal time; drag the line in the image", c.engineThreads());
   }
 }
 

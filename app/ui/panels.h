@@ -19,7 +19,9 @@ struct PanelState {
   bool hoverValid = false;  // pixel inspector: the cursor is over the image
   int hoverX = 0, hoverY = 0;
   bool requestSavePng = false;
-  double frameMs = 0;  // time the last UI frame took to draw and present
+  double frameMs = 0;
+  float layoutZoom = 1.f;  // the zoom the image was last drawn at (fit computes it)  // time the last UI
+                           // frame took to draw and present
   // Convergence panel: live RMSE against time for each accumulation since the scene or camera changed.
   ConvergenceTracker convergence;
   char referencePath[1024] = "";

@@ -3,6 +3,7 @@
 
 #include <imgui.h>
 
+#include "app/ui/panel_text.h"
 #include "app/ui/panels.h"
 
 namespace penumbra::ui {
@@ -25,8 +26,10 @@ void drawSamplerPanel(ViewerController& c, PanelState&) {
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip(
         samplerRow(s.samplerKind).usesSampleCount
-            ? "The scene's samples per pixel: this sampler's strata, and the default target spp"
-            : "The scene's samples per pixel: the default target spp (this sampler ignores it)");
+            ? "The scene's <sampler sampleCount>: this sampler's strata, and the default target spp.\n"
+              "While the target spp equals it, the target follows it."
+            : "The scene's <sampler sampleCount>: the default target spp (this sampler ignores it).\n"
+              "While the target spp equals it, the target follows it.");
   int seed = int(s.seed);
   if (ImGui::InputInt("seed", &seed, 1, 10, ImGuiInputTextFlags_EnterReturnsTrue))
     s.seed = uint64_t(std::max(seed, 0));
@@ -39,11 +42,12 @@ void drawSamplerPanel(ViewerController& c, PanelState&) {
   ImGui::RadioButton("time budget", &mode, 1);
   if (mode == 0) {
     int spp = int(l.targetSpp);
-    if (ImGui::InputInt("spp (0: endless)", &spp, 16, 256, ImGuiInputTextFlags_EnterReturnsTrue) ||
-        l.seconds > 0) {
+    if (ImGui::InputInt("target spp", &spp, 16, 256, ImGuiInputTextFlags_EnterReturnsTrue) || l.seconds > 0) {
       l.targetSpp = uint32_t(std::max(spp, 0));
       l.seconds = 0;
     }
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("When the accumulation stops (0: never). This, not sampleCount, stops the render.");
   } else {
     float sec = l.seconds > 0 ? float(l.seconds) : 10.f;
     if (ImGui::InputFloat("seconds", &sec, 1.f, 10.f, "%.1f", ImGuiInputTextFlags_EnterReturnsTrue) ||
@@ -53,10 +57,11 @@ void drawSamplerPanel(ViewerController& c, PanelState&) {
     }
   }
   c.setLimits(l);
+  hintText("%s", c.stopText().c_str());
 
   if (ImGui::Button(c.paused() ? "Resume (space)" : "Pause (space)")) c.setPaused(!c.paused());
   ImGui::SameLine();
-  if (ImGui::Button("Restart (R)")) c.start();
+  if (ImGui::Button("Restart (R)")) c.restart();  // resumes when paused
 }
 
 }  // namespace penumbra::ui

@@ -3,6 +3,7 @@
 
 #include <imgui.h>
 
+#include "app/ui/panel_text.h"
 #include "app/ui/panels.h"
 
 namespace penumbra::ui {
@@ -15,15 +16,22 @@ void drawScenePanel(ViewerController& c, PanelState& st) {
   bool enter =
       ImGui::InputText("##open", st.openPath, sizeof st.openPath, ImGuiInputTextFlags_EnterReturnsTrue);
   ImGui::SameLine();
-  if ((ImGui::Button("Open") || enter) && st.openPath[0]) c.openScene(st.openPath);
+  if ((ImGui::Button("Open") || enter) && st.openPath[0]) c.openSceneAsync(st.openPath);
   if (ImGui::Button("Reload")) c.reloadScene();
   ImGui::SameLine();
-  ImGui::TextDisabled("(auto-reloads on change; drop a file to open)");
+  hintText("(auto-reloads on change, keeping your changes; drop a file to open)");
+  // One line always: loading, loaded in, reloaded (and what was kept).
+  ImGui::PushTextWrapPos(0.f);
+  if (c.loading())
+    ImGui::TextColored(ImVec4(1.f, 0.8f, 0.3f, 1.f), "loading %s ...", c.loadingPath().c_str());
+  else
+    hintText("%s", c.sceneStatus().empty() ? " " : c.sceneStatus().c_str());
+  ImGui::PopTextWrapPos();
   if (!c.sceneError().empty()) {
     ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.f, 0.45f, 0.4f, 1.f));
     ImGui::TextWrapped("%s", c.sceneError().c_str());
     ImGui::PopStyleColor();
-    ImGui::TextDisabled("(still rendering the last good scene)");
+    hintText("(still rendering the last good scene)");
   }
   if (ImGui::TreeNode("Recent and nearby scenes")) {
     std::string pick;
@@ -36,7 +44,7 @@ void drawScenePanel(ViewerController& c, PanelState& st) {
     }
     if (!pick.empty()) {
       std::strncpy(st.openPath, pick.c_str(), sizeof st.openPath - 1);
-      c.openScene(pick);
+      c.openSceneAsync(pick);
     }
     ImGui::TreePop();
   }

@@ -49,7 +49,7 @@ class ViewerApp : public BenchViewer {
     platform_.onDrop = [this](const std::vector<std::string>& files) {
       for (const std::string& f : files)
         if (f.size() > 4 && f.substr(f.size() - 4) == ".xml") {
-          c_.openScene(f);
+          c_.openSceneAsync(f);
           break;
         }
     };
@@ -114,12 +114,18 @@ class ViewerApp : public BenchViewer {
     }
     int fbW = 0, fbH = 0;
     platform_.framebufferSize(fbW, fbH);
-    layout_ = layoutImage(c_.display, c_.settings().camera.width, c_.settings().camera.height, kSidebarWidth,
-                          std::max(fbW - kSidebarWidth, 1), fbH);
+    if (c_.windowTitle() != title_) platform_.setTitle(title_ = c_.windowTitle());
+    if (sidebarWidth_ <= 0) sidebarWidth_ = defaultSidebarWidth(fbW);
+    sidebarWidth_ = std::clamp(sidebarWidth_, std::min(kMinSidebarWidth, fbW), maxSidebarWidth(fbW));
+    const int sidebar = sidebarWidth_;  // this frame's panel column (resizable: drag its edge)
+    layout_ = layoutImage(c_.display, c_.settings().camera.width, c_.settings().camera.height, sidebar,
+                          std::max(fbW - sidebar, 1), fbH);
+    st_.layoutZoom = layout_.zoom;
     handleInput();
     display_.dividerX = c_.compareEnabled() ? dividerScreenX() : 0.f;
-    drawPanels(fbH);
+    drawPanels(fbW, fbH);
     if (c_.compareEnabled()) drawCompareLabels();
+    if (c_.loading()) drawLoadingOverlay(fbW, fbH);
     ImGui::Render();
     if (stageTimer_) stageTimer_->end(kUi);
     display_.prepare(c_.display, c_.snapshot(), c_.compareEnabled() ? &c_.compareSnapshot() : nullptr);
@@ -133,8 +139,8 @@ class ViewerApp : public BenchViewer {
     const float panelRgb[3] = {wb.x * wb.w + kBackgroundRgb[0] * (1 - wb.w),
                                wb.y * wb.w + kBackgroundRgb[1] * (1 - wb.w),
                                wb.z * wb.w + kBackgroundRgb[2] * (1 - wb.w)};
-    display_.fillRect(fbH, 0, 0, std::min(kSidebarWidth, fbW), fbH, panelRgb);
-    display_.draw(layout_, fbW, fbH, kSidebarWidth);
+    display_.fillRect(fbH, 0, 0, std::min(sidebar, fbW), fbH, panelRgb);
+    display_.draw(layout_, fbW, fbH, sidebar);
     if (stageTimer_) stageTimer_->end(kImage);
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
     if (stageTimer_) stageTimer_->end(kPanels);
@@ -233,6 +239,7 @@ class ViewerApp : public BenchViewer {
   }
 
   const ImageLayout& layout() const { return layout_; }
+  void openWarpInspector() { showWarpInspector_ = true; }
   const ImageDisplay& display() const { return display_; }
 
   // BenchViewer.
@@ -244,6 +251,25 @@ class ViewerApp : public BenchViewer {
   void timeStages(FrameStageTimer* timer) override { stageTimer_ = timer; }
 
  private:
+  // The panel column's width when the user has not dragged it: room for the panels' text (400 px at
+  // 1280 wide, up to 560 px on wider windows).
+  static int defaultSidebarWidth(int fbW) { return std::clamp(fbW * 3 / 10, kSidebarWidth, 560); }
+  static constexpr int kMinSidebarWidth = 300;
+  static int maxSidebarWidth(int fbW) { return std::max(fbW - 160, kMinSidebarWidth); }
+
+  // While a scene loads: the old image dimmed, and what is loading.
+  void drawLoadingOverlay(int fbW, int fbH) {
+    ImDrawList* dl = ImGui::GetBackgroundDrawList();
+    const float x0 = float(sidebarWidth_);
+    dl->AddRectFilled(ImVec2(x0, 0), ImVec2(float(fbW), float(fbH)), IM_COL32(20, 20, 20, 200));
+    char buf[1200];
+    std::snprintf(buf, sizeof buf, "loading %s ...\n(parsing, meshes, BVH build: the old scene is dimmed)",
+                  c_.loadingPath().c_str());
+    ImVec2 size = ImGui::CalcTextSize(buf, nullptr, false, float(fbW) - x0 - 24.f);
+    ImVec2 p(x0 + std::max(12.f, (float(fbW) - x0 - size.x) * 0.5f), std::max(12.f, (fbH - size.y) * 0.5f));
+    dl->AddText(nullptr, 0.f, p, IM_COL32(240, 220, 150, 255), buf, nullptr, float(fbW) - x0 - 24.f);
+  }
+
   float dividerScreenX() const {
     return layout_.x + std::clamp(c_.display.compareDivider, 0.f, 1.f) * layout_.width * layout_.zoom;
   }
@@ -285,7 +311,7 @@ class ViewerApp : public BenchViewer {
     std::string b = label(right, c_.compareSnapshot(), rightError_);
     // Left label at the image's top-left corner, right label at its top-right corner (one line lower
     // when they would overlap), both clipped to the visible image area.
-    float x0 = std::max(layout_.x, float(kSidebarWidth)) + 6.f;
+    float x0 = std::max(layout_.x, float(sidebarWidth_)) + 6.f;
     float x1 = std::min(layout_.x + layout_.width * layout_.zoom, ImGui::GetIO().DisplaySize.x) - 6.f;
     float y = std::max(layout_.y, 0.f) + 6.f;
     ImVec2 sa = ImGui::CalcTextSize(a.c_str()), sb = ImGui::CalcTextSize(b.c_str());
@@ -315,7 +341,7 @@ class ViewerApp : public BenchViewer {
     // Pixel inspector and camera: only when the cursor is over the image area, not over a panel.
     st_.hoverValid = false;
     ImVec2 m = io.MousePos;
-    bool overArea = !io.WantCaptureMouse && m.x >= kSidebarWidth && m.x >= 0 && m.y >= 0;
+    bool overArea = !io.WantCaptureMouse && m.x >= sidebarWidth_ && m.x >= 0 && m.y >= 0;
     if (overArea && layout_.width > 0) {
       int px = int(std::floor((m.x - layout_.x) / layout_.zoom));
       int py = int(std::floor((m.y - layout_.y) / layout_.zoom));
@@ -352,7 +378,7 @@ class ViewerApp : public BenchViewer {
         c_.setPaused(!c_.paused());
         break;
       case ViewerAction::Restart:
-        c_.start();
+        c_.restart();
         break;
       case ViewerAction::SavePng:
         st_.requestSavePng = true;
@@ -391,13 +417,19 @@ class ViewerApp : public BenchViewer {
     }
   }
 
-  void drawPanels(int fbH) {
+  void drawPanels(int fbW, int fbH) {
     ImGui::SetNextWindowPos(ImVec2(0, 0));
-    ImGui::SetNextWindowSize(ImVec2(float(kSidebarWidth), float(fbH)));
+    // The column's height follows the window; its width is the user's (drag the right edge).
+    if (fbH != panelHeight_) ImGui::SetNextWindowSize(ImVec2(float(sidebarWidth_), float(fbH)));
+    panelHeight_ = fbH;
+    ImGui::SetNextWindowSizeConstraints(ImVec2(float(std::min(kMinSidebarWidth, fbW)), float(fbH)),
+                                        ImVec2(float(maxSidebarWidth(fbW)), float(fbH)));
     ImGui::Begin("Penumbra", nullptr,
-                 ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
-                     ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoBackground);  // frame() clears it
-    ImGui::PushItemWidth(-130);
+                 ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoSavedSettings |
+                     ImGuiWindowFlags_NoBackground);  // frame() clears it
+    sidebarWidth_ = int(ImGui::GetWindowWidth());
+    // Labels get a fixed column; widgets take the rest, so wider panels give the values room.
+    ImGui::PushItemWidth(-150);
     drawScenePanel(c_, st_);
     drawIntegratorPanel(c_, st_);
     drawSamplerPanel(c_, st_);
@@ -437,6 +469,9 @@ class ViewerApp : public BenchViewer {
   uint64_t shownRestart_ = 0;
   FrameStageTimer* stageTimer_ = nullptr;  // the bench's frame breakdown
   bool fontNearest_ = false;
+  int sidebarWidth_ = 0;  // the panel column (0: not yet chosen)
+  int panelHeight_ = -1;
+  std::string title_;
   std::atomic<bool> stopWaker_{false};
   std::thread waker_;
 };
@@ -454,6 +489,7 @@ void writeScreenshot(platform::Platform& p, const std::string& path) {
 
 int runViewer(LoadedScene scene, ViewerController::Overrides overrides, const ViewerOptions& o) {
   ViewerController controller(std::move(scene), std::move(overrides), o.threads);
+  if (o.loadSeconds > 0) controller.noteLoadSeconds(o.loadSeconds);
   if (o.onSnapshot) controller.onSnapshotPolled = [&o](const ViewerController& c) { o.onSnapshot(c, false); };
   const CameraDesc& cam = controller.settings().camera;
   platform::WindowOptions wo;
@@ -470,10 +506,9 @@ int runViewer(LoadedScene scene, ViewerController::Overrides overrides, const Vi
   {
     std::unique_ptr<platform::Platform> p = platform::createPlatform(wo);
     ViewerApp app(*p, controller);
+    if (o.openWarpInspector) app.openWarpInspector();
     if (!o.compare.empty()) {
-      std::vector<IntegratorDesc> d = parseStrategies(controller.settings().integrator, o.compare);
-      if (d.size() != 1) throw Error("--compare " + o.compare + ": expected one strategy");
-      controller.setCompareIntegrator(d[0]);
+      controller.setCompareIntegrator(controller.parseCompareStrategy(o.compare));
       controller.setCompare(true);  // starts both sides
     } else {
       controller.start();

@@ -11,14 +11,16 @@
 namespace penumbra::ui {
 
 struct ViewerOptions {
+  double loadSeconds = 0;  // how long loading the scene took (shown in the Scene panel)
   int frames = 0;          // stop after this many frames (0: until the window closes)
   std::string screenshot;  // write the final frame (UI included) here as PNG
   bool bench = false;
   bool waitForTarget = false;  // before the screenshot, wait until the accumulation reaches its limit
   int windowWidth = 0, windowHeight = 0;  // 0: fit the image beside the panels
   int threads = 0;
-  std::string compare;       // non-empty: start in compare mode with this strategy on the right
-  bool printLayout = false;  // print "image-rect X Y W H ZOOM" (tests)
+  std::string compare;             // non-empty: start in compare mode with this strategy on the right
+  bool openWarpInspector = false;  // start with the warp inspector window open (screenshots)
+  bool printLayout = false;        // print "image-rect X Y W H ZOOM" (tests)
   // After every snapshot poll (last = false) and once when the viewer closes (last = true).
   std::function<void(const ViewerController&, bool last)> onSnapshot;
 };

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <thread>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -37,6 +38,7 @@ ViewerController::ViewerController(LoadedScene scene, Overrides overrides, int t
 }
 
 ViewerController::~ViewerController() {
+  if (loading_.valid()) loading_.wait();  // the loader thread reads nothing of ours, but must end
   compareEngine_.cancel();
   engine_.cancel();
 }
@@ -49,12 +51,36 @@ void ViewerController::adoptScene(LoadedScene loaded) {
   sceneError_.clear();
   sceneMtime_ = scene_.path.empty() ? fs::file_time_type{} : mtimeOf(scene_.path);
   initOrbitFromCamera();
+  chooseCompareDefault();
 }
+
+namespace {
+// The scene camera's toWorld property, when it was written with <lookat>.
+const Property* cameraLookAt(const SceneNode& desc) {
+  const SceneNode* cam = desc.child("camera");
+  if (!cam) return nullptr;
+  for (const Property& p : cam->props.properties())
+    if (p.name == "toWorld" && p.type == PropertyType::Transform && p.hasLookAt && !p.fromOverride) return &p;
+  return nullptr;
+}
+}  // namespace
 
 void ViewerController::initOrbitFromCamera() {
   const glm::mat4& m = settings_.camera.toWorld;
   Vec3 origin(m[3]), forward = glm::normalize(Vec3(m[2]));
   orbit_.worldUp = glm::normalize(Vec3(m[1]));
+  orbit_.moved = false;
+  // The scene names its target: orbit about exactly that point (the camera is the file's).
+  const Property* look = cameraLookAt(scene_.desc);
+  if (look && settings_.camera.toWorld == scene_.settings.camera.toWorld &&
+      glm::length(look->lookAtTarget - origin) > 1e-6f && glm::length(look->lookAtUp) > 1e-6f) {
+    orbit_.target = look->lookAtTarget;
+    orbit_.distance = glm::length(look->lookAtTarget - origin);
+    Vec3 up = glm::normalize(look->lookAtUp);
+    if (std::abs(glm::dot(up, forward)) < 0.999f) orbit_.worldUp = up;
+    orbit_.minElevationSin = std::min(0.f, glm::dot(glm::normalize(origin - orbit_.target), orbit_.worldUp));
+    return;
+  }
   float distance = 0.f;
   if (scene_.scene) {
     Bounds b = scene_.scene->geometry.bounds();
@@ -67,6 +93,7 @@ void ViewerController::initOrbitFromCamera() {
   if (!(distance > 1e-3f) || !std::isfinite(distance)) distance = 1.f;
   orbit_.distance = distance;
   orbit_.target = origin + forward * distance;
+  orbit_.minElevationSin = std::min(0.f, glm::dot(-forward, orbit_.worldUp));
 }
 
 int ViewerController::engineThreads() const {
@@ -80,12 +107,40 @@ void ViewerController::start() {
   if (compare_) startCompare();
 }
 
+void ViewerController::restart() {
+  start();
+  setPaused(false);
+}
+
+RenderLimits ViewerController::effectiveLimits() const {
+  RenderLimits l = limits_;
+  if (compare_ && !(l.seconds > 0)) {
+    l.targetSpp = 0;
+    l.seconds = kCompareSeconds;
+  }
+  return l;
+}
+
+std::string ViewerController::stopText() const {
+  RenderLimits l = effectiveLimits();
+  char buf[160];
+  if (l.seconds > 0)
+    std::snprintf(buf, sizeof buf, "stops after %.1f s (%s)", l.seconds,
+                  compare_
+                      ? (limits_.seconds > 0 ? "time budget, both sides" : "compare: equal time, both sides")
+                      : "time budget");
+  else if (l.targetSpp > 0)
+    std::snprintf(buf, sizeof buf, "stops at %u spp (target spp)", l.targetSpp);
+  else
+    std::snprintf(buf, sizeof buf, "renders until paused (target spp 0: endless)");
+  return buf;
+}
 void ViewerController::startLeft() {
   auto job = std::make_shared<RenderJob>();
   job->scene = scene_.scene;
   job->settings = settings_;
   bool wasPaused = engine_.paused();
-  RenderLimits limits = limits_;
+  RenderLimits limits = effectiveLimits();
   limits.preview = true;  // a coarse first frame within milliseconds of any change
   engine_.start(std::move(job), limits, engineThreads());
   if (wasPaused) engine_.setPaused(true);
@@ -98,7 +153,7 @@ void ViewerController::startCompare() {
   job->settings = settings_;
   job->settings.integrator = renderedCompareIntegrator();
   bool wasPaused = engine_.paused();
-  RenderLimits limits = limits_;
+  RenderLimits limits = effectiveLimits();
   limits.preview = true;
   compareEngine_.start(std::move(job), limits, engineThreads());
   if (wasPaused) compareEngine_.setPaused(true);
@@ -117,9 +172,50 @@ void ViewerController::setCompare(bool on) {
 }
 
 void ViewerController::setCompareIntegrator(const IntegratorDesc& d) {
+  compareUserChosen_ = true;
   if (d == compareIntegrator_) return;
   compareIntegrator_ = d;
   if (compare_) startCompare();
+}
+
+std::vector<Strategy> ViewerController::compareChoices() const {
+  std::vector<Strategy> out;
+  for (const StrategyRow& row : strategyTable())
+    if (!row.samplesProperty.empty() && sameIntegratorType(row.strategy, settings_.integrator.strategy) &&
+        strategyApplies(row.strategy, sceneHasAreaLights()))
+      out.push_back(row.strategy);
+  return out;
+}
+
+IntegratorDesc ViewerController::parseCompareStrategy(const std::string& name) const {
+  std::vector<Strategy> choices = compareChoices();
+  std::string names;
+  for (Strategy s : choices) {
+    const StrategyRow& row = strategyRow(s);
+    if (name == row.shortName || name == row.label) return IntegratorDesc{s, settings_.integrator.samples};
+    names += (names.empty() ? "" : ", ") + std::string(row.shortName);
+  }
+  if (choices.empty())
+    throw Error("--compare " + name + ": the scene's " + strategyLabel(settings_.integrator) +
+                " has no other strategy to compare with");
+  throw Error("--compare " + name + ": expected one strategy that applies to this scene: " + names);
+}
+
+// The right side's strategy stays one the scene can render, and differs from the left one when
+// another applies.
+void ViewerController::chooseCompareDefault() {
+  std::vector<Strategy> choices = compareChoices();
+  if (choices.empty()) return;
+  bool valid = std::find(choices.begin(), choices.end(), compareIntegrator_.strategy) != choices.end();
+  if (valid && compareIntegrator_.strategy != settings_.integrator.strategy) return;
+  if (valid && compareUserChosen_) return;
+  Strategy pick = choices.front();
+  for (Strategy s : choices)
+    if (s != settings_.integrator.strategy) {
+      pick = s;
+      break;
+    }
+  compareIntegrator_.strategy = pick;
 }
 
 IntegratorDesc ViewerController::renderedCompareIntegrator() const {
@@ -164,6 +260,7 @@ void ViewerController::setProbePixel(int x, int y) {
 }
 
 bool ViewerController::pollSnapshot(bool wantStandardError, bool requestNext) {
+  finishLoading();
   bool changed = pollEngine(engine_, snapshot_, wantStandardError, requestNext);
   // A resting film (paused, finished) publishes no more passes: read the hovered pixel directly.
   if (probeX_ >= 0 && (snapshot_.probe.x != probeX_ || snapshot_.probe.y != probeY_ || changed) &&
@@ -196,7 +293,17 @@ void ViewerController::setSettings(const RenderSettings& s) {
   RenderSettings sameIntegrator = s;
   sameIntegrator.integrator = settings_.integrator;
   bool onlyIntegrator = sameSettings(sameIntegrator, settings_);
+  // The target spp follows the sampler's sampleCount while the two are equal.
+  if (s.sampleCount != settings_.sampleCount && limits_.seconds <= 0 &&
+      limits_.targetSpp == settings_.sampleCount)
+    limits_.targetSpp = s.sampleCount;
+  const IntegratorDesc oldCompare = compareIntegrator_;
   settings_ = s;
+  chooseCompareDefault();  // the left side's type may have changed
+  if (compare_ && !(oldCompare == compareIntegrator_)) {
+    start();
+    return;
+  }
   if (compare_ && onlyIntegrator)
     startLeft();  // the right side renders its own strategy: keep its accumulation
   else
@@ -207,13 +314,15 @@ void ViewerController::setLimits(const RenderLimits& l) {
   if (l.targetSpp == limits_.targetSpp && l.seconds == limits_.seconds) return;
   limits_ = l;
   useTimeBudget_ = l.seconds > 0;
-  if (!engine_.extend(limits_)) startLeft();  // a new target continues the accumulation
-  if (compare_ && !compareEngine_.extend(limits_)) startCompare();
+  const RenderLimits run = effectiveLimits();
+  if (!engine_.extend(run)) startLeft();  // a new target continues the accumulation
+  if (compare_ && !compareEngine_.extend(run)) startCompare();
 }
 
 // ---- camera ---------------------------------------------------------------------------------------
 
 void ViewerController::applyOrbit(const Vec3& origin) {
+  orbit_.moved = true;
   RenderSettings s = settings_;
   s.camera.toWorld = lookAt(origin, orbit_.target, orbit_.worldUp);
   setSettings(s);
@@ -228,8 +337,10 @@ void ViewerController::orbit(float dx, float dy) {
   offset = Vec3(yaw * glm::vec4(offset, 0.f));
   Vec3 left = glm::normalize(glm::cross(orbit_.worldUp, -offset));
   Vec3 pitched = Vec3(glm::rotate(glm::mat4(1.f), -dy * k, left) * glm::vec4(offset, 0.f));
-  // Stop short of the poles, where the up vector would flip.
-  if (std::abs(glm::dot(glm::normalize(pitched), orbit_.worldUp)) < 0.995f) offset = pitched;
+  // Stop short of the poles, where the up vector would flip, and of the lower hemisphere (below the
+  // ground the image goes black): the pitch stops at the limit rather than past it.
+  const float elevation = glm::dot(glm::normalize(pitched), orbit_.worldUp);
+  if (std::abs(elevation) < 0.995f && elevation >= orbit_.minElevationSin - 1e-6f) offset = pitched;
   applyOrbit(orbit_.target + offset);
 }
 
@@ -241,6 +352,7 @@ void ViewerController::pan(float dx, float dy) {
                 float(std::max(settings_.camera.width, 1));
   Vec3 shift = (left * dx + up * dy) * pixel;
   orbit_.target += shift;
+  orbit_.moved = true;
   RenderSettings s = settings_;
   s.camera.toWorld[3] = glm::vec4(origin + shift, 1.f);
   setSettings(s);
@@ -250,6 +362,7 @@ void ViewerController::dolly(float steps) {
   const glm::mat4& m = settings_.camera.toWorld;
   Vec3 forward(m[2]);
   orbit_.distance = std::clamp(orbit_.distance * std::pow(0.9f, steps), 1e-3f, 1e5f);
+  orbit_.moved = true;
   RenderSettings s = settings_;
   s.camera.toWorld[3] = glm::vec4(orbit_.target - glm::normalize(forward) * orbit_.distance, 1.f);
   setSettings(s);
@@ -282,17 +395,61 @@ void ViewerController::rememberRecent(const std::string& path) {
   if (recent_.size() > 10) recent_.resize(10);
 }
 
+void ViewerController::adoptLoaded(LoadedScene loaded, const std::string& path, double seconds) {
+  adoptScene(std::move(loaded));
+  rememberRecent(path);
+  noteLoadSeconds(seconds);
+  start();
+}
+
+void ViewerController::noteLoadSeconds(double seconds) {
+  loadSeconds_ = seconds;
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "loaded in %.2f s (parse, meshes, BVH build)", seconds);
+  sceneStatus_ = buf;
+}
+
+static double secondsSince(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
 bool ViewerController::openScene(const std::string& path) {
   try {
+    auto t0 = std::chrono::steady_clock::now();
     LoadedScene loaded = loadScene(path, overrides_);
-    adoptScene(std::move(loaded));
-    rememberRecent(path);
-    start();
+    adoptLoaded(std::move(loaded), path, secondsSince(t0));
     return true;
   } catch (const std::exception& e) {
     sceneError_ = e.what();
     return false;
   }
+}
+
+void ViewerController::openSceneAsync(const std::string& path) {
+  if (loading_.valid()) loading_.wait();  // one load at a time; the newest request wins below
+  loadingPath_ = path;
+  loadStart_ = std::chrono::steady_clock::now();
+  sceneStatus_ = "loading " + path + " ...";
+  loading_ =
+      std::async(std::launch::async, [path, overrides = overrides_] { return loadScene(path, overrides); });
+}
+
+bool ViewerController::finishLoading() {
+  if (!loading_.valid() || loading_.wait_for(std::chrono::seconds(0)) != std::future_status::ready)
+    return false;
+  const double seconds = secondsSince(loadStart_);
+  try {
+    adoptLoaded(loading_.get(), loadingPath_, seconds);
+  } catch (const std::exception& e) {
+    sceneError_ = e.what();
+    sceneStatus_.clear();
+  }
+  loading_ = {};
+  return true;
+}
+
+std::string ViewerController::windowTitle() const {
+  return "Penumbra — " + (scene_.path.empty() ? std::string("built-in scene") : scene_.path);
 }
 
 bool ViewerController::reloadScene() {
@@ -301,10 +458,56 @@ bool ViewerController::reloadScene() {
     start();
     return true;
   }
-  std::string path = scene_.path;
-  bool ok = openScene(path);
-  if (!ok) sceneMtime_ = mtimeOf(path);  // do not retry until the file changes again
-  return ok;
+  const std::string path = scene_.path;
+  const RenderSettings oldFile = scene_.settings, live = settings_;
+  const RenderLimits oldLimits = limits_;
+  const OrbitCamera oldOrbit = orbit_;
+  LoadedScene loaded;
+  try {
+    loaded = loadScene(path, overrides_);
+  } catch (const std::exception& e) {
+    sceneError_ = e.what();
+    sceneMtime_ = mtimeOf(path);  // do not retry until the file changes again
+    return false;
+  }
+  // A setting the user changed in the UI survives unless the file changed that same setting.
+  const RenderSettings& newFile = loaded.settings;
+  std::vector<std::string> kept;
+  RenderSettings s = newFile;
+  auto keep = [&](bool userChanged, bool fileSame, const char* name, auto apply) {
+    if (userChanged && fileSame) {
+      apply();
+      kept.push_back(name);
+    }
+  };
+  keep(!(live.camera == oldFile.camera), newFile.camera == oldFile.camera, "camera",
+       [&] { s.camera = live.camera; });
+  keep(!(live.integrator == oldFile.integrator), newFile.integrator == oldFile.integrator, "integrator",
+       [&] { s.integrator = live.integrator; });
+  keep(live.samplerKind != oldFile.samplerKind || live.sampleCount != oldFile.sampleCount ||
+           live.seed != oldFile.seed,
+       newFile.samplerKind == oldFile.samplerKind && newFile.sampleCount == oldFile.sampleCount &&
+           newFile.seed == oldFile.seed,
+       "sampler",
+       [&] { s.samplerKind = live.samplerKind, s.sampleCount = live.sampleCount, s.seed = live.seed; });
+  const bool limitsChanged = oldLimits.seconds > 0 || oldLimits.targetSpp != oldFile.sampleCount;
+  adoptScene(std::move(loaded));
+  settings_ = s;
+  if (limitsChanged) {
+    limits_ = oldLimits;
+    kept.push_back("limits");
+  } else {
+    limits_.targetSpp = settings_.sampleCount;
+  }
+  if (std::find(kept.begin(), kept.end(), "camera") != kept.end()) orbit_ = oldOrbit;
+  chooseCompareDefault();
+  sceneStatus_ = "reloaded " + fs::path(path).filename().string();
+  if (!kept.empty()) {
+    sceneStatus_ += "; kept your ";
+    for (size_t i = 0; i < kept.size(); ++i) sceneStatus_ += (i ? ", " : "") + kept[i];
+  }
+  start();
+  return true;
 }
 
 bool ViewerController::checkFileChanged() {
@@ -373,8 +576,36 @@ std::string matrixText(const glm::mat4& m) {  // row-major, 16 numbers
 
 }  // namespace
 
-SceneNode ViewerController::liveDesc() const {
+// Rewrites every string property naming an existing file relative to its node's directory so that it
+// resolves from `saveDir`.
+static void rebaseFilePaths(SceneNode& node, const fs::path& saveDir) {
+  PropertyList out;
+  out.setContext(node.file, node.tag, node.type);
+  bool changed = false;
+  for (Property p : node.props.properties()) {
+    if (p.type == PropertyType::String && !p.stringValue.empty() && fs::path(p.stringValue).is_relative()) {
+      std::error_code ec;
+      fs::path file = fs::absolute(fs::path(node.baseDir.empty() ? "." : node.baseDir) / p.stringValue, ec);
+      if (!ec && fs::is_regular_file(file, ec)) {
+        file = fs::weakly_canonical(file, ec);
+        fs::path rel = file.lexically_relative(saveDir);
+        p.stringValue = (rel.empty() ? file : rel).generic_string();
+        changed = true;
+      }
+    }
+    out.add(p);
+  }
+  if (changed) node.props = std::move(out);
+  for (SceneNode& c : node.children) rebaseFilePaths(c, saveDir);
+}
+
+SceneNode ViewerController::liveDesc(const std::string& saveDir) const {
   SceneNode root = scene_.desc;
+  if (!saveDir.empty()) {
+    std::error_code ec;
+    fs::path dir = fs::weakly_canonical(fs::absolute(saveDir), ec);
+    rebaseFilePaths(root, ec ? fs::absolute(saveDir) : dir);
+  }
   const RenderSettings& s = settings_;
 
   SceneNode& cam = childOrNew(root, "camera", "perspective");
@@ -403,8 +634,8 @@ SceneNode ViewerController::liveDesc() const {
   return root;
 }
 
-std::string ViewerController::liveSceneXml() const {
-  return writeSceneXml(liveDesc());
+std::string ViewerController::liveSceneXml(const std::string& saveDir) const {
+  return writeSceneXml(liveDesc(saveDir));
 }
 
 std::string ViewerController::saveImage(const std::string& path) const {
@@ -419,7 +650,8 @@ std::string ViewerController::saveImage(const std::string& path) const {
 }
 
 std::string ViewerController::saveSceneAs(const std::string& path) const {
-  std::string xml = liveSceneXml();
+  fs::path dir = fs::path(path).parent_path();
+  std::string xml = liveSceneXml(dir.empty() ? "." : dir.string());
   writeBytesAtomically(path, xml.data(), xml.size());
   return "saved " + path;
 }

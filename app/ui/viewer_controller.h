@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <future>
 #include <memory>
 #include <string>
 #include <utility>
@@ -34,8 +35,12 @@ struct DisplaySettings {
 // Orbit camera state derived from a Nori toWorld (columns: left, up, forward, origin).
 struct OrbitCamera {
   Vec3 target{0.f};
-  Vec3 worldUp{0, 1, 0};
+  Vec3 worldUp{0, 1, 0};  // the scene's <lookat> up when it has one, else the camera's up
   float distance = 1.f;
+  // Lowest elevation (sine of the angle above the plane through the target normal to worldUp) the
+  // orbit may reach: the upper hemisphere, or the scene camera's own elevation when that is lower.
+  float minElevationSin = 0.f;
+  bool moved = false;  // the user orbited, panned or dollied since the scene's camera was set
 };
 
 // Nice value of the render threads while the viewer runs (Engine::setWorkerNice): the UI thread and the
@@ -51,7 +56,9 @@ class ViewerController {
   ~ViewerController();
 
   // ---- rendering -------------------------------------------------------------------------------
-  void start();  // (re)starts accumulation with the live settings and limits
+  void start();  // (re)starts accumulation with the live settings and limits (paused stays paused)
+  // The Restart button and key: starts again from 0 spp and resumes a paused accumulation.
+  void restart();
   void setPaused(bool paused);
   bool paused() const { return engine_.paused(); }
   RenderProgress progress() const { return engine_.progress(); }
@@ -88,6 +95,12 @@ class ViewerController {
   bool compareEnabled() const { return compare_; }
   const IntegratorDesc& compareIntegrator() const { return compareIntegrator_; }
   void setCompareIntegrator(const IntegratorDesc& d);
+  // What the right side may render: the strategies of the left side's integrator type that have
+  // shading samples and apply to the scene (strategy table), in table order.
+  std::vector<Strategy> compareChoices() const;
+  // `--compare NAME`: one of compareChoices() by its short name or label; throws penumbra::Error
+  // naming the accepted values.
+  IntegratorDesc parseCompareStrategy(const std::string& name) const;
   // What the right side renders: compareIntegrator(), or its fallback when the scene lacks what it
   // needs (strategy table).
   IntegratorDesc renderedCompareIntegrator() const;
@@ -97,6 +110,11 @@ class ViewerController {
   Engine& compareEngine() { return compareEngine_; }
   // Threads per engine in the current mode.
   int engineThreads() const;
+  // Compare mode is equal-time: unless the user chose a time budget, both sides render for this
+  // many seconds (each with half of the threads), not to an spp count.
+  static constexpr double kCompareSeconds = 10.0;
+  // The limits the engines run with: limits(), or the shared time budget in compare mode.
+  RenderLimits effectiveLimits() const;
 
   // ---- live settings (any change restarts accumulation; geometry is never rebuilt) -------------
   const RenderSettings& settings() const { return settings_; }
@@ -104,6 +122,10 @@ class ViewerController {
   void setSettings(const RenderSettings& s);
   const RenderLimits& limits() const { return limits_; }
   void setLimits(const RenderLimits& l);
+  // Raising the sampler's sampleCount also raises the target spp while the target equals it (the
+  // stratified sampler's strata and the accumulation's end stay tied); this says which stops the
+  // render, e.g. "stops at 64 spp (target spp)" or "stops after 10.0 s (time budget, equal time)".
+  std::string stopText() const;
 
   // ---- camera ----------------------------------------------------------------------------------
   void orbit(float dxPixels, float dyPixels);
@@ -112,6 +134,8 @@ class ViewerController {
   void setFov(float degrees);
   void resetCamera();
   const OrbitCamera& orbitCamera() const { return orbit_; }
+  // The target the Camera panel shows: the scene's <lookat> target until the user moves the camera.
+  Vec3 shownTarget() const { return orbit_.target; }
 
   // ---- display (never restarts) ----------------------------------------------------------------
   DisplaySettings display;
@@ -121,7 +145,23 @@ class ViewerController {
   // Loads a scene file; on failure keeps the current scene rendering, stores the error text
   // (file:line: ...) in sceneError() and returns false.
   bool openScene(const std::string& path);
+  // Loads on a thread (a large mesh's BVH takes seconds); the current scene keeps its image (shown
+  // dimmed) until pollSnapshot adopts the new one. Errors land in sceneError() as with openScene.
+  void openSceneAsync(const std::string& path);
+  bool loading() const { return loading_.valid(); }
+  const std::string& loadingPath() const { return loadingPath_; }
+  // Adopts a finished asynchronous load (pollSnapshot calls it); true when one finished.
+  bool finishLoading();
+  // Wall time of the current scene's load: parsing, meshes and the BVH build.
+  double loadSeconds() const { return loadSeconds_; }
+  // For a scene loaded before the controller existed (the command line's): shown as for openScene.
+  void noteLoadSeconds(double seconds);
+  // Reloads the same file, keeping the live settings the user changed (camera, integrator, sampler,
+  // limits) unless the file changed the same setting; sceneStatus() says what was kept.
   bool reloadScene();
+  const std::string& sceneStatus() const { return sceneStatus_; }
+  // "Penumbra — <scene file>": the window title, following the open scene.
+  std::string windowTitle() const;
   // Reloads when the scene file's modification time changed (checked at most twice a second).
   bool checkFileChanged();
   const std::string& sceneError() const { return sceneError_; }
@@ -131,9 +171,11 @@ class ViewerController {
   bool sceneHasAreaLights() const { return scene_.scene && scene_.scene->hasAreaLights(); }
 
   // ---- output ----------------------------------------------------------------------------------
-  // The scene description with the live settings written into it, as XML.
-  SceneNode liveDesc() const;
-  std::string liveSceneXml() const;
+  // The scene description with the live settings written into it, as XML. With `saveDir`, relative
+  // file paths (meshes) are rewritten to resolve from that directory: relative when the two share a
+  // root, absolute otherwise.
+  SceneNode liveDesc(const std::string& saveDir = "") const;
+  std::string liveSceneXml(const std::string& saveDir = "") const;
   // PNG of the display (current exposure, sRGB), EXR/PFM of the accumulation, scene XML; all atomic.
   // Return a status message; throw penumbra::Error on failure.
   std::string saveImage(const std::string& path) const;
@@ -147,6 +189,8 @@ class ViewerController {
   void applyOrbit(const Vec3& origin);
   std::filesystem::file_time_type mtimeOf(const std::string& path) const;
   void rememberRecent(const std::string& path);
+  void chooseCompareDefault();
+  void adoptLoaded(LoadedScene loaded, const std::string& path, double seconds);
 
   LoadedScene scene_;
   Overrides overrides_;
@@ -164,10 +208,16 @@ class ViewerController {
   uint64_t snapshotSerial_ = 0, compareSnapshotSerial_ = 0;
   bool compare_ = false;
   IntegratorDesc compareIntegrator_{Strategy::DirectSolidAngle, 1};
+  bool compareUserChosen_ = false;  // setCompareIntegrator was called: keep it while it applies
   Engine compareEngine_;
   FilmSnapshot compareSnapshot_;
   uint64_t compareRestarts_ = 0;
   std::string sceneError_;
+  std::string sceneStatus_;
+  std::future<LoadedScene> loading_;
+  std::string loadingPath_;
+  std::chrono::steady_clock::time_point loadStart_{};
+  double loadSeconds_ = 0;
   std::vector<std::string> recent_;
   std::filesystem::file_time_type sceneMtime_{};
   std::chrono::steady_clock::time_point lastMtimeCheck_{};

@@ -1,4 +1,5 @@
 #include "app/ui/warp_inspector.h"
+#include "app/ui/panel_text.h"
 
 #include <algorithm>
 #include <chrono>
@@ -285,15 +286,15 @@ void WarpInspector::drawControls() {
     ImGui::SetTooltip(
         "Judge the samples by a wrong density (e.g. the uniform one of the same domain)\nto see a "
         "rejection.");
-  ImGui::TextDisabled("judged by %s", judgeDescription(s).c_str());
+  hintText("judged by %s", judgeDescription(s).c_str());
   if (ImGui::Button("Reset view")) resetView();
   ImGui::SameLine();
-  ImGui::TextDisabled("drag: rotate, wheel: zoom");
+  hintText("drag: rotate, wheel: zoom");
 
   ImGui::Separator();
   ImGui::TextUnformatted("Chi-square test");
   if (!shownVerdict_) {
-    ImGui::TextDisabled("computing...");
+    hintText("computing...");
     return;
   }
   const WarpVerdict& v = *shownVerdict_;
@@ -318,7 +319,7 @@ void WarpInspector::drawControls() {
   if (!upToDate())
     ImGui::TextColored(ImVec4(1.f, 0.8f, 0.3f, 1.f), "computing...");
   else
-    ImGui::TextDisabled("%d points + quadrature: %.0f ms", 1 << v.settings.log2Points, v.seconds * 1e3);
+    hintText("%d points + quadrature: %.0f ms", 1 << v.settings.log2Points, v.seconds * 1e3);
 }
 
 void WarpInspector::drawView(float width, float height) {
@@ -354,6 +355,21 @@ void WarpInspector::drawView(float width, float height) {
   }
 }
 
+namespace {
+// The caption under the panels, wrapped to the panels' width (never cut off in a narrow window).
+const char* panelsCaption(bool sphere) {
+  return sphere
+             ? "one colour scale: samples per cell (sample histogram, integrated density, their difference). "
+               "Horizontal: phi 0 .. 2pi; vertical: cos theta, 1 at the top"
+             : "one colour scale: samples per cell (sample histogram, integrated density, their difference). "
+               "Horizontal: x; vertical: y (up)";
+}
+float panelsCaptionHeight(bool sphere, float width) {
+  return ImGui::CalcTextSize(panelsCaption(sphere), nullptr, false, width).y +
+         ImGui::GetStyle().ItemSpacing.y;
+}
+}  // namespace
+
 void WarpInspector::drawPanels(float width) {
   const float spacing = ImGui::GetStyle().ItemSpacing.x;
   bool sphere = shownVerdict_ ? shownVerdict_->domain.kind == Chi2Domain::Kind::Sphere
@@ -362,7 +378,7 @@ void WarpInspector::drawPanels(float width) {
   float slot = (width - 2 * spacing) / 3.f;
   float ph = std::min(slot * aspect, 0.36f * ImGui::GetIO().DisplaySize.y);
   float pw = ph / aspect;
-  const char* titles[3] = {"sample histogram", "integrated density", "difference (histogram - density)"};
+  const char* titles[3] = {"histogram", "density", "histogram - density"};
   ImVec2 start = ImGui::GetCursorScreenPos();
   ImDrawList* dl = ImGui::GetWindowDrawList();
   for (int i = 0; i < 3; ++i) {
@@ -396,12 +412,9 @@ void WarpInspector::drawPanels(float width) {
   colourBar(dl, ImVec2(dx + negW + 6, y), ImVec2(dx + pw - hiW - 6, y + barH), true);
   dl->AddText(ImVec2(dx + pw - hiW, y), ImGui::GetColorU32(ImGuiCol_Text), hi);
   y += ImGui::GetTextLineHeightWithSpacing();
-  const char* axes =
-      sphere
-          ? "one colour scale: samples per cell. Horizontal: phi 0 .. 2pi; vertical: cos theta, 1 at the top"
-          : "one colour scale: samples per cell. Horizontal: x; vertical: y (up)";
-  dl->AddText(ImVec2(start.x, y), ImGui::GetColorU32(ImGuiCol_TextDisabled), axes);
-  y += ImGui::GetTextLineHeightWithSpacing();
+  dl->AddText(nullptr, 0.f, ImVec2(start.x, y), ImGui::GetColorU32(ImGuiCol_TextDisabled),
+              panelsCaption(sphere), nullptr, width);
+  y += panelsCaptionHeight(sphere, width);
   ImGui::Dummy(ImVec2(width, y - start.y));
 }
 
@@ -449,7 +462,8 @@ void WarpInspector::draw(bool* open, bool fill) {
   bool sphere = warpIsSpherical(settings_.type);
   float slot = (avail.x - 2 * ImGui::GetStyle().ItemSpacing.x) / 3.f;
   float ph = std::min(slot * (sphere ? 0.5f : 1.f), 0.36f * io.DisplaySize.y);
-  float panelsH = ph + 3 * ImGui::GetTextLineHeightWithSpacing() + 10 + ImGui::GetStyle().ItemSpacing.y;
+  float panelsH = ph + 2 * ImGui::GetTextLineHeightWithSpacing() + panelsCaptionHeight(sphere, avail.x) + 10 +
+                  ImGui::GetStyle().ItemSpacing.y;
   drawView(avail.x, std::max(avail.y - panelsH, 64.f));
   drawPanels(avail.x);
   ImGui::EndGroup();

@@ -48,7 +48,11 @@ struct Property {
   std::string stringValue;
   Vec3 vecValue{0.f};     // point, vector, color
   glm::mat4 matrix{1.f};  // transform
-  int line = 0;           // 0 when added by an override (--set) rather than the file
+  // A transform containing <lookat>: its target and up, carried through the operations after it (the
+  // viewer orbits about the target the scene names).
+  bool hasLookAt = false;
+  Vec3 lookAtTarget{0.f}, lookAtUp{0.f, 1.f, 0.f};
+  int line = 0;  // 0 when added by an override (--set) rather than the file
   mutable bool used = false;
   bool fromOverride = false;  // added by set() (not in the file): its type was inferred from the text
 

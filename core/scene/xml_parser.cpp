@@ -125,7 +125,7 @@ struct Parser {
     if (p.name.empty()) throw Error(file, p.line, elementDesc(e) + ": expected a non-empty name");
     if (type == PropertyType::Transform) {
       p.type = type;
-      p.matrix = parseTransformElement(e, file);
+      p.matrix = parseTransformElement(e, file, &p);
     } else {
       if (e.FirstChildElement())
         throw Error(file, lineOf(*e.FirstChildElement()),
@@ -262,8 +262,12 @@ glm::mat4 lookAtMatrix(const Vec3& origin, const Vec3& target, const Vec3& up, c
   return cameraToWorld(origin, left, newUp, dir);
 }
 
-glm::mat4 parseTransformElement(const tinyxml2::XMLElement& element, const std::string& file) {
+glm::mat4 parseTransformElement(const tinyxml2::XMLElement& element, const std::string& file,
+                                Property* lookat) {
   glm::mat4 m(1.f);
+  glm::mat4 afterLookAt(1.f);  // the operations after the last <lookat>
+  Vec3 target(0.f), up(0.f, 1.f, 0.f);
+  bool hasLookAt = false;
   for (const XMLElement* c = element.FirstChildElement(); c; c = c->NextSiblingElement()) {
     std::string_view op = c->Name();
     glm::mat4 t(1.f);
@@ -285,14 +289,25 @@ glm::mat4 parseTransformElement(const tinyxml2::XMLElement& element, const std::
                     "<matrix>: expected 16 numbers (row-major), got \"" + std::string(text) + "\"");
       t = p.matrix;
     } else if (op == "lookat") {
-      t = lookAtMatrix(vecAttr(*c, "origin", file), vecAttr(*c, "target", file), vecAttr(*c, "up", file),
-                       file, lineOf(*c));
+      target = vecAttr(*c, "target", file);
+      up = vecAttr(*c, "up", file);
+      t = lookAtMatrix(vecAttr(*c, "origin", file), target, up, file, lineOf(*c));
+      hasLookAt = true;
+      afterLookAt = glm::mat4(1.f);
+      m = t * m;
+      continue;
     } else {
       throw Error(file, lineOf(*c),
                   "unknown transform operation <" + std::string(op) +
                       ">: expected translate, scale, rotate, matrix or lookat");
     }
     m = t * m;
+    afterLookAt = t * afterLookAt;
+  }
+  if (lookat && hasLookAt) {
+    lookat->hasLookAt = true;
+    lookat->lookAtTarget = Vec3(afterLookAt * glm::vec4(target, 1.f));
+    lookat->lookAtUp = Vec3(afterLookAt * glm::vec4(up, 0.f));
   }
   return m;
 }

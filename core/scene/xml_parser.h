@@ -46,7 +46,10 @@ std::string resolveScenePath(const SceneNode& node, const std::string& relative)
 
 // Builds the matrix of a <transform> element (children applied in document order, each new
 // operation left-multiplying: M = op * M). Errors carry `file` and the element's line.
-glm::mat4 parseTransformElement(const tinyxml2::XMLElement& element, const std::string& file);
+struct Property;
+// `lookat` (optional) receives the <lookat> target and up, when there is one.
+glm::mat4 parseTransformElement(const tinyxml2::XMLElement& element, const std::string& file,
+                                Property* lookat = nullptr);
 
 // Nori's lookAt: camera-to-world matrix with columns (left, up, dir, origin). Throws Error(file, line)
 // when target == origin or up is parallel to the viewing direction.
