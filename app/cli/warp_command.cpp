@@ -8,7 +8,9 @@
 #include <vector>
 
 #include "app/cli/commands.h"
+#include "app/cli/option_checks.h"
 #include "core/math/error.h"
+#include "core/math/float_util.h"
 #include "core/sampling/chi2.h"
 #include "core/sampling/rng.h"
 #include "core/sampling/warp.h"
@@ -60,11 +62,24 @@ std::string number(double v) {
   return buf;
 }
 
+// Enough digits to show why a value failed a float check (0.99999999999 is not "1").
+std::string preciseNumber(double v) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
 float defaultParam(WarpType type) {
   return type == WarpType::Beckmann ? 0.2f : 0.5f;
 }
 
-// Validates the parameter of `type` (throws penumbra::Error -> exit code 2) and returns it as float.
+// Beckmann roughness range in which the float warp and its pdf stay accurate enough for the
+// chi-square test at the default resolution (outside it a correct warp is rejected): alpha^2 and
+// 1 / (pi alpha^2) lose precision or leave float's range.
+constexpr float kBeckmannAlphaMin = 1e-6f, kBeckmannAlphaMax = 1e3f;
+
+// Validates the parameter of `type` as the float the warp will use (throws penumbra::Error -> exit
+// code 2) and returns it.
 float checkedParam(WarpType type, bool given, double value, const char* option) {
   if (!warpHasParameter(type)) {
     if (given)
@@ -72,13 +87,15 @@ float checkedParam(WarpType type, bool given, double value, const char* option) 
     return 0.f;
   }
   if (!given) return defaultParam(type);
-  if (type == WarpType::UniformCone && !(value >= -1.0 && value < 1.0))
-    throw Error(std::string("uniform-cone: ") + option + " is cos(theta_max) and must be in [-1, 1), got " +
-                number(value));
-  if (type == WarpType::Beckmann && !(value > 0.0 && std::isfinite(value)))
-    throw Error(std::string("beckmann: ") + option + " is the roughness alpha and must be > 0, got " +
-                number(value));
-  return static_cast<float>(value);
+  const float used = toFloatSaturating(value);
+  if (type == WarpType::UniformCone && !(used >= -1.f && used < 1.f))
+    throw Error(std::string("uniform-cone: ") + option +
+                " is cos(theta_max) and must be in [-1, 1) as a float " + "(at most 0.99999994), got " +
+                preciseNumber(value) + (value < 1.0 && used == 1.f ? " (rounds to 1 as a float)" : ""));
+  if (type == WarpType::Beckmann && !(used >= kBeckmannAlphaMin && used <= kBeckmannAlphaMax))
+    throw Error(std::string("beckmann: ") + option + " is the roughness alpha and must be in [" +
+                number(kBeckmannAlphaMin) + ", " + number(kBeckmannAlphaMax) + "], got " + number(value));
+  return used;
 }
 
 // A deliberately wrong pdf for each warp (for --mismatch): the test must reject the pair.
@@ -241,15 +258,16 @@ void addWarpCommand(CLI::App& app, int& exitCode, WarpGuiRunner gui) {
                   "uniform-cone: cos(theta_max) in [-1, 1) (default 0.5); beckmann: alpha > 0 (default 0.2)");
   cmd->add_option("--samples", args->samples, "Number of samples for the test")
       ->capture_default_str()
-      ->check(CLI::Range(uint64_t{100}, uint64_t{1'000'000'000}));
+      ->check(unsignedInteger() & CLI::Range(uint64_t{100}, uint64_t{1'000'000'000}));
   cmd->add_option("--res", args->res,
                   "Histogram resolution (2-D: res x res; sphere: 2res x res in (phi, cos theta))")
       ->capture_default_str()
       ->check(CLI::Range(2, 1000));
-  cmd->add_option("--seed", args->seed, "Random seed")->capture_default_str();
+  cmd->add_option("--seed", args->seed, "Random seed")->capture_default_str()->check(unsignedInteger());
   auto* all =
       cmd->add_flag("--all", args->all, "Test every warp (several parameters), Sidak-corrected, as a table");
-  auto* dump = cmd->add_option("--dump", args->dump, "Write N warped samples to stdout as 'x y z' lines");
+  auto* dump = cmd->add_option("--dump", args->dump, "Write N warped samples to stdout as 'x y z' lines")
+                   ->check(unsignedInteger(1'000'000'000));
   auto* pdf = cmd->add_flag("--pdf", args->pdf, "Read 'x y z' lines from stdin, write the pdf of each");
   auto* pdfOf = cmd->add_option("--pdf-of", args->pdfOf, "Judge the samples by the pdf of another warp TYPE");
   cmd->add_option("--pdf-param", args->pdfParam, "Parameter of the --pdf-of warp")->needs(pdfOf);

@@ -14,6 +14,7 @@
 
 #include "core/image/atomic_file.h"
 #include "core/image/image_io.h"
+#include "core/math/bounded_read.h"
 #include "core/math/error.h"
 
 namespace penumbra {
@@ -81,12 +82,19 @@ void writeExr(const std::string& path, const Image& image, const ImageMetadata& 
 }
 
 Image readExr(const std::string& path, ImageMetadata* metadata) {
+  checkRegularFile(path, kMaxImageFileBytes, "EXR file");
   try {
     Imf::InputFile file(path.c_str());
     const Imf::Header& header = file.header();
     const Imath::Box2i dw = header.dataWindow();
-    const int width = dw.max.x - dw.min.x + 1, height = dw.max.y - dw.min.y + 1;
-    if (width <= 0 || height <= 0) throw Error(path, 0, "EXR has an empty data window");
+    // In 64 bits: a corrupt window's max - min overflows int.
+    const int64_t w64 = int64_t(dw.max.x) - dw.min.x + 1, h64 = int64_t(dw.max.y) - dw.min.y + 1;
+    if (w64 <= 0 || h64 <= 0) throw Error(path, 0, "EXR has an empty data window");
+    if (w64 * h64 > kMaxReadPixels)
+      throw Error(path, 0,
+                  "EXR data window " + std::to_string(w64) + "x" + std::to_string(h64) + " is larger than " +
+                      std::to_string(kMaxReadPixels) + " pixels");
+    const int width = int(w64), height = int(h64);
 
     const Imf::ChannelList& channels = header.channels();
     const bool hasR = channels.findChannel("R"), hasG = channels.findChannel("G"),
@@ -129,6 +137,7 @@ Image readExr(const std::string& path, ImageMetadata* metadata) {
 }
 
 ImageMetadata readExrMetadata(const std::string& path) {
+  checkRegularFile(path, kMaxImageFileBytes, "EXR file");
   try {
     Imf::InputFile file(path.c_str());
     return stringAttributes(file.header());

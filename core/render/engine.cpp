@@ -355,7 +355,7 @@ void Engine::workerLoop(int /*workerIndex*/, bool preview) {
   for (;;) {
     uint64_t bad = 0;
     for (int y; !cancel_.load(std::memory_order_relaxed) && (y = nextRow_.fetch_add(1)) < height;) {
-      renderRow.row(y, pass, sampler, film_, bad);
+      renderRow.row(y, pass, sampler, film_, bad, cancel_);
       // This worker owns row y until the pass ends: resolve it now, from sums still in cache.
       if (resolveMean) film_.resolveMean(pass + 1, pendingMean_, y, y + 1);
       if (resolveError) film_.resolveStandardError(pass + 1, pendingError_, y, y + 1);

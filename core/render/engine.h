@@ -1,6 +1,6 @@
 // Progressive renderer: whole-image passes of one sample per pixel on a pool of worker threads.
 // Pass p uses sample index p in every pixel, so the image depends only on (scene, settings, seed),
-// never on thread count or scheduling. Cancellation takes effect within one image row.
+// never on thread count or scheduling. Cancellation takes effect within one pixel (its samples).
 #pragma once
 
 #include <atomic>
