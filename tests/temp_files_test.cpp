@@ -20,10 +20,12 @@ TEST(TempFiles, TestsRemoveWhatTheyCreateInTheTemporaryDirectory) {
   // Suites that write into the temporary directory (and are quick).
   const std::string filter =
       "ObjLoader.*:AtomicFile*.*:BoundedRead*.*:ImageIo*.*:ViewerController.*:WarpInspectorCli.*:"
-      "WarpInspectorOffscreen.*:CheckCli.AFailingCaseExitsWithOne:Reference.CacheRoundTripAndMask";
+      "WarpInspectorOffscreen.*:CheckCli.AFailingCaseExitsWithOne:Reference.CacheRoundTripAndMask"
+      // skipped as root; a skip in the child's output would make ctest report this test as skipped
+      ":-AtomicFileTest.ReadOnlyDirectoryLeavesOldFileIntact";
   penumbra::test::CommandResult r = penumbra::test::runCommand("TMPDIR='" + tmp.string() + "' '" + self +
                                                                "' --gtest_filter='" + filter + "'");
-  EXPECT_EQ(r.exitCode, 0) << r.out;
+  EXPECT_EQ(r.exitCode, 0) << r.out.substr(r.out.size() > 4000 ? r.out.size() - 4000 : 0);
   std::string left;
   for (const auto& e : fs::directory_iterator(tmp)) left += " " + e.path().filename().string();
   EXPECT_TRUE(left.empty()) << "left in TMPDIR:" << left;
