@@ -37,7 +37,7 @@ class RenderCli : public test::TempDirTest {
   CommandResult interrupted(const std::string& args, int interrupts = 1, double afterSeconds = 2) {
     std::string kills;
     for (int i = 0; i < interrupts; ++i) kills += "kill -INT $pid; ";
-    return test::runCommand("'" + kBinary + "' render " + args + " & pid=$!; sleep " +
+    return test::runCommand("'" + kBinary + "' render " + args + " 2>&1 & pid=$!; sleep " +
                             std::to_string(afterSeconds) + "; " + kills +
                             "( sleep 60; kill -KILL $pid ) >/dev/null 2>&1 & guard=$!; wait $pid; rc=$?; "
                             "kill $guard 2>/dev/null; echo rc=$rc");
