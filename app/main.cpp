@@ -2,6 +2,7 @@
 // `penumbra-offscreen` (OSMesa); see app/cli/view_command.cpp.
 #include <cstdio>
 #include <exception>
+#include <new>
 
 #include "app/cli/commands.h"
 #include "core/math/error.h"
@@ -31,6 +32,10 @@ int main(int argc, char** argv) {
     return rc == 0 ? 0 : 2;  // bad arguments are exit code 2, like bad input files
   } catch (const penumbra::Error& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
+    return 2;
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr,
+                 "error: out of memory (a render's size is checked first; this was something else)\n");
     return 2;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s\n", e.what());

@@ -19,7 +19,7 @@
 
 #include "app/net/fake_tev.h"
 #include "core/image/image_io.h"
-#include "core/image/temp_dir_fixture.h"
+#include "core/math/temp_dir_fixture.h"
 #include "tests/run_command.h"
 
 namespace penumbra {

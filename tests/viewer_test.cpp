@@ -25,9 +25,13 @@ const char* kSets =
     "--set camera.width=96 --set camera.height=72 --set sampler.sampleCount=4 --set sampler.seed=3";
 
 std::string tempDir() {
-  fs::path d = fs::temp_directory_path() / ("penumbra-viewer-test-" + std::to_string(::getpid()));
-  fs::create_directories(d);
-  return d.string();
+  // One directory per test process, removed when the process exits.
+  static const struct Dir {
+    fs::path path = fs::temp_directory_path() / ("penumbra-viewer-test-" + std::to_string(::getpid()));
+    ~Dir() { fs::remove_all(path); }
+  } dir;
+  fs::create_directories(dir.path);
+  return dir.path.string();
 }
 
 // The built-in scene as a file, so `penumbra render` (which needs a path) renders the same scene.

@@ -25,9 +25,14 @@ using namespace penumbra;
 namespace {
 
 std::string tempDir() {
-  fs::path d = fs::temp_directory_path() / ("penumbra-warp-inspector-test-" + std::to_string(::getpid()));
-  fs::create_directories(d);
-  return d.string();
+  // One directory per test process, removed when the process exits.
+  static const struct Dir {
+    fs::path path =
+        fs::temp_directory_path() / ("penumbra-warp-inspector-test-" + std::to_string(::getpid()));
+    ~Dir() { fs::remove_all(path); }
+  } dir;
+  fs::create_directories(dir.path);
+  return dir.path.string();
 }
 
 using RunResult = test::CommandResult;

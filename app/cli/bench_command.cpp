@@ -11,6 +11,7 @@
 
 #include "app/cli/commands.h"
 #include "app/cli/cpu_usage.h"
+#include "app/cli/option_checks.h"
 #include "app/cli/scene_options.h"
 #include "core/analysis/order_statistics.h"
 #include "core/render/engine.h"
@@ -160,7 +161,7 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("--ao-scene", o->aoScene,
                   "Scene for the AO benchmark (default: scenes/standin/rock-ao.xml)");
   cmd->add_option("--seconds", o->seconds, "Length of each timed run")
-      ->check(CLI::PositiveNumber)
+      ->check(finitePositiveNumber())
       ->capture_default_str();
   cmd->add_option("--repeats", o->repeats, "Timed runs per figure (the median is reported)")
       ->check(CLI::Range(1, 100))

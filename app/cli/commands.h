@@ -1,5 +1,6 @@
 // Each penumbra subcommand lives in its own file and registers itself on the top-level CLI11 app.
-// A command's callback stores its process exit code in `exitCode` (0 ok, 1 check failed, 2 bad input).
+// A command's callback stores its process exit code in `exitCode` (0 ok, 1 check failed, 2 bad input,
+// 130 interrupted by Ctrl-C after writing what was complete).
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -10,6 +11,12 @@
 #include "core/sampling/warp.h"
 
 namespace penumbra::cli {
+
+// Process exit codes (README "Exit codes").
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitCheckFailed = 1;
+inline constexpr int kExitBadInput = 2;
+inline constexpr int kExitInterrupted = 130;  // 128 + SIGINT, as shells report it
 
 // `penumbra warp --gui` (the warp inspector) needs GL: the executables pass runWarpGui, which lives
 // in app/cli/warp_gui_command.cpp with the viewer; without it --gui reports that it is unavailable.

@@ -5,6 +5,7 @@
 #include "app/cli/commands.h"
 #include "app/cli/convergence_report.h"
 #include "app/cli/display_server_option.h"
+#include "app/cli/option_checks.h"
 #include "app/cli/scene_options.h"
 #include "core/analysis/convergence.h"
 #include "core/math/error.h"
@@ -94,7 +95,7 @@ void addConvergeCommand(CLI::App& app, int& exitCode) {
       "--strategies", opts->strategies,
       "all, or a comma-separated list of the scene integrator's strategies (" + strategyNamesHelp() + ")");
   cmd->add_option("--time", opts->seconds, "Seconds per strategy (error against time)")
-      ->check(CLI::PositiveNumber);
+      ->check(finitePositiveNumber());
   cmd->add_option("--spp", opts->spp, "Samples per pixel per strategy (error against samples)")
       ->check(CLI::Range(1u, 1u << 24));
   cmd->add_option(
@@ -107,7 +108,7 @@ void addConvergeCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("-o,--output", opts->outDir, "Output directory")->required();
   cmd->add_option("--threads", opts->threads, "Worker threads (default: all cores)")
       ->check(CLI::Range(1, 1024));
-  cmd->add_option("--seed", opts->seed, "Random seed");
+  cmd->add_option("--seed", opts->seed, "Random seed")->check(unsignedInteger());
   cmd->add_option("--time-axis", opts->timeAxis,
                   "x axis of convergence.png in time mode: wall (default) or cpu (the render's CPU seconds, "
                   "stable when other processes compete for the cores)")

@@ -4,23 +4,39 @@
 #include <chrono>
 #include <csignal>
 #include <cstdio>
+#include <cstring>
+#include <filesystem>
 #include <thread>
 
 #include "app/cli/commands.h"
 #include "app/cli/display_server_option.h"
+#include "app/cli/option_checks.h"
 #include "app/cli/scene_options.h"
 #include "core/analysis/reference.h"
+#include "core/image/atomic_file.h"
 #include "core/image/image_io.h"
 #include "core/math/error.h"
 #include "core/render/engine.h"
+#include "core/render/memory_estimate.h"
 
 namespace penumbra::cli {
 
 namespace {
 
-std::atomic<bool> gInterrupted{false};
+// Ctrl-C: the first abandons the running pass (the engine checks per pixel) and writes the passes
+// completed so far; a second one, while that is being written, exits at once without writing.
+// Handler state is only lock-free atomics and preformatted text (async-signal-safe).
+std::atomic<int> gInterrupts{0};
+std::atomic<bool> gWritten{false};
+char gNotWrittenMessage[1024] = "\ninterrupted again: stopped at once, nothing written\n";
+char gWrittenMessage[1024] = "\ninterrupted again: stopped at once, the image was already written\n";
+
 extern "C" void onInterrupt(int) {
-  gInterrupted = true;
+  if (gInterrupts.fetch_add(1) == 0) return;
+  const char* m = gWritten.load() ? gWrittenMessage : gNotWrittenMessage;
+  ssize_t ignored = ::write(STDERR_FILENO, m, std::strlen(m));
+  (void)ignored;
+  ::_exit(kExitInterrupted);
 }
 
 struct RenderOptions {
@@ -61,13 +77,25 @@ int runRender(const RenderOptions& o) {
     if (output.empty()) output = referenceCachePath(loaded);  // where `penumbra converge` looks for it
   }
   if (output.empty()) throw Error("render: -o/--output is required (optional only with --reference)");
+  // Everything that can fail after rendering is checked before the first sample.
+  imageFormatFromPath(output);
+  checkOutputPath(output);
+  if (o.reference) checkOutputPath(standardErrorPath(output));
+  checkRenderFitsInMemory(job->settings.camera.width, job->settings.camera.height,
+                          loaded.path.empty() ? "render" : loaded.path);
 
   RenderLimits limits;
   limits.seconds = o.seconds;
   uint32_t defaultSpp = o.reference ? 4096u : job->settings.sampleCount;
   limits.targetSpp = o.spp > 0 ? o.spp : (o.seconds > 0 ? 0 : defaultSpp);
 
-  gInterrupted = false;
+  std::snprintf(gNotWrittenMessage, sizeof gNotWrittenMessage,
+                "\ninterrupted again: stopped at once; %s not written (an existing file is unchanged)\n",
+                output.c_str());
+  std::snprintf(gWrittenMessage, sizeof gWrittenMessage,
+                "\ninterrupted again: stopped at once; %s had been written\n", output.c_str());
+  gInterrupts = 0;
+  gWritten = false;
   auto previous = std::signal(SIGINT, onInterrupt);
   Engine engine;
   engine.start(job, limits, o.threads);
@@ -75,17 +103,53 @@ int runRender(const RenderOptions& o) {
   const std::string tevName = tevImageName(loaded.path, job->settings.integrator);
   if (tev) tev->follow(engine, tevName);
   bool tty = isatty(STDERR_FILENO);
+  bool interrupted = false;
+  auto lastRequest = std::chrono::steady_clock::now() - std::chrono::seconds(1);
   while (!engine.progress().finished) {
-    if (gInterrupted) engine.requestStop();
+    // A pass boundary at most about half a second old stays published, so an interrupted render can
+    // write whole passes; a one-pass request resolves that pass row by row and holds up no worker.
+    if (!tev && std::chrono::steady_clock::now() - lastRequest >= std::chrono::milliseconds(500)) {
+      engine.requestNextPassSnapshot(o.reference);
+      lastRequest = std::chrono::steady_clock::now();
+    }
+    if (gInterrupts > 0) {
+      engine.cancel();
+      interrupted = true;
+      break;
+    }
     if (tty) drawProgress(engine.progress(), limits.targetSpp, limits.seconds);
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   }
   engine.wait();
-  std::signal(SIGINT, previous);
   RenderProgress p = engine.progress();
   if (tty) {
     drawProgress(p, limits.targetSpp, limits.seconds);
     std::fprintf(stderr, "\n");
+  }
+  // An interrupted render writes the last completed pass boundary: the film also holds part of the
+  // abandoned pass.
+  FilmSnapshot last;
+  if (interrupted) {
+    if (tev) {
+      // The streamer was the engine's only snapshot reader: take back what it read, then anything newer.
+      last = tev->stopFollowing();
+      FilmSnapshot newer;
+      if (engine.takeSnapshot(newer) && newer.spp > last.spp) last = std::move(newer);
+    } else {
+      engine.latestSnapshot(last);
+    }
+    p.spp = last.spp;
+    p.seconds = last.seconds;
+    p.samples =
+        uint64_t(last.spp) * uint64_t(job->settings.camera.width) * uint64_t(job->settings.camera.height);
+    const bool complete = last.spp > 0 && (!o.reference || last.standardError.width > 0);
+    if (!complete) {
+      std::printf("%s: interrupted before %s: nothing written%s\n", output.c_str(),
+                  last.spp == 0 ? "the first pass completed" : "a pass with its standard error completed",
+                  std::filesystem::exists(output) ? " (the existing file is unchanged)" : "");
+      std::signal(SIGINT, previous);
+      return kExitInterrupted;
+    }
   }
 
   ImageMetadata meta;
@@ -94,25 +158,34 @@ int runRender(const RenderOptions& o) {
   meta.add("seconds", std::to_string(p.seconds));
   meta.add("scene", loaded.path.empty() ? "<built-in>" : loaded.path);
   meta.add("badSamples", std::to_string(p.badSamples));
+  meta.add("interrupted", interrupted ? "true" : "false");
   if (o.reference) {
     meta.add("sceneHash", sceneContentHash(loaded.desc));
     Reference ref{
-        engine.film().mean(p.spp), engine.film().standardError(p.spp),
+        interrupted ? last.mean : engine.film().mean(p.spp),
+        interrupted ? last.standardError : engine.film().standardError(p.spp),
         "rendered " + strategyLabel(job->settings.integrator) + " " + std::to_string(p.spp) + " spp"};
     writeReference(output, ref, meta);  // + <output>.stderr.exr
   } else {
-    writeImage(output, engine.film().mean(p.spp), meta);
+    writeImage(output, interrupted ? last.mean : engine.film().mean(p.spp), meta);
   }
+  gWritten = true;
 
   const auto& cam = job->settings.camera;
   std::printf("%s: %dx%d, %u spp, %.3f s, %.2f M samples/s, %llu NaN/Inf/negative, %s, %d threads%s\n",
               output.c_str(), cam.width, cam.height, p.spp, p.seconds,
               p.seconds > 0 ? double(p.samples) / p.seconds * 1e-6 : 0.0, (unsigned long long)p.badSamples,
               strategyLabel(job->settings.integrator).c_str(), engine.threadCount(),
-              gInterrupted ? " (interrupted)" : "");
+              interrupted ? " (interrupted: the completed passes were written)" : "");
   std::fflush(stdout);
-  if (tev) tev->finish(net::TevFrame{tevName, engine.film().mean(p.spp), engine.film().standardError(p.spp)});
-  return 0;
+  if (tev) {
+    if (interrupted)
+      tev->finish(net::TevFrame{tevName, last.mean, last.standardError});
+    else
+      tev->finish(net::TevFrame{tevName, engine.film().mean(p.spp), engine.film().standardError(p.spp)});
+  }
+  std::signal(SIGINT, previous);
+  return interrupted ? kExitInterrupted : 0;
 }
 
 }  // namespace
@@ -134,7 +207,7 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("--spp", opts->spp, "Samples per pixel (default: the scene's sampleCount)")
       ->check(CLI::Range(1u, 1u << 30));
   cmd->add_option("--time", opts->seconds, "Render for this many seconds (whole passes)")
-      ->check(CLI::PositiveNumber);
+      ->check(finitePositiveNumber());
   cmd->add_option("--seed", opts->seed, "Random seed (default: the scene's, else 0)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--threads", opts->threads, "Worker threads (default: all cores)")

@@ -8,7 +8,9 @@
 #include <vector>
 
 #include "app/cli/commands.h"
+#include "app/cli/option_checks.h"
 #include "core/math/error.h"
+#include "core/math/float_util.h"
 #include "core/sampling/chi2.h"
 #include "core/sampling/rng.h"
 #include "core/sampling/warp.h"
@@ -199,15 +201,16 @@ void addWarpCommand(CLI::App& app, int& exitCode, WarpGuiRunner gui) {
                   "uniform-cone: cos(theta_max) in [-1, 1) (default 0.5); beckmann: alpha > 0 (default 0.2)");
   cmd->add_option("--samples", args->samples, "Number of samples for the test")
       ->capture_default_str()
-      ->check(CLI::Range(uint64_t{100}, uint64_t{1'000'000'000}));
+      ->check(unsignedInteger() & CLI::Range(uint64_t{100}, uint64_t{1'000'000'000}));
   cmd->add_option("--res", args->res,
                   "Histogram resolution (2-D: res x res; sphere: 2res x res in (phi, cos theta))")
       ->capture_default_str()
       ->check(CLI::Range(2, 1000));
-  cmd->add_option("--seed", args->seed, "Random seed")->capture_default_str();
+  cmd->add_option("--seed", args->seed, "Random seed")->capture_default_str()->check(unsignedInteger());
   auto* all =
       cmd->add_flag("--all", args->all, "Test every warp (several parameters), Sidak-corrected, as a table");
-  auto* dump = cmd->add_option("--dump", args->dump, "Write N warped samples to stdout as 'x y z' lines");
+  auto* dump = cmd->add_option("--dump", args->dump, "Write N warped samples to stdout as 'x y z' lines")
+                   ->check(unsignedInteger(1'000'000'000));
   auto* pdf = cmd->add_flag("--pdf", args->pdf, "Read 'x y z' lines from stdin, write the pdf of each");
   auto* pdfOf = cmd->add_option("--pdf-of", args->pdfOf, "Judge the samples by the pdf of another warp TYPE");
   cmd->add_option("--pdf-param", args->pdfParam, "Parameter of the --pdf-of warp")->needs(pdfOf);

@@ -52,6 +52,16 @@ void TevStreamer::follow(Engine& engine, std::string name) {
   cv_.notify_all();
 }
 
+FilmSnapshot TevStreamer::stopFollowing() {
+  std::unique_lock lk(mutex_);
+  engine_ = nullptr;
+  cv_.notify_all();
+  const auto deadline = Clock::now() + std::chrono::seconds(10);
+  while (busy_ && !stop_ && Clock::now() < deadline) cv_.wait_for(lk, std::chrono::milliseconds(10));
+  if (busy_) return FilmSnapshot();  // the sending thread may still read snapshot_
+  return std::move(snapshot_);
+}
+
 void TevStreamer::offer(const std::string& name, const FilmSnapshot& snapshot) {
   std::lock_guard lk(mutex_);
   if (failed_ || stop_ || busy_ || pending_ || Clock::now() < nextDue_) return;

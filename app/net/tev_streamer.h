@@ -58,6 +58,9 @@ class TevStreamer {
   // errorEvery-th) and sends it as `name`, with the stderr layer. The streamer becomes the engine's only
   // snapshot reader (it uses takeSnapshot); call finish() before the engine is destroyed.
   void follow(Engine& engine, std::string name);
+  // Stops following the engine (after an update in progress, at most about 10 s) and hands back the
+  // last snapshot taken from it (empty, spp 0, if none): what the engine's only reader has seen.
+  FilmSnapshot stopFollowing();
   // A snapshot someone else reads (the viewer's), as R, G, B. Copied and sent only when an update is
   // due and it is newer than the last one taken, so it is cheap to call on every poll.
   void offer(const std::string& name, const FilmSnapshot& snapshot);

@@ -1,8 +1,10 @@
 #include "core/image/atomic_file.h"
-#include "core/image/temp_dir_fixture.h"
+#include "core/math/temp_dir_fixture.h"
 
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 #include <filesystem>
 #include <fstream>
@@ -111,6 +113,57 @@ TEST_F(AtomicFileTest, ReadOnlyDirectoryLeavesOldFileIntact) {
   EXPECT_THROW(writeImage(file("ro.pfm"), smallImage(2.f)), Error);
   fs::permissions(dir, fs::perms::owner_all);
   EXPECT_EQ(readFile(file("ro.pfm")), before);
+}
+
+TEST_F(AtomicFileTest, ReadOnlyExistingFileIsRefusedAndKept) {
+  writeImage(file("ro.pfm"), smallImage(0.5f));
+  const std::string before = readFile(file("ro.pfm"));
+  fs::permissions(file("ro.pfm"), fs::perms::owner_read | fs::perms::group_read | fs::perms::others_read);
+  try {
+    writeImage(file("ro.pfm"), smallImage(2.f));
+    FAIL() << "a read-only output was replaced";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("read-only"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(readFile(file("ro.pfm")), before);
+  struct stat st;
+  ASSERT_EQ(::stat(file("ro.pfm").c_str(), &st), 0);
+  EXPECT_EQ(st.st_mode & 0777, 0444u);
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);
+}
+
+TEST_F(AtomicFileTest, OutputsThatCannotBeWrittenAreRefusedBeforeAnyWork) {
+  fs::create_directories(dir / "sub.exr");
+  EXPECT_THROW(checkOutputPath(file("sub.exr")), Error);
+  EXPECT_THROW(checkOutputPath(file("missing/a.exr")), Error);
+  EXPECT_THROW(checkOutputPath("/proc/penumbra-test.exr"), Error);
+  EXPECT_THROW(checkOutputPath("/dev/null"), Error);  // exists, not a regular file
+  EXPECT_NO_THROW(checkOutputPath(file("fine.exr")));
+  EXPECT_FALSE(fs::exists(file("fine.exr")));  // the probe leaves nothing behind
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);
+}
+
+// A process id that is not running: a child that has exited and been reaped.
+long deadPid() {
+  const pid_t child = ::fork();
+  if (child == 0) ::_exit(0);
+  ::waitpid(child, nullptr, 0);
+  return static_cast<long>(child);
+}
+
+TEST_F(AtomicFileTest, StaleTemporariesOfDeadProcessesAreRemovedOnTheNextWrite) {
+  const std::string target = file("out.pfm");
+  const std::string dead = target + ".tmp-" + std::to_string(deadPid()) + "-3";
+  const std::string live = target + ".tmp-" + std::to_string(static_cast<long>(::getppid())) + "-0";
+  const std::string other = file("other.pfm") + ".tmp-" + std::to_string(deadPid()) + "-0";
+  const std::string odd = target + ".tmp-notapid";
+  for (const std::string& p : {dead, live, other, odd}) std::ofstream(p) << "partial";
+  writeImage(target, smallImage(1.f));
+  EXPECT_FALSE(fs::exists(dead));
+  EXPECT_TRUE(fs::exists(live));   // its writer may still be running
+  EXPECT_TRUE(fs::exists(other));  // another output's
+  EXPECT_TRUE(fs::exists(odd));    // not a name this writer makes
+  EXPECT_TRUE(fs::exists(target));
 }
 
 }  // namespace

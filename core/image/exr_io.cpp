@@ -9,11 +9,14 @@
 #include <ImfStringAttribute.h>
 #include <half.h>
 
+#include <cstdint>
+#include <cstdio>
 #include <exception>
 #include <vector>
 
 #include "core/image/atomic_file.h"
 #include "core/image/image_io.h"
+#include "core/math/bounded_read.h"
 #include "core/math/error.h"
 
 namespace penumbra {
@@ -80,13 +83,146 @@ void writeExr(const std::string& path, const Image& image, const ImageMetadata& 
   });
 }
 
+namespace {
+
+// Bytes OpenEXR 3.1 reads for a value of each fixed-size attribute type; 0: variable or unknown
+// (string, vectors, opaque types are read by their declared size; chlist and preview are walked).
+int fixedAttributeSize(const std::string& type) {
+  static const std::pair<const char*, int> kSizes[] = {{"box2i", 16},
+                                                       {"box2f", 16},
+                                                       {"chromaticities", 32},
+                                                       {"compression", 1},
+                                                       {"deepImageState", 1},
+                                                       {"double", 8},
+                                                       {"envmap", 1},
+                                                       {"float", 4},
+                                                       {"int", 4},
+                                                       {"keycode", 28},
+                                                       {"lineOrder", 1},
+                                                       {"m33f", 36},
+                                                       {"m33d", 72},
+                                                       {"m44f", 64},
+                                                       {"m44d", 128},
+                                                       {"rational", 8},
+                                                       {"tiledesc", 9},
+                                                       {"timecode", 8},
+                                                       {"v2i", 8},
+                                                       {"v2f", 8},
+                                                       {"v2d", 16},
+                                                       {"v3i", 12},
+                                                       {"v3f", 12},
+                                                       {"v3d", 24}};
+  for (const auto& [name, size] : kSizes)
+    if (type == name) return size;
+  return 0;
+}
+
+// OpenEXR allocates what a header declares before it can notice that the file is shorter: an
+// attribute size of 3 GB, or a data window whose line-offset table is gigabytes. Walk the header(s)
+// first (magic, version, then name\0 type\0 int32-size value... up to an empty name; multi-part
+// files repeat that until an empty header) and refuse sizes the file cannot hold.
+void checkExrHeader(const std::string& path) {
+  checkRegularFile(path, kMaxImageFileBytes, "EXR file");
+  std::FILE* f = std::fopen(path.c_str(), "rb");
+  if (!f) throw Error(path, 0, "cannot open EXR file");
+  std::fseek(f, 0, SEEK_END);
+  const long fileSize = std::ftell(f);
+  std::fseek(f, 0, SEEK_SET);
+  auto fail = [&](const std::string& why) {
+    std::fclose(f);
+    throw Error(path, 0, "cannot read EXR: " + why);
+  };
+  unsigned char head[8];
+  if (std::fread(head, 1, 8, f) != 8 || head[0] != 0x76 || head[1] != 0x2f || head[2] != 0x31 ||
+      head[3] != 0x01)
+    fail("not an OpenEXR file (bad magic number)");
+  const bool multiPart = head[5] & 0x10;
+  auto readName = [&](std::string& out) {
+    out.clear();
+    for (int c; (c = std::fgetc(f)) != 0;) {
+      if (c == EOF) fail("truncated header");
+      if (out.size() >= 255) fail("header name longer than 255 characters");
+      out += char(c);
+    }
+  };
+  for (int part = 0;; ++part) {
+    std::string name, type;
+    readName(name);
+    if (name.empty()) {
+      if (!multiPart || part > 0) break;  // end of the (single) header, or of the header list
+      fail("empty multi-part header");
+    }
+    for (; !name.empty(); readName(name)) {
+      readName(type);
+      unsigned char sizeBytes[4];
+      if (std::fread(sizeBytes, 1, 4, f) != 4) fail("truncated header");
+      const int32_t size = int32_t(uint32_t(sizeBytes[0]) | uint32_t(sizeBytes[1]) << 8 |
+                                   uint32_t(sizeBytes[2]) << 16 | uint32_t(sizeBytes[3]) << 24);
+      const long start = std::ftell(f), remaining = fileSize - start;
+      if (size < 0 || long(size) > remaining)
+        fail("attribute '" + name + "' declares " + std::to_string(size) + " bytes, the file has " +
+             std::to_string(remaining) + " left");
+      // OpenEXR reads typed values by their type, not by the declared size: where the two disagree
+      // its reading and this walk would part ways, so such files are refused.
+      const int fixed = fixedAttributeSize(type);
+      if (fixed > 0 && size != fixed)
+        fail("attribute '" + name + "' of type " + type + " declares " + std::to_string(size) +
+             " bytes, expected " + std::to_string(fixed));
+      if (type == "chlist") {
+        std::string channel;
+        for (readName(channel); !channel.empty(); readName(channel))
+          if (std::fseek(f, 16, SEEK_CUR) != 0) fail("truncated channel list");
+        if (std::ftell(f) - start != size)
+          fail("channel list '" + name + "' does not match its declared size");
+        continue;
+      }
+      if (type == "preview") {
+        unsigned char wh[8];
+        if (size < 8 || std::fread(wh, 1, 8, f) != 8) fail("truncated preview");
+        const uint64_t w =
+            uint32_t(wh[0]) | uint32_t(wh[1]) << 8 | uint32_t(wh[2]) << 16 | uint32_t(wh[3]) << 24;
+        const uint64_t h =
+            uint32_t(wh[4]) | uint32_t(wh[5]) << 8 | uint32_t(wh[6]) << 16 | uint32_t(wh[7]) << 24;
+        if (8 + 4 * w * h != uint64_t(size)) fail("preview image does not match its declared size");
+        std::fseek(f, size - 8, SEEK_CUR);
+        continue;
+      }
+      if (name == "dataWindow" && type == "box2i") {
+        unsigned char raw[16];
+        if (std::fread(raw, 1, 16, f) != 16) fail("truncated header");
+        int32_t box[4];  // little-endian xMin, yMin, xMax, yMax
+        for (int i = 0; i < 4; ++i)
+          box[i] = int32_t(uint32_t(raw[4 * i]) | uint32_t(raw[4 * i + 1]) << 8 |
+                           uint32_t(raw[4 * i + 2]) << 16 | uint32_t(raw[4 * i + 3]) << 24);
+        const int64_t w = int64_t(box[2]) - box[0] + 1, h = int64_t(box[3]) - box[1] + 1;
+        if (w <= 0 || h <= 0 || w * h > kMaxReadPixels)
+          fail("data window " + std::to_string(w) + "x" + std::to_string(h) + " is empty or larger than " +
+               std::to_string(kMaxReadPixels) + " pixels");
+      } else {
+        std::fseek(f, size, SEEK_CUR);
+      }
+    }
+    if (!multiPart) break;
+  }
+  std::fclose(f);
+}
+
+}  // namespace
+
 Image readExr(const std::string& path, ImageMetadata* metadata) {
+  checkExrHeader(path);
   try {
     Imf::InputFile file(path.c_str());
     const Imf::Header& header = file.header();
     const Imath::Box2i dw = header.dataWindow();
-    const int width = dw.max.x - dw.min.x + 1, height = dw.max.y - dw.min.y + 1;
-    if (width <= 0 || height <= 0) throw Error(path, 0, "EXR has an empty data window");
+    // In 64 bits: a corrupt window's max - min overflows int.
+    const int64_t w64 = int64_t(dw.max.x) - dw.min.x + 1, h64 = int64_t(dw.max.y) - dw.min.y + 1;
+    if (w64 <= 0 || h64 <= 0) throw Error(path, 0, "EXR has an empty data window");
+    if (w64 * h64 > kMaxReadPixels)
+      throw Error(path, 0,
+                  "EXR data window " + std::to_string(w64) + "x" + std::to_string(h64) + " is larger than " +
+                      std::to_string(kMaxReadPixels) + " pixels");
+    const int width = int(w64), height = int(h64);
 
     const Imf::ChannelList& channels = header.channels();
     const bool hasR = channels.findChannel("R"), hasG = channels.findChannel("G"),
@@ -102,17 +238,18 @@ Image readExr(const std::string& path, ImageMetadata* metadata) {
 
     Image image(width, height);
     const std::size_t xStride = 3 * sizeof(float), yStride = xStride * static_cast<std::size_t>(width);
-    // Slices are addressed by absolute data-window coordinates.
-    char* base = reinterpret_cast<char*>(image.rgb.data()) - static_cast<std::ptrdiff_t>(dw.min.x) * xStride -
-                 static_cast<std::ptrdiff_t>(dw.min.y) * yStride;
+    // Slices are addressed by absolute data-window coordinates; Slice::Make offsets the pointer by
+    // the window's origin in integer arithmetic (the same offset as a char* would overflow for an
+    // origin far from zero: undefined behaviour).
+    const float* pixels = image.rgb.data();
     Imf::FrameBuffer fb;
     if (rgb) {
       // Missing colour channels are filled with 0.
-      fb.insert("R", Imf::Slice(Imf::FLOAT, base + 0 * sizeof(float), xStride, yStride, 1, 1, 0.0));
-      fb.insert("G", Imf::Slice(Imf::FLOAT, base + 1 * sizeof(float), xStride, yStride, 1, 1, 0.0));
-      fb.insert("B", Imf::Slice(Imf::FLOAT, base + 2 * sizeof(float), xStride, yStride, 1, 1, 0.0));
+      fb.insert("R", Imf::Slice::Make(Imf::FLOAT, pixels + 0, dw, xStride, yStride, 1, 1, 0.0));
+      fb.insert("G", Imf::Slice::Make(Imf::FLOAT, pixels + 1, dw, xStride, yStride, 1, 1, 0.0));
+      fb.insert("B", Imf::Slice::Make(Imf::FLOAT, pixels + 2, dw, xStride, yStride, 1, 1, 0.0));
     } else {
-      fb.insert("Y", Imf::Slice(Imf::FLOAT, base, xStride, yStride, 1, 1, 0.0));
+      fb.insert("Y", Imf::Slice::Make(Imf::FLOAT, pixels, dw, xStride, yStride, 1, 1, 0.0));
     }
     file.setFrameBuffer(fb);
     file.readPixels(dw.min.y, dw.max.y);
@@ -129,6 +266,7 @@ Image readExr(const std::string& path, ImageMetadata* metadata) {
 }
 
 ImageMetadata readExrMetadata(const std::string& path) {
+  checkExrHeader(path);
   try {
     Imf::InputFile file(path.c_str());
     return stringAttributes(file.header());

@@ -9,6 +9,7 @@
 // replaced file gets default permissions (0666 & ~umask), not the old file's.
 #pragma once
 
+#include <cstdint>
 #include <string>
 
 #include "core/image/image.h"
@@ -16,6 +17,11 @@
 namespace penumbra {
 
 enum class ImageFormat { Exr, Pfm, Png };
+
+// Readers refuse larger images (8192 x 8192; 768 MB as float RGB) and files, before allocating:
+// a corrupt header must not make a few bytes claim gigabytes.
+inline constexpr int64_t kMaxReadPixels = int64_t(1) << 26;
+inline constexpr uint64_t kMaxImageFileBytes = uint64_t(4) << 30;
 // EXR channel type on output: Float (default, lossless) or Half (previews; also used by tests to
 // produce half inputs).
 enum class ExrPixelType { Float, Half };

@@ -1,5 +1,5 @@
 #include "core/image/image_io.h"
-#include "core/image/temp_dir_fixture.h"
+#include "core/math/temp_dir_fixture.h"
 
 #include <gtest/gtest.h>
 #include <png.h>
@@ -242,6 +242,55 @@ TEST(ImageIoReference, ReadsTheAssignmentsReferenceExr) {
     if (img.rgb[i] > 299.f && img.rgb[i + 1] > 299.f && img.rgb[i + 2] > 299.f) ++lightPixels;
   EXPECT_NEAR(maxValue, 300.f, 0.01f) << std::setprecision(9) << maxValue;  // the light
   EXPECT_GT(lightPixels, 0u);
+}
+
+// Headers that declare more than the file holds: OpenEXR would allocate what they declare (a 3 GB
+// attribute from a 400-byte file) before noticing.
+TEST_F(ImageIoTest, ExrHeadersDeclaringMoreThanTheFileHoldsAreRefusedFirst) {
+  // Inputs the fuzzer found: an attribute of 3 GB, and a channel list longer than its declared size
+  // (OpenEXR reads it to its terminator, then takes string bytes as a huge attribute size).
+  const std::string regressions = std::string(PENUMBRA_SOURCE_DIR) + "/fuzz/regressions/";
+  for (const char* name :
+       {"exr-attribute-larger-than-file.exr", "exr-channel-list-longer-than-declared.exr"}) {
+    for (auto read :
+         {+[](const std::string& p) { readExr(p); }, +[](const std::string& p) { readExrMetadata(p); }}) {
+      try {
+        read(regressions + name);
+        FAIL() << "accepted " << name;
+      } catch (const Error& e) {
+        const std::string m = e.what();
+        EXPECT_TRUE(m.find("declares") != std::string::npos ||
+                    m.find("does not match") != std::string::npos ||
+                    m.find("data window") != std::string::npos)
+            << m;
+      }
+    }
+  }
+  // A valid file whose data window is patched to 2^20 x 2^20 pixels.
+  writeImage(file("small.exr"), testImage());
+  std::string bytes = readFile(file("small.exr"));
+  const size_t at = bytes.find(std::string("dataWindow\0box2i\0", 17));
+  ASSERT_NE(at, std::string::npos);
+  const int32_t box[4] = {0, 0, (1 << 20) - 1, (1 << 20) - 1};
+  std::memcpy(&bytes[at + 17 + 4], box, 16);
+  std::ofstream(file("huge.exr"), std::ios::binary) << bytes;
+  try {
+    readExr(file("huge.exr"));
+    FAIL() << "accepted a 2^40-pixel data window";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("data window"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(readExr("/dev/zero"), Error);
+}
+
+// A data window far from the origin (found by the fuzzer): the reader's slice pointers must not be
+// computed by offsetting a pointer that far, which is undefined behaviour (the sanitizer job's UBSan
+// reports it; OpenEXR's Slice::Make offsets in integer arithmetic).
+TEST_F(ImageIoTest, ExrDataWindowFarFromTheOriginIsReadWithoutUndefinedBehaviour) {
+  try {  // an image or an Error, but no undefined behaviour
+    readExr(std::string(PENUMBRA_SOURCE_DIR) + "/fuzz/regressions/exr-data-window-far-from-origin.exr");
+  } catch (const Error&) {
+  }
 }
 
 }  // namespace

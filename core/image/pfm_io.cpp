@@ -14,6 +14,7 @@
 
 #include "core/image/atomic_file.h"
 #include "core/image/image_io.h"
+#include "core/math/bounded_read.h"
 #include "core/math/error.h"
 
 namespace penumbra {
@@ -64,6 +65,7 @@ void writePfm(const std::string& path, const Image& image) {
 }
 
 Image readPfm(const std::string& path) {
+  checkRegularFile(path, kMaxImageFileBytes, "PFM file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(path, 0, std::string("cannot open: ") + std::strerror(errno));
   std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -94,7 +96,7 @@ Image readPfm(const std::string& path) {
   } catch (const std::exception&) {
     throw Error(path, 0, "malformed PFM header");
   }
-  if (width <= 0 || height <= 0 || width > (1 << 20) || height > (1 << 20))
+  if (width <= 0 || height <= 0 || width > (1 << 20) || height > (1 << 20) || width * height > kMaxReadPixels)
     throw Error(path, 0, "bad PFM size " + std::to_string(width) + "x" + std::to_string(height));
   if (scale == 0 || !std::isfinite(scale)) throw Error(path, 0, "bad PFM scale (must be nonzero)");
   // Exactly one whitespace character separates the header from the data.

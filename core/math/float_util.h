@@ -24,6 +24,15 @@ inline double oneMinusSqrtOneMinus(double s2) {
   return s2 / (1.0 + safeSqrt(1.0 - s2));
 }
 
+// double -> float without undefined behaviour: values beyond float's range become +-inf (a plain cast
+// of such a value is undefined, and UBSan's float-cast-overflow reports it); NaN stays NaN.
+inline float toFloatSaturating(double v) {
+  constexpr double kMax = 3.4028234663852886e38;  // FLT_MAX
+  if (v > kMax) return HUGE_VALF;
+  if (v < -kMax) return -HUGE_VALF;
+  return static_cast<float>(v);
+}
+
 inline bool isFinite(const Vec3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }

@@ -169,7 +169,7 @@ void Engine::workerLoop(bool preview) {
   for (;;) {
     uint64_t bad = 0;
     for (int y; !cancel_.load(std::memory_order_relaxed) && (y = nextRow_.fetch_add(1)) < height;) {
-      renderRow.row(y, pass, sampler, film_, bad);
+      renderRow.row(y, pass, sampler, film_, bad, cancel_);
       // This worker owns row y until the pass ends: resolve it now, from sums still in cache.
       if (meanRows) film_.resolveMean(pass + 1, *meanRows, y, y + 1);
       if (errorRows) film_.resolveStandardError(pass + 1, *errorRows, y, y + 1);

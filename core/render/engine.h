@@ -1,6 +1,6 @@
 // Progressive renderer: whole-image passes of one sample per pixel on a pool of worker threads.
 // Pass p uses sample index p in every pixel, so the image depends only on (scene, settings, seed),
-// never on thread count or scheduling. Cancellation takes effect within one image row.
+// never on thread count or scheduling. Cancellation takes effect within one pixel (its samples).
 //
 // The engine schedules passes; its parts keep the rest: WorkerPool (threads and their priority),
 // PassBarrier (the workers' meeting at each pass boundary), RenderClock (time with pauses excluded,

@@ -175,6 +175,24 @@ TEST(Engine, CancelStopsQuicklyAndRestartBeginsAtZero) {
   EXPECT_EQ(engine.progress().spp, 3u);
 }
 
+TEST(Engine, CancelReachesInsideARowOfExpensivePixels) {
+  // One row whose pixels each take 65536 light samples: tens of seconds for the row, milliseconds
+  // per pixel. Cancelling must not wait for the row.
+  auto job = smallJob();
+  job->settings.camera.width = 4096;
+  job->settings.camera.height = 1;
+  job->settings.integrator.samples = 65536;
+  Engine engine;
+  engine.start(job, RenderLimits{}, 1);
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));  // let the worker enter the row
+  auto t0 = std::chrono::steady_clock::now();
+  engine.cancel();
+  double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  EXPECT_LT(seconds, 5.0);  // generous (a pixel takes milliseconds): this catches waiting for the row
+  EXPECT_TRUE(engine.progress().finished);
+  EXPECT_EQ(engine.progress().spp, 0u);
+}
+
 TEST(Engine, RequestStopFinishesTheCurrentPass) {
   auto job = smallJob();
   Engine engine;

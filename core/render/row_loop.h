@@ -4,6 +4,7 @@
 #pragma once
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 #include "core/math/float_util.h"
@@ -18,7 +19,7 @@ RowRenderer rowsFor(const RenderJob& job, Integrator integrator) {
   const Scene* scene = job.scene.get();
   RowRenderer r;
   r.row = [camera, filter, scene, integrator](int y, uint32_t pass, Sampler& sampler, Film& film,
-                                              uint64_t& badSamples) {
+                                              uint64_t& badSamples, const std::atomic<bool>& cancel) {
     const int width = camera.width();
     // Software pipelining: pixel x + 1's stream, filter offset and camera ray (a serial chain of
     // hashes, a table lookup, a square root and a division) are computed before pixel x's Li, so
@@ -35,6 +36,7 @@ RowRenderer rowsFor(const RenderJob& job, Integrator integrator) {
     float weight;
     Ray ray = startPixel(*current, 0, weight);
     for (int x = 0; x < width; ++x) {
+      if (cancel.load(std::memory_order_relaxed)) return;
       float nextWeight = 0.f;
       Ray nextRay;
       if (x + 1 < width) nextRay = startPixel(*upcoming, x + 1, nextWeight);

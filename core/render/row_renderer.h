@@ -4,6 +4,7 @@
 // strategy table (no per-sample dispatch).
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <functional>
 
@@ -15,8 +16,12 @@
 namespace penumbra {
 
 struct RowRenderer {
-  // Row y of pass `pass` into the film.
-  std::function<void(int y, uint32_t pass, Sampler& sampler, Film& film, uint64_t& badSamples)> row;
+  // Row y of pass `pass` into the film. Stops between two pixels once *cancel is set (checked per
+  // pixel, so cancelling takes one pixel's time however many samples the integrator takes); the row
+  // is then incomplete and the pass must be abandoned.
+  std::function<void(int y, uint32_t pass, Sampler& sampler, Film& film, uint64_t& badSamples,
+                     const std::atomic<bool>& cancel)>
+      row;
   // A preview of the rows [y, y + block): one sample (index 0) per block x block square, written to
   // every pixel of the square in `image`.
   std::function<void(int y, int block, Sampler& sampler, Image& image)> preview;

@@ -152,6 +152,7 @@ Chi2Domain chi2DomainFor(WarpType type, float param) {
       // P(theta) = 1 - exp(-tan^2 / alpha^2): 99.9% of the mass has tan^2 <= alpha^2 ln 1000.
       double a = param > 0.f ? param : 1.0;
       double tan2 = a * a * std::log(1000.0);
+      if (!std::isfinite(tan2)) return Chi2Domain::sphere(1.0);                   // the whole hemisphere
       double w = tan2 / (std::sqrt(1.0 + tan2) * (1.0 + std::sqrt(1.0 + tan2)));  // 1 - 1/sqrt(1+tan2)
       return Chi2Domain::sphere(std::min(w, 1.0));
     }
@@ -192,6 +193,14 @@ Chi2Result chi2Run(const Chi2Domain& domain, uint64_t count, Next&& next, const 
                    const Chi2Options& options) {
   Chi2Result r;
   r.alphaEffective = sidakAlpha(options.alpha, options.testCount);
+  // A NaN bound would make every cell's quadrature bisect to its maximum depth: reject it at once.
+  const bool domainValid = domain.kind == Chi2Domain::Kind::Square
+                               ? std::isfinite(domain.lo) && std::isfinite(domain.hi) && domain.lo < domain.hi
+                               : domain.wMax > 0.0 && domain.wMax <= 2.0;
+  if (!domainValid) {
+    r.message = "invalid histogram domain (non-finite or empty bounds)";
+    return r;
+  }
   Grid g = gridFor(domain, std::max(options.resolution, 1));
   r.resX = g.resX;
   r.resY = g.resY;

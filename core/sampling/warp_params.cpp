@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "core/math/error.h"
+#include "core/math/float_util.h"
 
 namespace penumbra {
 
@@ -14,6 +15,18 @@ std::string number(double v) {
   std::snprintf(buf, sizeof buf, "%g", v);
   return buf;
 }
+
+// Enough digits to show why a value failed a float check (0.99999999999 is not "1").
+std::string preciseNumber(double v) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
+// Beckmann roughness range in which the float warp and its pdf stay accurate enough for the
+// chi-square test at the default resolution (outside it a correct warp is rejected): alpha^2 and
+// 1 / (pi alpha^2) lose precision or leave float's range.
+constexpr float kBeckmannAlphaMin = 1e-6f, kBeckmannAlphaMax = 1e3f;
 
 }  // namespace
 
@@ -44,12 +57,16 @@ float checkedWarpParam(WarpType type, bool given, double value, const std::strin
     return 0.f;
   }
   if (!given) return defaultWarpParam(type);
-  if (type == WarpType::UniformCone && !(value >= -1.0 && value < 1.0))
-    throw Error("uniform-cone: " + option + " is cos(theta_max) and must be in [-1, 1), got " +
-                number(value));
-  if (type == WarpType::Beckmann && !(value > 0.0 && std::isfinite(value)))
-    throw Error("beckmann: " + option + " is the roughness alpha and must be > 0, got " + number(value));
-  return static_cast<float>(value);
+  // Checked as the float the warp uses: 0.99999999999 passes "< 1" in double but is 1 as a float.
+  const float used = toFloatSaturating(value);
+  if (type == WarpType::UniformCone && !(used >= -1.f && used < 1.f))
+    throw Error("uniform-cone: " + option + " is cos(theta_max) and must be in [-1, 1) as a float " +
+                "(at most 0.99999994), got " + preciseNumber(value) +
+                (value < 1.0 && used == 1.f ? " (rounds to 1 as a float)" : ""));
+  if (type == WarpType::Beckmann && !(used >= kBeckmannAlphaMin && used <= kBeckmannAlphaMax))
+    throw Error("beckmann: " + option + " is the roughness alpha and must be in [" +
+                number(kBeckmannAlphaMin) + ", " + number(kBeckmannAlphaMax) + "], got " + number(value));
+  return used;
 }
 
 }  // namespace penumbra

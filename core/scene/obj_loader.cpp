@@ -2,6 +2,8 @@
 
 #include <tiny_obj_loader.h>
 
+#include <cerrno>
+#include <climits>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -9,6 +11,7 @@
 #include <sstream>
 #include <unordered_map>
 
+#include "core/math/bounded_read.h"
 #include "core/math/error.h"
 
 namespace penumbra {
@@ -16,6 +19,25 @@ namespace penumbra {
 namespace {
 
 namespace fs = std::filesystem;
+
+// A 5 M-triangle mesh is a few hundred MB of OBJ text.
+constexpr uint64_t kMaxObjFileBytes = uint64_t(4) << 30;
+
+// LF, CRLF and CR-only line endings all become LF, so our line numbers and tinyobjloader's lines
+// are the same lines.
+std::string normaliseLineEndings(const std::string& text) {
+  std::string out;
+  out.reserve(text.size());
+  for (size_t i = 0; i < text.size(); ++i) {
+    if (text[i] != '\r') {
+      out += text[i];
+    } else {
+      out += '\n';
+      if (i + 1 < text.size() && text[i + 1] == '\n') ++i;
+    }
+  }
+  return out;
+}
 
 std::vector<std::string> splitWs(const std::string& s) {
   std::vector<std::string> out;
@@ -37,7 +59,7 @@ bool finiteNumber(const std::string& t) {
 size_t prescan(const std::string& path, std::istream& in) {
   struct FaceRef {
     int line;
-    long v, vn;
+    long v, vt, vn;
   };
   std::vector<FaceRef> forward;  // positive indices checked once all vertices are known
   long nv = 0, nvn = 0, nvt = 0;
@@ -75,8 +97,13 @@ size_t prescan(const std::string& path, std::istream& in) {
           std::string s = t.substr(pos, slash == std::string::npos ? std::string::npos : slash - pos);
           if (!s.empty()) {
             char* e = nullptr;
+            errno = 0;
             long v = std::strtol(s.c_str(), &e, 10);
             if (*e != '\0') throw Error(path, lineNo, "face corner \"" + t + "\": expected integer indices");
+            // tinyobjloader stores indices as int; strtol saturates at LONG_MIN/LONG_MAX.
+            if (errno == ERANGE || v > INT_MAX || v < -INT_MAX)
+              throw Error(path, lineNo,
+                          "face corner \"" + t + "\": " + what[part] + " index " + s + " out of range");
             if (v == 0)
               throw Error(path, lineNo, "face corner \"" + t + "\": index 0 (OBJ indices start at 1)");
             if (v < 0) {
@@ -94,7 +121,7 @@ size_t prescan(const std::string& path, std::istream& in) {
           if (slash == std::string::npos) break;
           pos = slash + 1;
         }
-        forward.push_back({lineNo, idx[0], idx[2]});
+        forward.push_back({lineNo, idx[0], idx[1], idx[2]});
       }
     }
   }
@@ -103,6 +130,10 @@ size_t prescan(const std::string& path, std::istream& in) {
       throw Error(path, f.line,
                   "vertex index " + std::to_string(f.v) + " out of range: the file has " +
                       std::to_string(nv) + " vertices");
+    if (f.vt > nvt)
+      throw Error(path, f.line,
+                  "texture coordinate index " + std::to_string(f.vt) + " out of range: the file has " +
+                      std::to_string(nvt) + " texture coordinates");
     if (f.vn > nvn)
       throw Error(path, f.line,
                   "normal index " + std::to_string(f.vn) + " out of range: the file has " +
@@ -125,15 +156,22 @@ TriangleMesh loadObjMesh(const std::string& path, const glm::mat4& toWorld, cons
   ObjLoadStats& stats = statsOut ? *statsOut : localStats;
   stats = ObjLoadStats{};
 
-  std::ifstream file(path, std::ios::binary);
-  if (!file || fs::is_directory(path)) {
+  std::error_code existsError;
+  if (!fs::exists(path, existsError) || fs::is_directory(path, existsError)) {
     std::error_code ec;
     fs::path abs = fs::absolute(path, ec);
     throw Error(sceneFile, sceneLine,
                 "cannot open mesh file '" + fs::path(path).filename().string() + "' (resolved to " +
                     (ec ? path : abs.lexically_normal().string()) + ")");
   }
-  size_t faceLines = prescan(path, file);
+  std::string text;
+  try {
+    text = normaliseLineEndings(readRegularFile(path, kMaxObjFileBytes, "mesh file"));
+  } catch (const Error& e) {
+    throw Error(sceneFile, sceneLine, e.what());
+  }
+  std::istringstream lines(text);
+  size_t faceLines = prescan(path, lines);
   if (faceLines == 0) throw Error(path, 0, "expected at least one face ('f' line), found none");
 
   tinyobj::attrib_t attrib;
@@ -142,7 +180,9 @@ TriangleMesh loadObjMesh(const std::string& path, const glm::mat4& toWorld, cons
   std::string warn, err;
   std::string dir = fs::path(path).parent_path().string();
   if (!dir.empty()) dir += '/';
-  bool ok = tinyobj::LoadObj(&attrib, &shapes, &materials, &warn, &err, path.c_str(), dir.c_str(), true);
+  std::istringstream objStream(text);
+  tinyobj::MaterialFileReader materialReader(dir);
+  bool ok = tinyobj::LoadObj(&attrib, &shapes, &materials, &warn, &err, &objStream, &materialReader, true);
   if (!ok || !err.empty()) {
     while (!err.empty() && (err.back() == '\n' || err.back() == '\r')) err.pop_back();
     throw Error(path, 0, "malformed OBJ: " + (err.empty() ? std::string("unknown error") : err));

@@ -16,11 +16,19 @@ namespace fs = std::filesystem;
 
 const std::string kScenes = std::string(PENUMBRA_SOURCE_DIR) + "/scenes/";
 
+// One directory per test process, removed when the process exits.
+const fs::path& tempDir() {
+  static const struct Dir {
+    fs::path path = fs::temp_directory_path() / ("penumbra_obj_test_" + std::to_string(::getpid()));
+    ~Dir() { fs::remove_all(path); }
+  } dir;
+  return dir.path;
+}
+
 std::string writeTemp(const std::string& name, const std::string& text) {
-  fs::path dir = fs::temp_directory_path() / ("penumbra_obj_test_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  fs::path p = dir / name;
-  std::ofstream(p) << text;
+  fs::create_directories(tempDir());
+  fs::path p = tempDir() / name;
+  std::ofstream(p, std::ios::binary) << text;
   return p.string();
 }
 
@@ -159,6 +167,51 @@ TEST(ObjLoader, Errors) {
   expectError(allDegenerate, allDegenerate, 0, "degenerate");
   std::string twoCorners = writeTemp("two.obj", "v 0 0 0\nv 1 0 0\nf 1 2\n");
   expectError(twoCorners, twoCorners, 3, "at least 3");
+}
+
+TEST(ObjLoader, LfCrlfAndCrOnlyLineEndingsLoadTheSameMesh) {
+  const std::string lf = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\n";
+  for (const char* ending : {"\n", "\r\n", "\r"}) {
+    std::string text;
+    for (char c : lf) text += c == '\n' ? std::string(ending) : std::string(1, c);
+    TriangleMesh m = loadObjMesh(writeTemp("ending.obj", text), glm::mat4(1.f), "s.xml", 1);
+    EXPECT_EQ(m.triangles.size(), 2u) << "ending " << int(ending[0]) << int(ending[1]);
+    EXPECT_EQ(m.positions.size(), 4u);
+  }
+}
+
+TEST(ObjLoader, EveryErrorCarriesItsLine) {
+  auto lineOf = [](const std::string& path) {
+    try {
+      loadObjMesh(path, glm::mat4(1.f), "scene.xml", 12);
+    } catch (const Error& e) {
+      EXPECT_EQ(e.file(), path) << e.what();
+      return e.line();
+    }
+    ADD_FAILURE() << "no error for " << path;
+    return -1;
+  };
+  // A CR-only line break hid the face from the line-numbered check.
+  EXPECT_EQ(lineOf(writeTemp("cr.obj", "v 0 0 0\rf 1 2 40\n")), 2);
+  // Indices beyond long's range: strtol saturates (negating LONG_MIN overflowed).
+  EXPECT_EQ(lineOf(writeTemp("huge.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -9223372036854775808\n")), 4);
+  EXPECT_EQ(lineOf(writeTemp("huge2.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 99999999999999999999\n")), 4);
+  EXPECT_EQ(lineOf(writeTemp("int.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 2147483648\n")), 4);
+  // A quad whose texture coordinate index is out of range was dropped with only a warning.
+  EXPECT_EQ(lineOf(writeTemp("quad.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\nf 1/1 2 3 4\n")), 6);
+}
+
+TEST(ObjLoader, MeshPathsThatAreNotRegularFilesAreRefused) {
+  fs::create_directories(tempDir());
+  for (const std::string& path : {std::string("/dev/zero"), tempDir().string()}) {
+    try {
+      loadObjMesh(path, glm::mat4(1.f), "scene.xml", 12);
+      ADD_FAILURE() << "no error for " << path;
+    } catch (const Error& e) {
+      EXPECT_EQ(e.file(), "scene.xml") << e.what();
+      EXPECT_EQ(e.line(), 12) << e.what();
+    }
+  }
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "core/math/error.h"
+#include "core/math/float_util.h"
 
 namespace penumbra {
 
@@ -128,7 +129,7 @@ bool parseVec3Value(std::string_view text, Vec3& out, bool allowScalar) {
   if (values.size() != 3) return false;
   Vec3 v;
   for (int k = 0; k < 3; ++k) {
-    float f = static_cast<float>(values[k]);
+    float f = toFloatSaturating(values[k]);
     if (!std::isfinite(f)) return false;  // fits double but not float
     v[k] = f == 0.f ? 0.f : f;
   }
@@ -179,7 +180,7 @@ bool parsePropertyValue(PropertyType type, std::string_view text, Property& p) {
       if (!parseFloatList(text, v) || v.size() != 16) return false;
       glm::mat4 m(1.f);
       for (int r = 0; r < 4; ++r)
-        for (int c = 0; c < 4; ++c) m[c][r] = static_cast<float>(v[r * 4 + c]);
+        for (int c = 0; c < 4; ++c) m[c][r] = toFloatSaturating(v[r * 4 + c]);
       p.matrix = m;
       break;
     }
@@ -325,7 +326,7 @@ float PropertyList::getFloat(std::initializer_list<std::string_view> names, floa
     v = static_cast<double>(p->intValue);
   else
     typeError(*p, "a float");
-  float f = static_cast<float>(v);
+  float f = toFloatSaturating(v);
   if (!std::isfinite(f))
     throw Error(file_, p->line,
                 "property \"" + p->name + "\" of " + owner() + ": expected a value in float range, got " +
@@ -378,7 +379,7 @@ Vec3 PropertyList::getColor(std::initializer_list<std::string_view> names, const
   if (p->type == PropertyType::Color) return p->vecValue;
   if (p->type == PropertyType::Float || p->type == PropertyType::Integer) {
     double v = p->type == PropertyType::Float ? p->floatValue : static_cast<double>(p->intValue);
-    float f = static_cast<float>(v);
+    float f = toFloatSaturating(v);
     if (std::isfinite(f)) return Vec3(f);
   }
   typeError(*p, "a color");

@@ -10,6 +10,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "core/math/bounded_read.h"
 #include "core/math/error.h"
 #include "core/render/render_settings.h"
 
@@ -19,6 +20,9 @@ namespace {
 
 namespace fs = std::filesystem;
 using tinyxml2::XMLElement;
+
+// Scene files are hand-written XML (meshes live in their own files): far below this.
+constexpr uint64_t kMaxSceneFileBytes = uint64_t(64) << 20;
 
 const char* kObjectTags[] = {"scene",  "shape",   "bsdf",       "emitter",
                              "camera", "sampler", "integrator", "rfilter"};
@@ -329,11 +333,10 @@ SceneNode parseSceneString(const std::string& xml, const std::string& nameForErr
 }
 
 SceneNode parseSceneFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(path, 0, "cannot open scene file (resolved to " + fs::absolute(path).string() + ")");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return parseSceneString(ss.str(), path, dirOf(path));
+  std::error_code ec;
+  if (!fs::exists(path, ec))
+    throw Error(path, 0, "cannot open scene file (resolved to " + fs::absolute(path, ec).string() + ")");
+  return parseSceneString(readRegularFile(path, kMaxSceneFileBytes, "scene file"), path, dirOf(path));
 }
 
 std::string writeSceneXml(const SceneNode& root) {

@@ -1,0 +1,45 @@
+// Strict CLI11 validators for numbers whose plain conversions let bad text through: CLI11 reads "-1"
+// into an unsigned option as its two's complement, saturates out-of-range integers, and NaN passes
+// PositiveNumber (every comparison with NaN is false).
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <string>
+
+namespace penumbra::cli {
+
+// A decimal integer in [0, max]: digits only (no sign, no exponent).
+inline CLI::Validator unsignedInteger(uint64_t max = UINT64_MAX) {
+  return CLI::Validator(
+      [max](std::string& text) -> std::string {
+        uint64_t v = 0;
+        auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+        if (text.empty() || end != text.data() + text.size() ||
+            text.find_first_not_of("0123456789") != std::string::npos)
+          return "expected a non-negative integer, got '" + text + "'";
+        if (ec == std::errc::result_out_of_range || v > max)
+          return "'" + text + "' is out of range (at most " + std::to_string(max) + ")";
+        return {};
+      },
+      "UINT");
+}
+
+// A finite number > 0 (rejects nan, inf and anything that is not entirely a number).
+inline CLI::Validator finitePositiveNumber() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        char* end = nullptr;
+        const double v = std::strtod(text.c_str(), &end);
+        if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(v) || !(v > 0.0))
+          return "expected a finite number > 0, got '" + text + "'";
+        return {};
+      },
+      "POSITIVE");
+}
+
+}  // namespace penumbra::cli
