@@ -265,7 +265,8 @@ void BM_SpheresBvh_Occluded(benchmark::State& s) {
   sphereOccludedBench(s, AccelMode::Embree);
 }
 // Arg: lights (spheres = 2 × lights).
-#define PENUMBRA_SPHERE_COUNTS ->Arg(1)->Arg(2)->Arg(3)->Arg(4)->Arg(6)->Arg(8)->Arg(12)->Arg(16)->Arg(64)->Arg(500)->Arg(5000)
+#define PENUMBRA_SPHERE_COUNTS \
+  ->Arg(1)->Arg(2)->Arg(3)->Arg(4)->Arg(6)->Arg(8)->Arg(12)->Arg(16)->Arg(64)->Arg(500)->Arg(5000)
 BENCHMARK(BM_SpheresBruteForce_Intersect) PENUMBRA_SPHERE_COUNTS;
 BENCHMARK(BM_SpheresBvh_Intersect) PENUMBRA_SPHERE_COUNTS;
 BENCHMARK(BM_SpheresBruteForce_Occluded) PENUMBRA_SPHERE_COUNTS;

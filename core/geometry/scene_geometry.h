@@ -110,8 +110,8 @@ class SceneGeometry {
   bool trianglesInEmbree_ = false;
   bool spheresInEmbree_ = false;
   uint32_t sphereGeometryId_ = 0;  // Embree geometry id of the spheres (after the meshes)
-  void* device_ = nullptr;  // RTCDevice, created only when a BVH is needed
-  void* scene_ = nullptr;   // RTCScene
+  void* device_ = nullptr;         // RTCDevice, created only when a BVH is needed
+  void* scene_ = nullptr;          // RTCScene
 };
 
 }  // namespace penumbra

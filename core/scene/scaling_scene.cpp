@@ -1,5 +1,6 @@
 #include "core/scene/scaling_scene.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -19,7 +20,7 @@ std::vector<ScalingSphere> scalingSceneSpheres(int lightCount, uint64_t seed) {
   for (int i = 0; i < lightCount; ++i) {
     const float x0 = -10.f + cellX * float(i % cols), z0 = -10.f + cellZ * float(i / cols);
     ScalingSphere light;
-    light.sphere.radius = 0.15f * cell;
+    light.sphere.radius = std::min(0.15f * cell, 0.5f);
     light.sphere.center = Vec3(x0 + cellX * (0.2f + 0.6f * rng.nextFloat()), 2.f + 2.f * rng.nextFloat(),
                                z0 + cellZ * (0.2f + 0.6f * rng.nextFloat()));
     // Power varies over about 20x between lights, with a tint; the total stays roughly constant in n.
@@ -27,7 +28,7 @@ std::vector<ScalingSphere> scalingSceneSpheres(int lightCount, uint64_t seed) {
     light.radiance = level * Color3(1.f, 0.6f + 0.4f * rng.nextFloat(), 0.6f + 0.4f * rng.nextFloat());
     out.push_back(light);
     ScalingSphere blocker;
-    blocker.sphere.radius = 0.25f * cell;
+    blocker.sphere.radius = std::min(0.25f * cell, 0.3f);
     blocker.sphere.center = Vec3(x0 + cellX * (0.25f + 0.5f * rng.nextFloat()), 0.4f + 0.8f * rng.nextFloat(),
                                  z0 + cellZ * (0.25f + 0.5f * rng.nextFloat()));
     out.push_back(blocker);
@@ -43,7 +44,8 @@ std::string scalingSceneXml(int lightCount, int resolution, int samplesPerPixel,
       << "\"/></sampler>\n"
       << "  <integrator type=\"direct\"><string name=\"measure\" value=\"solid-angle\"/></integrator>\n"
       << "  <camera type=\"perspective\">\n"
-      << "    <transform name=\"toWorld\"><lookat target=\"0,0,-1\" origin=\"0,16,17\" up=\"0,1,0\"/></transform>\n"
+      << "    <transform name=\"toWorld\"><lookat target=\"0,0,-1\" origin=\"0,16,17\" "
+         "up=\"0,1,0\"/></transform>\n"
       << "    <float name=\"fov\" value=\"50\"/>\n"
       << "    <integer name=\"width\" value=\"" << resolution << "\"/>\n"
       << "    <integer name=\"height\" value=\"" << resolution << "\"/>\n"
