@@ -227,7 +227,7 @@ TEST(ViewerCompare, ChangingOneSidesStrategyRestartsOnlyThatSide) {
   EXPECT_EQ(c.compareRestartCount(), right);
   EXPECT_GE(c.compareProgress().spp, rightSpp);
   ASSERT_TRUE(waitUntil([&] { return c.compareProgress().spp >= rightSpp + 2; }));
-  EXPECT_EQ(c.engine().job()->settings.integrator.strategy, Strategy::DirectHemisphere);
+  EXPECT_EQ(c.engine().job()->settings.integrator.strategy, Strategy::DirectUniformHemisphere);
   EXPECT_EQ(c.compareEngine().job()->settings.integrator.strategy, Strategy::DirectArea);
 
   // Right strategy: only the right restarts.
