@@ -353,7 +353,9 @@ bool SceneGeometry::occluded(const Ray& ray, int32_t skipSphere) const {
     float t, u, v;
     if (intersectParallelogram(q, ray, ray.tMax, t, u, v)) return true;
   }
-  if (scene_) {
+  // An empty segment (a light closer than the origin's offset) is blocked by nothing; Embree would
+  // hand back its negative tfar, which reads as a hit below.
+  if (scene_ && ray.tMax > ray.tMin) {
     OcclusionContext context;
     rtcInitIntersectContext(&context.base);
     context.skipSphere = skipSphere;

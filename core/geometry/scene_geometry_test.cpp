@@ -145,6 +145,28 @@ TEST(SceneGeometry, SphereBvhAgreesWithTheFlatLoopBitForBit) {
   }
 }
 
+// Rays from a point 1e-6 r below a sphere (a receiver touching a light) hit it at t ~ 1e-6 r on
+// both paths: the BVH's box test must not cull a sphere that the ray starts next to.
+TEST(SceneGeometry, RaysFromJustOutsideASphereHitItInTheBvh) {
+  std::mt19937 rng(14);
+  for (AccelMode sphereMode : {AccelMode::BruteForce, AccelMode::Embree}) {
+    SceneGeometry g;
+    g.addMesh(makeGridPlane(Vec3(-10, -10, 0), Vec3(20, 0, 0), Vec3(0, 20, 0), 1, 1), 0);
+    g.addSphere(Sphere{Vec3(0.31f, 0.17f, 1.0000009536743164f), 1.f}, 1);
+    g.build(AccelMode::Auto, sphereMode);
+    const Vec3 x(0.31f, 0.17f, 0.f);
+    int hits = 0;
+    for (int i = 0; i < 2000; ++i) {
+      Vec3 w = randomUnit(rng);
+      w.z = std::abs(w.z);
+      SurfaceHit hit;
+      const Ray ray{offsetRayOrigin(x, Vec3(0, 0, 1), 10.f, w), w};
+      hits += g.intersect(ray, hit) && hit.objectId == 1;
+    }
+    EXPECT_GT(hits, 1900) << (sphereMode == AccelMode::Embree ? "bvh" : "brute force");
+  }
+}
+
 // A shadow ray through the centre of a sphere is blocked by it unless it is the skipped one.
 TEST(SceneGeometry, ShadowRaysSkipTheirLightInTheBvh) {
   for (AccelMode sphereMode : {AccelMode::BruteForce, AccelMode::Embree}) {
@@ -155,6 +177,8 @@ TEST(SceneGeometry, ShadowRaysSkipTheirLightInTheBvh) {
     EXPECT_TRUE(g.occluded(through));
     EXPECT_TRUE(g.occluded(through, 1));
     EXPECT_FALSE(g.occluded(through, 2));
+    // An empty segment is blocked by nothing (a light nearer than the origin's offset).
+    EXPECT_FALSE(g.occluded(Ray{Vec3(6, 0, -5), Vec3(0, 0, 1), 0.f, -1e-5f}));
   }
 }
 
