@@ -15,6 +15,7 @@
 #include "app/cli/cpu_usage.h"
 #include "app/cli/scene_options.h"
 #include "core/analysis/order_statistics.h"
+#include "core/image/atomic_file.h"
 #include "core/render/engine.h"
 #include "core/scene/scaling_scene.h"
 
@@ -32,6 +33,8 @@ struct BenchOptions {
   int threads = 0;
   int scalingSpp = 2;  // samples per pixel of each render of the scaling series (0: no series)
   bool scalingOnly = false;
+  std::string writeScalingScene;  // write the scaling scene with `scalingLights` lights here and exit
+  int scalingLights = 1000;
 };
 
 // One render of `spp` passes: camera samples per second.
@@ -163,6 +166,13 @@ std::string locateScene(const std::string& given, const std::string& repoRelativ
 }
 
 int runBench(const BenchOptions& o) {
+  if (!o.writeScalingScene.empty()) {
+    const std::string xml = scalingSceneXml(o.scalingLights, 128, 16);
+    writeBytesAtomically(o.writeScalingScene, xml.data(), xml.size());
+    std::printf("wrote %s (%d sphere lights, %d spheres)\n", o.writeScalingScene.c_str(), o.scalingLights,
+                2 * o.scalingLights);
+    return 0;
+  }
   int all = o.threads > 0 ? o.threads : int(std::max(1u, std::thread::hardware_concurrency()));
   std::printf(
       "penumbra bench: median of %d runs of %.1f s; %d hardware threads. 1-thread and all-thread runs\n"
@@ -234,6 +244,12 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
       ->check(CLI::Range(0, 1024))
       ->capture_default_str();
   cmd->add_flag("--scaling-only", o->scalingOnly, "Run only the scaling series");
+  cmd->add_option(
+      "--write-scaling-scene", o->writeScalingScene,
+      "Write the scaling series' scene (--lights sphere lights, 128x128, 16 spp) to this file and exit");
+  cmd->add_option("--lights", o->scalingLights, "Sphere lights of --write-scaling-scene")
+      ->check(CLI::Range(1, 1000000))
+      ->capture_default_str();
   cmd->callback([o, &exitCode] { exitCode = runBench(*o); });
 }
 
