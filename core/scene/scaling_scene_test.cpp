@@ -35,16 +35,30 @@ TEST(ScalingScene, LoadsWithItsLightsAndSpheres) {
   for (const SphereLight& l : s.scene->sphereLights) EXPECT_GE(l.geometryIndex, 0);
 }
 
-// Sets PENUMBRA_SPHERE_ACCEL for one scope (tests run one at a time within this process).
+// Sets PENUMBRA_SPHERE_ACCEL for one scope and restores what it was (a whole run may force the BVH
+// path; tests run one at a time within this process).
 struct SphereAccelOverride {
-  explicit SphereAccelOverride(const char* value) { setenv("PENUMBRA_SPHERE_ACCEL", value, 1); }
-  ~SphereAccelOverride() { unsetenv("PENUMBRA_SPHERE_ACCEL"); }
+  explicit SphereAccelOverride(const char* value) {
+    if (const char* old = std::getenv("PENUMBRA_SPHERE_ACCEL")) {
+      previous = old;
+      hadPrevious = true;
+    }
+    setenv("PENUMBRA_SPHERE_ACCEL", value, 1);
+  }
+  ~SphereAccelOverride() {
+    if (hadPrevious)
+      setenv("PENUMBRA_SPHERE_ACCEL", previous.c_str(), 1);
+    else
+      unsetenv("PENUMBRA_SPHERE_ACCEL");
+  }
+  std::string previous;
+  bool hadPrevious = false;
 };
 
 Image renderScaling(const char* accel, const char* measure, bool expectBvh) {
   SphereAccelOverride env(accel);
-  LoadedScene s = loadSceneFromString(scalingSceneXml(40, 24, 3), "scaling", ".",
-                                      {{"integrator.measure", measure}});
+  LoadedScene s =
+      loadSceneFromString(scalingSceneXml(40, 24, 3), "scaling", ".", {{"integrator.measure", measure}});
   EXPECT_EQ(s.scene->geometry.spheresUseBvh(), expectBvh);
   auto job = std::make_shared<RenderJob>();
   job->scene = s.scene;
