@@ -57,11 +57,11 @@ struct FastRng {
 struct SphereAreaLoop {
   const Float3 eye{4, 4, 0};
   Float3 forward, right, up;
-  float tanHalf = std::tan(20.f * 3.14159265f / 180.f);
+  float tanHalf = std::tan(20.f * kPi / 180.f);
   const Float3 lightCentre{1, -1.5f, 1.75f};
   const float lightRadius = 0.1f;
   // albedo/π · radiance · light area (the area pdf's 1/(4πr²) folded in).
-  const float scale = 0.5f / 3.14159265f * 300.f * 4.f * 3.14159265f * 0.1f * 0.1f;
+  const float scale = 0.5f / kPi * 300.f * 4.f * kPi * 0.1f * 0.1f;
   std::vector<float> sums = std::vector<float>(size_t(kSize) * kSize, 0.f);
 
   SphereAreaLoop() {
@@ -107,7 +107,7 @@ struct SphereAreaLoop {
 
     // Uniform point on the light sphere.
     const float z = 1.f - 2.f * rng.next(), r = std::sqrt(std::fmax(0.f, 1.f - z * z));
-    const float phi = 6.2831853f * rng.next();
+    const float phi = 2.f * kPi * rng.next();
     const Float3 nl{r * std::cos(phi), r * std::sin(phi), z};
     const Float3 toL = lightCentre + lightRadius * nl - p;
     const float dist2 = dot(toL, toL), invDist = 1.f / std::sqrt(dist2);

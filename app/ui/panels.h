@@ -35,12 +35,4 @@ void drawStatsPanel(ViewerController& c, PanelState& st);
 void drawConvergencePanel(ViewerController& c, PanelState& st);
 void drawHelpPanel(ViewerController& c, PanelState& st);
 
-// The keyboard shortcuts, as listed in the help panel (key, action).
-struct Shortcut {
-  const char* key;
-  const char* action;
-};
-extern const Shortcut kShortcuts[];
-extern const int kShortcutCount;
-
 }  // namespace penumbra::ui

@@ -56,7 +56,7 @@ void drawSamplerPanel(ViewerController& c, PanelState&) {
 
   if (ImGui::Button(c.paused() ? "Resume (space)" : "Pause (space)")) c.setPaused(!c.paused());
   ImGui::SameLine();
-  if (ImGui::Button("Restart (R)")) c.restart();
+  if (ImGui::Button("Restart (R)")) c.start();
 }
 
 }  // namespace penumbra::ui

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <thread>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -178,6 +177,7 @@ bool ViewerController::pollSnapshot(bool wantStandardError, bool requestNext) {
     changed = true;
     ++compareSnapshotSerial_;
   }
+  if (onSnapshotPolled) onSnapshotPolled(*this);
   return changed;
 }
 
@@ -187,10 +187,7 @@ bool ViewerController::rendering() const {
 }
 
 static bool sameSettings(const RenderSettings& a, const RenderSettings& b) {
-  return a.camera.toWorld == b.camera.toWorld && a.camera.fovDegrees == b.camera.fovDegrees &&
-         a.camera.width == b.camera.width && a.camera.height == b.camera.height &&
-         a.camera.nearClip == b.camera.nearClip && a.camera.farClip == b.camera.farClip &&
-         std::memcmp(&a.filter, &b.filter, sizeof a.filter) == 0 && a.samplerKind == b.samplerKind &&
+  return a.camera == b.camera && a.filter == b.filter && a.samplerKind == b.samplerKind &&
          a.sampleCount == b.sampleCount && a.seed == b.seed && a.integrator == b.integrator;
 }
 

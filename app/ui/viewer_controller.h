@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <string>
 #include <utility>
@@ -51,7 +52,6 @@ class ViewerController {
 
   // ---- rendering -------------------------------------------------------------------------------
   void start();  // (re)starts accumulation with the live settings and limits
-  void restart() { start(); }
   void setPaused(bool paused);
   bool paused() const { return engine_.paused(); }
   RenderProgress progress() const { return engine_.progress(); }
@@ -66,6 +66,8 @@ class ViewerController {
   // published pass, or at once while the accumulation is paused or finished.
   void setProbePixel(int x, int y);
   const FilmSnapshot& snapshot() const { return snapshot_; }
+  // Called at the end of every pollSnapshot (e.g. to stream the image to tev: app/cli/view_command.cpp).
+  std::function<void(const ViewerController&)> onSnapshotPolled;
   // Restart counter value the current snapshot belongs to.
   uint64_t snapshotRestart() const { return snapshotRestart_; }
   // Count of changes of snapshot() / compareSnapshot() (each side is tone mapped only when it changed).
@@ -102,7 +104,6 @@ class ViewerController {
   void setSettings(const RenderSettings& s);
   const RenderLimits& limits() const { return limits_; }
   void setLimits(const RenderLimits& l);
-  bool useTimeBudget() const { return useTimeBudget_; }
 
   // ---- camera ----------------------------------------------------------------------------------
   void orbit(float dxPixels, float dyPixels);

@@ -5,13 +5,12 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numbers>
+
+#include "core/math/vec.h"
 
 namespace penumbra {
 
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 double sqrtNonNeg(double v) {
   return std::sqrt(std::max(v, 0.0));
@@ -27,7 +26,7 @@ double straddlingStable(double cosTheta, double sinTheta, double sinAlpha, doubl
 }
 
 double surfaceLimit(double cosTheta) {
-  return 0.5 * kPi * (1.0 + std::clamp(cosTheta, -1.0, 1.0));
+  return 0.5 * kPiD * (1.0 + std::clamp(cosTheta, -1.0, 1.0));
 }
 
 }  // namespace
@@ -71,8 +70,8 @@ double sphereLightIrradianceFactor(double cosTheta, double sinTheta, double sinA
   sinAlpha = std::clamp(sinAlpha, 0.0, 1.0);
   if (sinAlpha == 0.0) return 0.0;
   if (sinAlpha >= 1.0 || cosAlpha <= 0.0) return surfaceLimit(cosTheta);
-  if (cosTheta >= sinAlpha) return kPi * sinAlpha * sinAlpha * cosTheta;  // fully above
-  if (cosTheta <= -sinAlpha) return 0.0;                                  // fully below
+  if (cosTheta >= sinAlpha) return kPiD * sinAlpha * sinAlpha * cosTheta;  // fully above
+  if (cosTheta <= -sinAlpha) return 0.0;                                   // fully below
   return std::max(0.0, straddlingStable(cosTheta, sinTheta, sinAlpha, cosAlpha));
 }
 
@@ -86,7 +85,7 @@ double sphereLightIrradianceFactor(double cosTheta, double sinAlpha) {
 
 double sphereLightIrradianceFactor(const glm::dvec3& x, const glm::dvec3& n, const glm::dvec3& c, double r,
                                    bool twoSided) {
-  const double insideValue = twoSided ? kPi : 0.0;
+  const double insideValue = twoSided ? kPiD : 0.0;
   const glm::dvec3 v = c - x;
   const double d = glm::length(v);
   const double nLen = glm::length(n);
@@ -107,12 +106,12 @@ double sphereLightIrradianceFactor(const glm::dvec3& x, const glm::dvec3& n, con
 }
 
 double aoPlaneWithSphere(double cosTheta, double sinAlpha) {
-  return 1.0 - sphereLightIrradianceFactor(cosTheta, sinAlpha) / kPi;
+  return 1.0 - sphereLightIrradianceFactor(cosTheta, sinAlpha) / kPiD;
 }
 
 double aoPlaneWithSphere(const glm::dvec3& x, const glm::dvec3& n, const glm::dvec3& c, double r) {
   // Inside the occluder every ray is blocked: the two-sided value π gives AO = 0.
-  return 1.0 - sphereLightIrradianceFactor(x, n, c, r, /*twoSided=*/true) / kPi;
+  return 1.0 - sphereLightIrradianceFactor(x, n, c, r, /*twoSided=*/true) / kPiD;
 }
 
 double aoPlaneNearRestingSphere(double rho, double R) {

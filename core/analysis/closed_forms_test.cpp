@@ -5,20 +5,19 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <numbers>
 #include <vector>
+
+#include "core/math/vec.h"
 
 namespace penumbra {
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 // Gauss-Legendre nodes/weights on [-1, 1] by Newton iteration on P_n.
 struct GaussLegendre {
   std::vector<double> x, w;
   explicit GaussLegendre(int n) : x(n), w(n) {
     for (int i = 0; i < n; ++i) {
-      double z = std::cos(kPi * (i + 0.75) / (n + 0.5)), dp = 0;
+      double z = std::cos(kPiD * (i + 0.75) / (n + 0.5)), dp = 0;
       for (int it = 0; it < 100; ++it) {
         double p0 = 1, p1 = z;
         for (int k = 2; k <= n; ++k) {
@@ -62,12 +61,12 @@ double quadratureI(double cosTheta, double sinAlpha) {
     auto f = [&](double phi) { return (1 - t) * cosTheta + sinBeta * sinTheta * std::cos(phi); };
     // f is decreasing in φ on [0, π]: find where it changes sign.
     double hi;
-    if (f(kPi) >= 0)
-      hi = kPi;
+    if (f(kPiD) >= 0)
+      hi = kPiD;
     else if (f(0) <= 0)
       return 0.0;
     else {
-      double a = 0, b = kPi;
+      double a = 0, b = kPiD;
       for (int i = 0; i < 200 && b - a > 1e-17; ++i) {
         double m = 0.5 * (a + b);
         (f(m) > 0 ? a : b) = m;
@@ -99,17 +98,17 @@ TEST(ClosedForms, SphereLightMatchesQuadrature) {
   for (double sa : {0.999, 0.9, 0.7, 0.5, 0.3, 0.1, 0.01, 1e-3}) {
     const double alpha = std::asin(sa);
     // Fully above, straddling (several offsets around the horizon), fully below, and θ = π/2.
-    for (double theta :
-         {0.0, 0.3, 1.0, kPi / 2 - 1.2 * alpha, kPi / 2 - 0.8 * alpha, kPi / 2 - 0.3 * alpha, kPi / 2,
-          kPi / 2 + 0.3 * alpha, kPi / 2 + 0.8 * alpha, kPi / 2 + 0.99 * alpha, kPi / 2 + 1.2 * alpha, 2.5})
-      if (theta >= 0 && theta <= kPi) cases.push_back({theta, sa});
+    for (double theta : {0.0, 0.3, 1.0, kPiD / 2 - 1.2 * alpha, kPiD / 2 - 0.8 * alpha,
+                         kPiD / 2 - 0.3 * alpha, kPiD / 2, kPiD / 2 + 0.3 * alpha, kPiD / 2 + 0.8 * alpha,
+                         kPiD / 2 + 0.99 * alpha, kPiD / 2 + 1.2 * alpha, 2.5})
+      if (theta >= 0 && theta <= kPiD) cases.push_back({theta, sa});
   }
   for (const Case& c : cases) {
-    const double cosTheta = c.theta == kPi / 2 ? 0.0 : std::cos(c.theta);
+    const double cosTheta = c.theta == kPiD / 2 ? 0.0 : std::cos(c.theta);
     const double I = sphereLightIrradianceFactor(cosTheta, c.sinAlpha);
     const double Q = quadratureI(cosTheta, c.sinAlpha);
     // Scale of I is π sin²α; demand agreement to 1e-9 of that scale.
-    const double scale = kPi * c.sinAlpha * c.sinAlpha;
+    const double scale = kPiD * c.sinAlpha * c.sinAlpha;
     EXPECT_NEAR(I, Q, 1e-9 * scale) << "theta=" << c.theta << " sinAlpha=" << c.sinAlpha;
     EXPECT_GE(I, 0.0);
   }
@@ -139,13 +138,13 @@ TEST(ClosedForms, AtanMinusIdentitySeriesMatchesDirect) {
 
 TEST(ClosedForms, RegimeBoundariesAreContinuous) {
   for (double sa : {0.9, 0.5, 0.1, 1e-3}) {
-    const double scale = kPi * sa * sa;
+    const double scale = kPiD * sa * sa;
     for (double sign : {1.0, -1.0}) {
       const double edge = sign * sa;
       const double inside = sphereLightIrradianceFactor(edge * (1 - 1e-12), sa);
       const double outside = sphereLightIrradianceFactor(edge * (1 + 1e-12), sa);
       EXPECT_NEAR(inside, outside, 1e-9 * scale) << "sinAlpha=" << sa << " sign=" << sign;
-      EXPECT_NEAR(inside, sign > 0 ? kPi * sa * sa * sa : 0.0, 1e-9 * scale);
+      EXPECT_NEAR(inside, sign > 0 ? kPiD * sa * sa * sa : 0.0, 1e-9 * scale);
     }
   }
 }
@@ -185,20 +184,20 @@ TEST(ClosedForms, GeometricFrontEnd) {
     }
   // Inside: one-sided 0, two-sided π.
   EXPECT_EQ(sphereLightIrradianceFactor(c + glm::dvec3(0.1, 0, 0), glm::dvec3(0, 0, 1), c, r), 0.0);
-  EXPECT_EQ(sphereLightIrradianceFactor(c + glm::dvec3(0.1, 0, 0), glm::dvec3(0, 0, 1), c, r, true), kPi);
+  EXPECT_EQ(sphereLightIrradianceFactor(c + glm::dvec3(0.1, 0, 0), glm::dvec3(0, 0, 1), c, r, true), kPiD);
   EXPECT_EQ(sphereLightIrradianceFactor(c, glm::dvec3(0, 0, 1), c, r), 0.0);
 }
 
 TEST(ClosedForms, SurfaceLimitFromOutside) {
   const glm::dvec3 c(1.0, 2.0, 3.0);
   for (double r : {1.0, 1e-3, 250.0})
-    for (double theta : {0.0, 0.4, kPi / 2, 2.0, 3.0}) {
+    for (double theta : {0.0, 0.4, kPiD / 2, 2.0, 3.0}) {
       // The deviation from the limit is O(cos α) ≈ √(2 eps), at most ≈ 2 cos α (attained at θ = π/2).
       // x just outside the sphere, in direction -u from c; n at angle θ from (c - x).
       const glm::dvec3 u = glm::normalize(glm::dvec3(0.2, -0.5, 0.8));
       const glm::dvec3 perp = glm::normalize(glm::cross(u, glm::dvec3(1, 0, 0)));
       const glm::dvec3 n = std::cos(theta) * u + std::sin(theta) * perp;
-      const double limit = 0.5 * kPi * (1 + std::cos(theta));
+      const double limit = 0.5 * kPiD * (1 + std::cos(theta));
       EXPECT_NEAR(sphereLightIrradianceFactor(c - r * u, n, c, r), limit, 1e-12);
       double prevErr = 1e300;
       for (double eps : {1e-6, 1e-8}) {
@@ -232,7 +231,7 @@ TEST(ClosedForms, AoPlaneWithSphereIsOneMinusIOverPi) {
   for (const glm::dvec3& c : {glm::dvec3(0, 0, 3), glm::dvec3(2, 0, 0.5), glm::dvec3(2, 0, -0.5)}) {
     const double r = 1.0, d = glm::length(c);
     const double ao = aoPlaneWithSphere(x, n, c, r);
-    EXPECT_NEAR(ao, 1 - quadratureI(c.z / d, r / d) / kPi, 1e-10);
+    EXPECT_NEAR(ao, 1 - quadratureI(c.z / d, r / d) / kPiD, 1e-10);
     EXPECT_NEAR(ao, aoPlaneWithSphere(c.z / d, r / d), 1e-14);
   }
   // Inside the occluder: fully occluded.
@@ -255,14 +254,14 @@ TEST(ClosedForms, RestingSphereMatchesGeneralPlaneSphere) {
 }
 
 TEST(ClosedForms, RestingConvexBody) {
-  for (double psi : {0.0, 0.5, kPi / 2, 2.5, 3.1})
+  for (double psi : {0.0, 0.5, kPiD / 2, 2.5, 3.1})
     EXPECT_NEAR(aoOnRestingConvexBody(psi), (1 + std::cos(psi)) / 2, 1e-15);
   // Near the contact point the cos² form keeps relative precision: (π - ψ)²/4.
   const double e = 1e-7;
-  EXPECT_NEAR(aoOnRestingConvexBody(kPi - e) / (e * e / 4), 1.0, 1e-6);
+  EXPECT_NEAR(aoOnRestingConvexBody(kPiD - e) / (e * e / 4), 1.0, 1e-6);
   // Top of a sphere resting on a plane: unoccluded. Equator: the plane blocks half the cosine lobe.
   EXPECT_DOUBLE_EQ(aoOnRestingConvexBody(0.0), 1.0);
-  EXPECT_NEAR(aoOnRestingConvexBody(kPi / 2), 0.5, 1e-15);
+  EXPECT_NEAR(aoOnRestingConvexBody(kPiD / 2), 0.5, 1e-15);
 }
 
 }  // namespace

@@ -3,22 +3,14 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <ctime>
 #include <sstream>
 #include <thread>
 
 #include "core/math/error.h"
+#include "core/render/cpu_clock.h"
 #include "core/render/engine.h"
 
 namespace penumbra {
-
-namespace {
-double cpuClock(clockid_t id) {
-  timespec ts;
-  clock_gettime(id, &ts);
-  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
-}
-}  // namespace
 
 namespace {
 // Every name --strategies accepts for a row: its label with or without the integrator type, its
@@ -134,7 +126,7 @@ ConvergenceRun runConvergence(const LoadedScene& scene, const IntegratorDesc& st
   auto record = [&](const Image& mean, uint32_t spp, double seconds, double cpu) {
     ConvergencePoint p;
     p.seconds = seconds;
-    p.cpuSeconds = cpu - (cpuClock(CLOCK_THREAD_CPUTIME_ID) - pollerCpuStart);
+    p.cpuSeconds = cpu - (threadCpuSeconds() - pollerCpuStart);
     p.spp = spp;
     p.samples = uint64_t(spp) * pixels;
     p.error = computeErrors(mean, ref.mean, ref.standardError, seesLight);
@@ -147,8 +139,8 @@ ConvergenceRun runConvergence(const LoadedScene& scene, const IntegratorDesc& st
     limits.targetSpp = o.spp;
   else
     limits.seconds = o.seconds;
-  double cpuStart = cpuClock(CLOCK_PROCESS_CPUTIME_ID);
-  pollerCpuStart = cpuClock(CLOCK_THREAD_CPUTIME_ID);
+  double cpuStart = processCpuSeconds();
+  pollerCpuStart = threadCpuSeconds();
   engine.start(job, limits, o.threads);
   std::size_t next = 0;
   bool requested = false;
@@ -173,7 +165,7 @@ ConvergenceRun runConvergence(const LoadedScene& scene, const IntegratorDesc& st
     std::this_thread::sleep_for(std::chrono::microseconds(500));
   }
   engine.wait();
-  double cpuEnd = cpuClock(CLOCK_PROCESS_CPUTIME_ID) - cpuStart;
+  double cpuEnd = processCpuSeconds() - cpuStart;
   RenderProgress p = engine.progress();
   run.finalImage = engine.film().mean(p.spp);
   run.seconds = p.seconds;

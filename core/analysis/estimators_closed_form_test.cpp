@@ -69,7 +69,7 @@ TEST_P(DirectClosedForm, EveryMeasureMatchesTheIrradianceClosedForm) {
   LoadedScene s = planeAndLight(x + lc.c, lc.r, lc.Le);
   // Lr = albedo/pi * Le * I(theta, alpha), albedo = 1.
   double truth =
-      lc.Le / M_PI *
+      lc.Le / kPiD *
       sphereLightIrradianceFactor(glm::dvec3(x), glm::dvec3(0, 0, 1), glm::dvec3(x + lc.c), double(lc.r));
   const int n = 40000;
   for (uint64_t seed : {1u, 2u}) {
@@ -207,7 +207,7 @@ TEST(AoClosedForm, PointsOnARestingSphere) {
   const float R = 1.f;
   LoadedScene s = restingSphere(R);
   for (float psiDeg : {0.f, 45.f, 90.f, 135.f, 170.f}) {
-    double psi = psiDeg * M_PI / 180.0;
+    double psi = psiDeg * kPiD / 180.0;
     Vec3 n(float(std::sin(psi)), 0.f, float(std::cos(psi)));
     Vec3 p = Vec3(0, 0, R) + R * n;
     double truth = aoOnRestingConvexBody(psi);

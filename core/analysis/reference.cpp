@@ -184,7 +184,7 @@ Reference closedFormReference(const LoadedScene& loaded, int grid) {
                                                      glm::dvec3(light.sphere.center), light.sphere.radius);
               E += glm::dvec3(light.radiance) * I;
             }
-            L += glm::dvec3(m.albedo) * (1.0 / M_PI) * E;
+            L += glm::dvec3(m.albedo) * (1.0 / kPiD) * E;
           }
           sum += L * double(weight);
         }

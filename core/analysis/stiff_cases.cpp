@@ -54,7 +54,6 @@ std::string defaultStiffSceneDir() {
 
 namespace {
 
-constexpr double kPiD = 3.14159265358979323846;
 const Vec3 kUp(0.f, 0.f, 1.f);
 const Vec3 kReceiver(0.31f, 0.17f, 0.f);  // the receiver point of the plane scenes (generate.py: X)
 

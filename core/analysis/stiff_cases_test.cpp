@@ -69,7 +69,7 @@ TEST(StiffCasesCanFail, APdfOffByTwoFailsTheZTest) {
   LoadedScene s = loadScene(options().sceneDir + "/light-straddling.xml");
   const Vec3 x(0.31f, 0.17f, 0.f);
   const SphereLight& l = s.scene->sphereLights[0];
-  double truth = l.radiance.x / M_PI *
+  double truth = l.radiance.x / kPiD *
                  sphereLightIrradianceFactor(glm::dvec3(x), glm::dvec3(0, 0, 1), glm::dvec3(l.sphere.center),
                                              l.sphere.radius);
   Estimate e = estimateRay(*s.scene, HalvedSolidAngle{}, shallowRayOnto(x), 4000, 3);

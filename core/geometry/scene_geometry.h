@@ -9,6 +9,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "core/geometry/bounds.h"
@@ -46,11 +47,8 @@ AccelMode sphereAccelFromEnvironment();
 class SceneGeometry {
  public:
   SceneGeometry() = default;
-  ~SceneGeometry();
-  SceneGeometry(const SceneGeometry&) = delete;
-  SceneGeometry& operator=(const SceneGeometry&) = delete;
-  SceneGeometry(SceneGeometry&& other) noexcept;
-  SceneGeometry& operator=(SceneGeometry&& other) noexcept;
+  SceneGeometry(SceneGeometry&&) noexcept = default;
+  SceneGeometry& operator=(SceneGeometry&&) noexcept = default;
 
   // Returns the sphere's index. objectId is reported back in SurfaceHit::objectId.
   uint32_t addSphere(const Sphere& sphere, uint32_t objectId);
@@ -75,9 +73,9 @@ class SceneGeometry {
   // Brute-force path only: triangle pairs intersected as parallelograms.
   size_t parallelogramCount() const { return quads_.size(); }
   // Whether triangles go through Embree.
-  bool usesEmbree() const { return trianglesInEmbree_; }
+  bool usesEmbree() const { return scene_ && trianglesInEmbree_; }
   // Whether spheres go through Embree (as user geometry).
-  bool spheresUseBvh() const { return spheresInEmbree_; }
+  bool spheresUseBvh() const { return scene_ && spheresInEmbree_; }
   const std::vector<Sphere>& spheres() const { return spheres_; }
   const std::vector<TriangleMesh>& meshes() const { return meshes_; }
 
@@ -97,7 +95,13 @@ class SceneGeometry {
   // (*sphere set to its index).
   [[gnu::noinline]] bool nearestEmbreeTriangle(const Ray& r, TriangleCandidate& c, int* sphere) const;
   [[gnu::noinline]] bool nearestFlatTriangle(const Ray& r, TriangleCandidate& c) const;
-  void release();
+  // Owners of Embree's reference-counted handles, opaque here so that this header needs no Embree.
+  struct ReleaseEmbreeDevice {
+    void operator()(void* device) const;  // rtcReleaseDevice
+  };
+  struct ReleaseEmbreeScene {
+    void operator()(void* scene) const;  // rtcReleaseScene
+  };
 
   std::vector<Sphere> spheres_;
   std::vector<uint32_t> sphereIds_;
@@ -109,9 +113,9 @@ class SceneGeometry {
   Bounds bounds_;
   bool trianglesInEmbree_ = false;
   bool spheresInEmbree_ = false;
-  uint32_t sphereGeometryId_ = 0;  // Embree geometry id of the spheres (after the meshes)
-  void* device_ = nullptr;         // RTCDevice, created only when a BVH is needed
-  void* scene_ = nullptr;          // RTCScene
+  uint32_t sphereGeometryId_ = 0;                      // Embree geometry id of the spheres (after the meshes)
+  std::unique_ptr<void, ReleaseEmbreeDevice> device_;  // RTCDevice, created only when a BVH is needed
+  std::unique_ptr<void, ReleaseEmbreeScene> scene_;    // RTCScene (released first: declared last)
 };
 
 }  // namespace penumbra

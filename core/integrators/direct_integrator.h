@@ -67,7 +67,8 @@ struct DirectIntegrator {
       DeltaLightSample s = light.sample(sp.hit.p);
       float cosTheta = glm::dot(sp.ns, s.wi);
       if (isBlack(s.Li) || !leavesSurface(sp, s.wi, cosTheta)) continue;
-      if (scene.geometry.occluded(sp.spawnRayTo(light.position, maxAbsComponent(light.position)))) continue;
+      if (scene.geometry.occluded(sp.spawnShadowRayToPoint(light.position, maxAbsComponent(light.position))))
+        continue;
       E += s.Li * cosTheta;
     }
     for (const DirectionalLight& light : scene.directionalLights) {
@@ -117,7 +118,7 @@ struct DirectIntegrator {
         float cosTheta = glm::dot(sp.ns, s.wi);
         if (!leavesSurface(sp, s.wi, cosTheta)) continue;
         // Every traced sample faces x (far-side area samples have Le = 0): the light cannot block it.
-        if (scene.geometry.occluded(sp.spawnRayTowards(s.wi, s.dist, lightScale), light.geometryIndex))
+        if (scene.geometry.occluded(sp.spawnShadowRayAlong(s.wi, s.dist, lightScale), light.geometryIndex))
           continue;
         E += s.Le * (cosTheta / s.pdf);
       }
@@ -145,7 +146,7 @@ struct DirectIntegrator {
       float cosTheta = glm::dot(sp.ns, s.wi);
       if (!leavesSurface(sp, s.wi, cosTheta)) continue;
       const float lightScale = maxAbsComponent(light.sphere.center) + light.sphere.radius;
-      if (scene.geometry.occluded(sp.spawnRayTowards(s.wi, s.dist, lightScale), light.geometryIndex))
+      if (scene.geometry.occluded(sp.spawnShadowRayAlong(s.wi, s.dist, lightScale), light.geometryIndex))
         continue;
       E += s.Le * static_cast<float>(double(cosTheta) / (double(s.pdf) * pick.pmf));
     }

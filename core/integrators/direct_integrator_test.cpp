@@ -38,7 +38,7 @@ TEST(DirectIntegrator, PointLightGivesAlbedoOverPiTimesIntensityCosOverDistanceS
   scene->pointLights.push_back(PointLight{Vec3(1, 0, 2), Color3(8)});
   finish(*scene);
   // d² = 5, cos θ = 2/√5.
-  const double truth = 0.5 / M_PI * 8.0 / 5.0 * 2.0 / std::sqrt(5.0);
+  const double truth = 0.5 / kPiD * 8.0 / 5.0 * 2.0 / std::sqrt(5.0);
   EXPECT_NEAR(once<Strategy::Simple>(*scene, rayDownOnto(0, 0)).x, truth, 1e-6 * truth);
   // Without area lights every strategy is the delta-light sum.
   EXPECT_NEAR(once<Strategy::DirectSolidAngle>(*scene, rayDownOnto(0, 0)).x, truth, 1e-6 * truth);
@@ -49,7 +49,7 @@ TEST(DirectIntegrator, DirectionalLightGivesAlbedoOverPiTimesIrradianceCos) {
   auto scene = planeScene();
   scene->directionalLights.push_back(DirectionalLight::make(Vec3(0, 1, 1), Color3(2)));
   finish(*scene);
-  const double truth = 2.0 * std::sqrt(0.5) / M_PI;
+  const double truth = 2.0 * std::sqrt(0.5) / kPiD;
   EXPECT_NEAR(once<Strategy::Simple>(*scene, rayDownOnto(0.3f, -0.2f)).x, truth, 1e-6 * truth);
 }
 

@@ -11,8 +11,6 @@
 namespace penumbra {
 namespace {
 
-constexpr double kPiD = 3.14159265358979323846;
-
 // ---- Closed form (re-derived here, independently of core/analysis/closed_forms.cpp) ----
 // I(θ, α) with E = Le · I: θ between the receiver normal and the direction to the centre, α the
 // angular radius of the sphere (sin α = r / d).

@@ -8,6 +8,7 @@
 #include <cstdint>
 
 #include "core/geometry/ray.h"
+#include "core/math/float_util.h"
 #include "core/render/strategy_table.h"
 #include "core/sampling/sampler.h"
 #include "core/world/scene.h"
@@ -24,7 +25,7 @@ RayEstimate estimateRay(const Scene& scene, const Integrator& integrator, const 
   for (int i = 0; i < n; ++i) {
     sampler.startPixelSample(IVec2(7, 11), uint32_t(i));
     Color3 L = integrator.Li(scene, ray, sampler);
-    if (!(L.x >= 0.f) || !std::isfinite(L.x)) {
+    if (!isValidRadiance(L)) {
       ++e.bad;
       continue;
     }

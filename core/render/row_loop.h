@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/math/float_util.h"
 #include "core/render/row_renderer.h"
 
 namespace penumbra {
@@ -39,7 +40,7 @@ RowRenderer rowsFor(const RenderJob& job, Integrator integrator) {
       if (x + 1 < width) nextRay = startPixel(*upcoming, x + 1, nextWeight);
       Color3 L = integrator.Li(*scene, ray, *current);
       // NaN, Inf or negative radiance is a bug somewhere: count it and add nothing.
-      if (L.x >= 0.f && L.y >= 0.f && L.z >= 0.f && std::isfinite(L.x + L.y + L.z))
+      if (isValidRadiance(L))
         film.add(x, y, L * weight);
       else
         ++badSamples;
@@ -57,7 +58,7 @@ RowRenderer rowsFor(const RenderJob& job, Integrator integrator) {
       sampler.startPixelSample(centre, 0);
       sampler.next2D();  // keep the dimension layout of a regular camera sample
       Color3 L = integrator.Li(*scene, camera.generateRay(Vec2(centre) + Vec2(0.5f)), sampler);
-      if (!(L.x >= 0.f && L.y >= 0.f && L.z >= 0.f && std::isfinite(L.x + L.y + L.z))) L = Color3(0.f);
+      if (!isValidRadiance(L)) L = Color3(0.f);
       for (int y = y0; y < y1; ++y)
         for (int x = x0; x < x1; ++x) image.set(x, y, L);
     }

@@ -7,7 +7,10 @@
 #include <cstdint>
 #include <functional>
 
-#include "core/render/engine.h"
+#include "core/image/image.h"
+#include "core/render/film.h"
+#include "core/render/render_job.h"
+#include "core/sampling/sampler.h"
 
 namespace penumbra {
 
