@@ -137,6 +137,7 @@ void SceneGeometry::build(AccelMode mode, AccelMode sphereMode) {
   device_.reset();
   trianglesInEmbree_ = false;
   spheresInEmbree_ = false;
+  flatSphereCount_ = 0;
   quads_.clear();
   flat_.clear();
   const bool useEmbree =
@@ -157,7 +158,10 @@ void SceneGeometry::build(AccelMode mode, AccelMode sphereMode) {
         flat_.push_back({p0, p1, p2, m, i, trianglePlane(p0, p1, p2)});
       }
     }
-    if (!spheresInBvh) return;
+    if (!spheresInBvh) {
+      flatSphereCount_ = spheres_.size();
+      return;
+    }
   }
 
   RTCDevice device = rtcNewDevice(nullptr);
@@ -204,6 +208,7 @@ void SceneGeometry::build(AccelMode mode, AccelMode sphereMode) {
   checkEmbree(device, "rtcCommitScene");
   trianglesInEmbree_ = useEmbree;
   spheresInEmbree_ = spheresInBvh;
+  flatSphereCount_ = spheresInBvh ? 0 : spheres_.size();
 }
 
 bool SceneGeometry::nearestEmbreeTriangle(const Ray& r, TriangleCandidate& c, int* sphere) const {
@@ -261,13 +266,11 @@ bool SceneGeometry::nearestFlatTriangle(const Ray& r, TriangleCandidate& c) cons
 bool SceneGeometry::intersect(const Ray& ray, SurfaceHit& hit) const {
   Ray r = ray;
   int sphereHit = -1;
-  if (!spheresInEmbree_) {
-    for (size_t i = 0; i < spheres_.size(); ++i) {
-      float t;
-      if (spheres_[i].intersect(r, t)) {
-        r.tMax = t;
-        sphereHit = static_cast<int>(i);
-      }
+  for (size_t i = 0; i < flatSphereCount_; ++i) {
+    float t;
+    if (spheres_[i].intersect(r, t)) {
+      r.tMax = t;
+      sphereHit = static_cast<int>(i);
     }
   }
 
@@ -320,9 +323,8 @@ bool SceneGeometry::intersect(const Ray& ray, SurfaceHit& hit) const {
 }
 
 bool SceneGeometry::occluded(const Ray& ray, int32_t skipSphere) const {
-  if (!spheresInEmbree_)
-    for (size_t i = 0; i < spheres_.size(); ++i)
-      if (static_cast<int32_t>(i) != skipSphere && spheres_[i].occludes(ray)) return true;
+  for (size_t i = 0; i < flatSphereCount_; ++i)
+    if (static_cast<int32_t>(i) != skipSphere && spheres_[i].occludes(ray)) return true;
   for (const Parallelogram& q : quads_) {
     float t, u, v;
     if (intersectParallelogram(q, ray, ray.tMax, t, u, v)) return true;

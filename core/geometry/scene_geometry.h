@@ -113,7 +113,8 @@ class SceneGeometry {
   Bounds bounds_;
   bool trianglesInEmbree_ = false;
   bool spheresInEmbree_ = false;
-  uint32_t sphereGeometryId_ = 0;                      // Embree geometry id of the spheres (after the meshes)
+  size_t flatSphereCount_ = 0;     // spheres in the flat loops: all of them, or none when in the BVH
+  uint32_t sphereGeometryId_ = 0;  // Embree geometry id of the spheres (after the meshes)
   std::unique_ptr<void, ReleaseEmbreeDevice> device_;  // RTCDevice, created only when a BVH is needed
   std::unique_ptr<void, ReleaseEmbreeScene> scene_;    // RTCScene (released first: declared last)
 };
