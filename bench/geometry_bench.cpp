@@ -11,6 +11,7 @@
 #include "core/geometry/scene_geometry.h"
 #include "core/math/float_util.h"
 #include "core/sampling/random_unit.h"
+#include "core/scene/scaling_scene.h"
 
 namespace penumbra {
 namespace {
@@ -194,6 +195,83 @@ void BM_Rock_AoIntersect(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations());
 }
 BENCHMARK(BM_Rock_AoIntersect)->Arg(7)->Arg(8);
+
+// ---- Brute force vs BVH for spheres (justifies kBruteForceMaxSpheres) ------------------------------
+// The scaling scene's geometry (range(0) lights plus as many blockers over a two-triangle floor):
+// camera rays onto the floor, and shadow rays from floor points to points on the lights (skipping
+// the light itself, as the integrator does).
+struct SphereScene {
+  SceneGeometry geometry;
+  std::vector<Ray> cameraRays, shadowRays;
+  std::vector<int32_t> shadowSkip;
+};
+
+SphereScene sphereScene(int lights, AccelMode sphereMode) {
+  SphereScene s;
+  std::vector<ScalingSphere> spheres = scalingSceneSpheres(lights, 1);
+  for (size_t i = 0; i < spheres.size(); ++i) s.geometry.addSphere(spheres[i].sphere, uint32_t(i));
+  s.geometry.addMesh(makeGridPlane(Vec3(-10, 0, 10), Vec3(20, 0, 0), Vec3(0, 0, -20), 1, 1), 1u << 30);
+  s.geometry.build(AccelMode::Auto, sphereMode);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> u(-1.f, 1.f);
+  const Vec3 eye(0, 16, 17);
+  while (s.cameraRays.size() < kRayCount) {
+    const Ray cam{eye, glm::normalize(Vec3(10 * u(rng), 0, 10 * u(rng)) - eye)};
+    s.cameraRays.push_back(cam);
+    SurfaceHit hit;
+    if (!s.geometry.intersect(cam, hit)) continue;
+    const int light = 2 * int(std::uniform_int_distribution<int>(0, lights - 1)(rng));
+    const Sphere& ls = spheres[size_t(light)].sphere;
+    const Vec3 target = ls.center + ls.radius * randomUnit(rng);
+    const Vec3 o = offsetRayOrigin(hit.p, hit.ng, hit.offsetScale, target - hit.p);
+    const float len = glm::length(target - o);
+    s.shadowRays.push_back(Ray{o, (target - o) / len, 0.f, len * (1.f - 1e-4f)});
+    s.shadowSkip.push_back(light);
+  }
+  return s;
+}
+
+void sphereIntersectBench(benchmark::State& state, AccelMode sphereMode) {
+  const SphereScene s = sphereScene(static_cast<int>(state.range(0)), sphereMode);
+  size_t i = 0;
+  for (auto _ : state) {
+    SurfaceHit hit;
+    benchmark::DoNotOptimize(s.geometry.intersect(s.cameraRays[i++ & (kRayCount - 1)], hit));
+  }
+  state.SetItemsProcessed(state.iterations());
+  state.counters["spheres"] = static_cast<double>(s.geometry.sphereCount());
+}
+void sphereOccludedBench(benchmark::State& state, AccelMode sphereMode) {
+  const SphereScene s = sphereScene(static_cast<int>(state.range(0)), sphereMode);
+  const size_t n = s.shadowRays.size();
+  size_t i = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(s.geometry.occluded(s.shadowRays[i], s.shadowSkip[i]));
+    if (++i == n) i = 0;
+  }
+  state.SetItemsProcessed(state.iterations());
+  state.counters["spheres"] = static_cast<double>(s.geometry.sphereCount());
+}
+void BM_SpheresBruteForce_Intersect(benchmark::State& s) {
+  sphereIntersectBench(s, AccelMode::BruteForce);
+}
+void BM_SpheresBvh_Intersect(benchmark::State& s) {
+  sphereIntersectBench(s, AccelMode::Embree);
+}
+void BM_SpheresBruteForce_Occluded(benchmark::State& s) {
+  sphereOccludedBench(s, AccelMode::BruteForce);
+}
+void BM_SpheresBvh_Occluded(benchmark::State& s) {
+  sphereOccludedBench(s, AccelMode::Embree);
+}
+// Arg: lights (spheres = 2 × lights).
+#define PENUMBRA_SPHERE_COUNTS \
+  ->Arg(1)->Arg(2)->Arg(3)->Arg(4)->Arg(6)->Arg(8)->Arg(12)->Arg(16)->Arg(64)->Arg(500)->Arg(5000)
+BENCHMARK(BM_SpheresBruteForce_Intersect) PENUMBRA_SPHERE_COUNTS;
+BENCHMARK(BM_SpheresBvh_Intersect) PENUMBRA_SPHERE_COUNTS;
+BENCHMARK(BM_SpheresBruteForce_Occluded) PENUMBRA_SPHERE_COUNTS;
+BENCHMARK(BM_SpheresBvh_Occluded) PENUMBRA_SPHERE_COUNTS;
+#undef PENUMBRA_SPHERE_COUNTS
 
 void BM_MakeRockMesh(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(makeRockMesh(static_cast<int>(state.range(0)), 7));

@@ -58,7 +58,9 @@ TEST(ConvergeCli, ReportFilesExistAndParse) {
   }
   EXPECT_GE(rows, 4 * 3);
   EXPECT_EQ(strategies,
-            (std::set<std::string>{"uniform-hemisphere", "cosine-hemisphere", "area", "solid-angle"}));
+            (std::set<std::string>{"uniform-hemisphere", "cosine-hemisphere", "area", "area-uniform",
+                                   "area-power", "area-bvh", "solid-angle", "solid-angle-uniform",
+                                   "solid-angle-power", "solid-angle-bvh"}));
   // PNGs decode and have a plausible size.
   for (const char* png : {"convergence.png", "equal-time.png"}) {
     Image img = readImage((dir / png).string());

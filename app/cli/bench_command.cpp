@@ -2,6 +2,8 @@
 //   * camera samples/s for every direct-illumination strategy on the sphere scene
 //   (scenes/hw2/Tests/sphere-area.xml);
 //   * AO rays/s on the stand-in rock mesh (1.3 M triangles, Embree);
+//   * a scaling series: 10 to 10,000 sphere lights over a floor (core/scene/scaling_scene.h), camera
+//     samples/s of each light selection at a fixed spp;
 // each at 1 thread and at all threads, median of several timed runs, with the threads' speed-up.
 #include <algorithm>
 #include <cstdio>
@@ -14,7 +16,9 @@
 #include "app/cli/option_checks.h"
 #include "app/cli/scene_options.h"
 #include "core/analysis/order_statistics.h"
+#include "core/image/atomic_file.h"
 #include "core/render/engine.h"
+#include "core/scene/scaling_scene.h"
 
 namespace penumbra::cli {
 
@@ -28,7 +32,60 @@ struct BenchOptions {
   double seconds = 1.0;
   int repeats = 9;
   int threads = 0;
+  int scalingSpp = 2;  // samples per pixel of each render of the scaling series (0: no series)
+  bool scalingOnly = false;
+  std::string writeScalingScene;  // write the scaling scene with `scalingLights` lights here and exit
+  int scalingLights = 1000;
 };
+
+// One render of `spp` passes: camera samples per second.
+double fixedSppRun(const LoadedScene& s, const RenderSettings& settings, int threads, uint32_t spp) {
+  auto job = std::make_shared<RenderJob>();
+  job->scene = s.scene;
+  job->settings = settings;
+  Engine engine;
+  engine.start(job, RenderLimits{spp, 0.0}, threads);
+  engine.wait();
+  RenderProgress p = engine.progress();
+  return double(p.samples) / p.seconds;
+}
+
+// The scaling series: n sphere lights plus n non-emitting spheres over a floor, 128², every light
+// selection of solid-angle sampling. `all` is skipped where one render would take minutes.
+void scalingSeries(const BenchOptions& o, int threads) {
+  std::printf(
+      "\nscaling series: n sphere lights + n spheres over a floor, 128x128, %d spp, %d threads,\n"
+      "camera samples/s (M/s) per light selection; time per sample relative to n = 100 in ()\n",
+      o.scalingSpp, threads);
+  const Strategy selections[] = {Strategy::DirectSolidAngle, Strategy::DirectSolidAngleUniform,
+                                 Strategy::DirectSolidAnglePower, Strategy::DirectSolidAngleBvh};
+  std::printf("%8s %8s", "lights", "BVH");
+  for (Strategy st : selections) std::printf(" %22s", std::string(strategyRow(st).label).c_str());
+  std::printf("\n");
+  std::vector<double> at100(std::size(selections), 0.0);
+  for (int n : {10, 100, 1000, 10000}) {
+    LoadedScene scene = loadSceneFromString(scalingSceneXml(n, 128, o.scalingSpp), "<scaling scene>", ".");
+    std::printf("%8d %8s", n, scene.scene->geometry.spheresUseBvh() ? "spheres" : "-");
+    for (size_t i = 0; i < std::size(selections); ++i) {
+      if (selections[i] == Strategy::DirectSolidAngle && n > 1000) {
+        std::printf(" %22s", "(skipped)");
+        continue;
+      }
+      RenderSettings settings = scene.settings;
+      settings.integrator = IntegratorDesc{selections[i], 1};
+      const double rate = fixedSppRun(scene, settings, threads, uint32_t(o.scalingSpp));
+      if (n == 100) at100[i] = rate;
+      char cell[40];
+      if (n >= 100 && at100[i] > 0)
+        std::snprintf(cell, sizeof cell, "%.3f (%.2fx)", rate * 1e-6, at100[i] / rate);
+      else
+        std::snprintf(cell, sizeof cell, "%.3f", rate * 1e-6);
+      std::printf(" %22s", cell);
+      std::fflush(stdout);
+    }
+    std::printf("\n");
+  }
+}
 
 // One timed run of `seconds`: camera samples per second.
 double timedRun(const LoadedScene& s, const RenderSettings& settings, int threads, double seconds) {
@@ -110,6 +167,13 @@ std::string locateScene(const std::string& given, const std::string& repoRelativ
 }
 
 int runBench(const BenchOptions& o) {
+  if (!o.writeScalingScene.empty()) {
+    const std::string xml = scalingSceneXml(o.scalingLights, 128, 16);
+    writeBytesAtomically(o.writeScalingScene, xml.data(), xml.size());
+    std::printf("wrote %s (%d sphere lights, %d spheres)\n", o.writeScalingScene.c_str(), o.scalingLights,
+                2 * o.scalingLights);
+    return 0;
+  }
   int all = o.threads > 0 ? o.threads : int(std::max(1u, std::thread::hardware_concurrency()));
   std::printf(
       "penumbra bench: median of %d runs of %.1f s; %d hardware threads. 1-thread and all-thread runs\n"
@@ -118,6 +182,10 @@ int runBench(const BenchOptions& o) {
       "time while the figure was measured. Below ~97%% or above ~1%%, the figure was contended; a busy\n"
       "neighbour on the host's cores shows in neither, only as a slower 1-thread figure.\n\n",
       o.repeats, o.seconds, all);
+  if (o.scalingOnly) {
+    scalingSeries(o, all);
+    return 0;
+  }
 
   LoadedScene sphere = o.sphereScene.empty()
                            ? loadSceneFromString(defaultSceneXml(), "<built-in sphere scene>", ".")
@@ -128,6 +196,8 @@ int runBench(const BenchOptions& o) {
                        "x" + std::to_string(sphere.settings.camera.height) + ")";
   printHeader(header.c_str());
   for (Strategy strategy : strategiesOfType(type)) {
+    // One light: choosing one per sample is the same work as sampling each (the scaling series below).
+    if (lightSelectionOf(strategy) != LightSelection::All) continue;
     RenderSettings s = sphere.settings;
     s.integrator = IntegratorDesc{strategy, 1};
     Scaling m = measure(sphere, s, all, o);
@@ -137,6 +207,7 @@ int runBench(const BenchOptions& o) {
   std::string aoPath = locateScene(o.aoScene, "scenes/standin/rock-ao.xml");
   if (aoPath.empty()) {
     std::printf("\n(AO benchmark skipped: scenes/standin/rock-ao.xml not found; pass --ao-scene)\n");
+    if (o.scalingSpp > 0) scalingSeries(o, all);
     return 0;
   }
   LoadedScene ao = loadScene(aoPath);
@@ -148,6 +219,7 @@ int runBench(const BenchOptions& o) {
   printRow(std::to_string(ao.scene->geometry.triangleCount()) + " triangles", m, rays * 1e-6);
   std::printf("(%s, %s, %d shading samples per camera sample; AO rays/s excludes camera rays)\n",
               aoPath.c_str(), strategyLabel(s.integrator).c_str(), s.integrator.samples);
+  if (o.scalingSpp > 0) scalingSeries(o, all);
   return 0;
 }
 
@@ -168,6 +240,17 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
       ->capture_default_str();
   cmd->add_option("--threads", o->threads, "Threads for the 'all threads' column")
       ->check(CLI::Range(1, 1024));
+  cmd->add_option("--scaling-spp", o->scalingSpp,
+                  "Samples per pixel of each render of the many-lights scaling series (0: skip it)")
+      ->check(CLI::Range(0, 1024))
+      ->capture_default_str();
+  cmd->add_flag("--scaling-only", o->scalingOnly, "Run only the scaling series");
+  cmd->add_option(
+      "--write-scaling-scene", o->writeScalingScene,
+      "Write the scaling series' scene (--lights sphere lights, 128x128, 16 spp) to this file and exit");
+  cmd->add_option("--lights", o->scalingLights, "Sphere lights of --write-scaling-scene")
+      ->check(CLI::Range(1, 1000000))
+      ->capture_default_str();
   cmd->callback([o, &exitCode] { exitCode = runBench(*o); });
 }
 

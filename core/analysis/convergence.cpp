@@ -19,8 +19,14 @@ namespace {
 bool namesStrategy(const StrategyRow& row, const std::string& name) {
   std::string_view label = row.label;
   if (name == label || name == row.shortName || name == label.substr(label.find('/') + 1)) return true;
-  for (size_t i = row.select.size(); i-- > 0;)  // the most specific selecting property
-    if (!row.select[i].name.empty()) return row.select[i].value.accepts(name);
+  // The most specific selecting property's value, or a less specific one's when the more specific
+  // ones take their default (solidAngle names solid-angle with every light).
+  for (size_t i = row.select.size(); i-- > 0;) {
+    const StrategyProperty& p = row.select[i];
+    if (p.name.empty()) continue;
+    if (p.value.accepts(name)) return true;
+    if (!p.isDefault) return false;
+  }
   return false;
 }
 

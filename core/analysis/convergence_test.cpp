@@ -111,6 +111,9 @@ TEST(ParseStrategies, LabelsShortNamesAndSceneSpellingsNameTheirRow) {
   EXPECT_EQ(strategiesOf(parseStrategies(direct, "direct/area,solidAngle,uniform,cosine-hemisphere")),
             (std::vector<Strategy>{Strategy::DirectArea, Strategy::DirectSolidAngle,
                                    Strategy::DirectUniformHemisphere, Strategy::DirectCosineHemisphere}));
+  EXPECT_EQ(strategiesOf(parseStrategies(direct, "solid-angle-bvh,area-power,direct/area-uniform")),
+            (std::vector<Strategy>{Strategy::DirectSolidAngleBvh, Strategy::DirectAreaPower,
+                                   Strategy::DirectAreaUniform}));
   EXPECT_EQ(strategiesOf(parseStrategies({Strategy::AoUniform, 1}, "cosine,ao-uniform")),
             (std::vector<Strategy>{Strategy::AoCosine, Strategy::AoUniform}));
 }
@@ -120,10 +123,11 @@ TEST(ParseStrategies, UnknownNamesFailWithWhatIsAccepted) {
     parseStrategies({Strategy::DirectSolidAngle, 1}, "area,mis");
     FAIL() << "no error";
   } catch (const Error& e) {
-    EXPECT_NE(
-        std::string(e.what()).find("unknown strategy \"mis\" (expected all, or a comma-separated list of: "
-                                   "uniform-hemisphere, cosine-hemisphere, area, solid-angle)"),
-        std::string::npos)
+    EXPECT_NE(std::string(e.what()).find(
+                  "unknown strategy \"mis\" (expected all, or a comma-separated list of: "
+                  "uniform-hemisphere, cosine-hemisphere, area, area-uniform, area-power, area-bvh, "
+                  "solid-angle, solid-angle-uniform, solid-angle-power, solid-angle-bvh)"),
+              std::string::npos)
         << e.what();
   }
   EXPECT_THROW(parseStrategies({Strategy::Normals, 1}, "all"), Error);

@@ -6,6 +6,8 @@
 
 #include <cmath>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "core/analysis/closed_forms.h"
 #include "core/analysis/ray_estimate.h"
@@ -104,6 +106,67 @@ TEST(DirectClosedForm, LightBelowTheHorizonGivesExactlyZero) {
                  directAt(Strategy::DirectUniformHemisphere, s, Vec3(0), 1000, 3)}) {
     EXPECT_EQ(e.mean, 0.0);
     EXPECT_EQ(e.bad, 0u);
+  }
+}
+
+// ---- one light per sample: every light selection is unbiased --------------------------------------
+
+// Several sphere lights of different power in different directions from the receivers (none hides
+// another from them), one straddling the horizon and one below it: the truth is the sum of each
+// light's closed form.
+struct SeveralLights {
+  LoadedScene scene;
+  std::vector<std::pair<Vec3, float>> lights;  // centre, radius
+  std::vector<float> radiance;
+};
+
+SeveralLights severalLights() {
+  SeveralLights out;
+  out.lights = {{Vec3(0.5f, 0.2f, 2.f), 0.5f},  {Vec3(-3.f, 1.f, 2.5f), 0.3f}, {Vec3(2.f, -3.f, 1.f), 0.8f},
+                {Vec3(1.5f, 2.5f, 0.3f), 0.6f}, {Vec3(-1.f, -4.f, 4.f), 0.2f}, {Vec3(0.f, 3.f, -1.5f), 1.f}};
+  out.radiance = {10.f, 40.f, 2.f, 5.f, 80.f, 100.f};
+  std::ostringstream xml;
+  xml.precision(9);
+  xml << "<scene><integrator type=\"direct\"/>"
+      << "<shape type=\"plane\"><bsdf type=\"diffuse\"><color name=\"albedo\" value=\"1\"/></bsdf>"
+      << "<transform name=\"toWorld\"><scale value=\"10,1,10\"/><rotate axis=\"1,0,0\" "
+         "angle=\"90\"/></transform></shape>";
+  for (size_t i = 0; i < out.lights.size(); ++i) {
+    const Vec3& c = out.lights[i].first;
+    xml << "<shape type=\"sphere\"><point name=\"center\" value=\"" << c.x << "," << c.y << "," << c.z
+        << "\"/><float name=\"radius\" value=\"" << out.lights[i].second
+        << "\"/><emitter type=\"area\"><color name=\"radiance\" value=\"" << out.radiance[i]
+        << "\"/></emitter></shape>";
+  }
+  xml << "</scene>";
+  out.scene = loadSceneFromString(xml.str(), "lights.xml", ".");
+  return out;
+}
+
+TEST(DirectClosedForm, EveryLightSelectionMatchesTheSumOfTheLightsClosedForms) {
+  const SeveralLights s = severalLights();
+  ASSERT_EQ(s.scene.scene->sphereLights.size(), 6u);
+  const Strategy strategies[] = {Strategy::DirectArea,
+                                 Strategy::DirectAreaUniform,
+                                 Strategy::DirectAreaPower,
+                                 Strategy::DirectAreaBvh,
+                                 Strategy::DirectSolidAngle,
+                                 Strategy::DirectSolidAngleUniform,
+                                 Strategy::DirectSolidAnglePower,
+                                 Strategy::DirectSolidAngleBvh};
+  for (const Vec3 x : {Vec3(0.31f, 0.17f, 0.f), Vec3(-2.1f, 0.4f, 0.f), Vec3(-0.8f, -1.f, 0.f)}) {
+    double truth = 0.0;
+    for (size_t i = 0; i < s.lights.size(); ++i)
+      truth += s.radiance[i] / M_PI *
+               sphereLightIrradianceFactor(glm::dvec3(x), glm::dvec3(0, 0, 1), glm::dvec3(s.lights[i].first),
+                                           double(s.lights[i].second));
+    for (Strategy strategy : strategies) {
+      const std::string what = std::string(strategyRow(strategy).label) + " at " + std::to_string(x.x);
+      const Estimate e = directAt(strategy, s.scene, x, 400000, 4);
+      checkAgainstTruth(what.c_str(), e, truth);
+      EXPECT_GT(std::fabs(e.mean - 1.1 * truth), 4 * e.standardError)
+          << what << ": would not catch a 10 % bias";
+    }
   }
 }
 

@@ -2,6 +2,8 @@
 
 #include <embree3/rtcore.h>
 
+#include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <string>
 #include <utility>
@@ -34,7 +36,69 @@ inline void setupRay(const Ray& ray, float tMax, RTCRay& r) {
   r.flags = 0;
 }
 
+// An occlusion query's context: Embree's, followed by the sphere the shadow ray must not test.
+struct OcclusionContext {
+  RTCIntersectContext base;
+  int32_t skipSphere;
+};
+
+inline Ray rayOf(RTCRayN* rays, unsigned n, unsigned i) {
+  return Ray{Vec3(RTCRayN_org_x(rays, n, i), RTCRayN_org_y(rays, n, i), RTCRayN_org_z(rays, n, i)),
+             Vec3(RTCRayN_dir_x(rays, n, i), RTCRayN_dir_y(rays, n, i), RTCRayN_dir_z(rays, n, i)),
+             RTCRayN_tnear(rays, n, i), RTCRayN_tfar(rays, n, i)};
+}
+
+// The sphere's box grown by a few ulps of its coordinates: re-projected hit points, rounded to float,
+// may lie half an ulp outside the box rounded from centre ± radius.
+void sphereBounds(const RTCBoundsFunctionArguments* args) {
+  const Sphere& s = static_cast<const Sphere*>(args->geometryUserPtr)[args->primID];
+  const Bounds b = s.bounds();
+  const float pad = 0x1p-20f * (maxAbsComponent(s.center) + s.radius);
+  *args->bounds_o = RTCBounds{b.min.x - pad, b.min.y - pad, b.min.z - pad, 0.f,
+                              b.max.x + pad, b.max.y + pad, b.max.z + pad, 0.f};
+}
+
+// User-geometry intersection: the same robust Sphere::intersect as the flat loop, so both paths
+// report the same float t for the same ray.
+void sphereIntersect(const RTCIntersectFunctionNArguments* args) {
+  const Sphere& s = static_cast<const Sphere*>(args->geometryUserPtr)[args->primID];
+  RTCRayN* rays = RTCRayHitN_RayN(args->rayhit, args->N);
+  RTCHitN* hits = RTCRayHitN_HitN(args->rayhit, args->N);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] != -1) continue;
+    float t;
+    if (!s.intersect(rayOf(rays, args->N, i), t)) continue;
+    RTCRayN_tfar(rays, args->N, i) = t;
+    RTCHitN_Ng_x(hits, args->N, i) = 0.f;
+    RTCHitN_Ng_y(hits, args->N, i) = 0.f;
+    RTCHitN_Ng_z(hits, args->N, i) = 0.f;
+    RTCHitN_u(hits, args->N, i) = 0.f;
+    RTCHitN_v(hits, args->N, i) = 0.f;
+    RTCHitN_primID(hits, args->N, i) = args->primID;
+    RTCHitN_geomID(hits, args->N, i) = args->geomID;
+    RTCHitN_instID(hits, args->N, i, 0) = args->context->instID[0];
+  }
+}
+
+void sphereOccluded(const RTCOccludedFunctionNArguments* args) {
+  const auto* context = reinterpret_cast<const OcclusionContext*>(args->context);
+  if (static_cast<int32_t>(args->primID) == context->skipSphere) return;
+  const Sphere& s = static_cast<const Sphere*>(args->geometryUserPtr)[args->primID];
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] != -1) continue;
+    if (s.occludes(rayOf(args->ray, args->N, i))) RTCRayN_tfar(args->ray, args->N, i) = -INFINITY;
+  }
+}
+
 }  // namespace
+
+AccelMode sphereAccelFromEnvironment() {
+  const char* value = std::getenv("PENUMBRA_SPHERE_ACCEL");
+  if (!value || !*value || std::strcmp(value, "auto") == 0) return AccelMode::Auto;
+  if (std::strcmp(value, "bvh") == 0) return AccelMode::Embree;
+  if (std::strcmp(value, "brute-force") == 0) return AccelMode::BruteForce;
+  throw Error(std::string("PENUMBRA_SPHERE_ACCEL must be auto, bvh or brute-force, got \"") + value + "\"");
+}
 
 void SceneGeometry::ReleaseEmbreeDevice::operator()(void* device) const {
   rtcReleaseDevice(static_cast<RTCDevice>(device));
@@ -68,14 +132,21 @@ void SceneGeometry::addMesh(const TriangleMesh& mesh, uint32_t objectId) {
   }
 }
 
-void SceneGeometry::build(AccelMode mode) {
+void SceneGeometry::build(AccelMode mode, AccelMode sphereMode) {
   scene_.reset();
   device_.reset();
+  trianglesInEmbree_ = false;
+  spheresInEmbree_ = false;
+  flatSphereCount_ = 0;
   quads_.clear();
   flat_.clear();
   const bool useEmbree =
       triangleCount_ > 0 &&
       (mode == AccelMode::Embree || (mode == AccelMode::Auto && triangleCount_ > kBruteForceMaxTriangles));
+  if (sphereMode == AccelMode::Auto) sphereMode = sphereAccelFromEnvironment();
+  const bool spheresInBvh =
+      !spheres_.empty() && (sphereMode == AccelMode::Embree ||
+                            (sphereMode == AccelMode::Auto && spheres_.size() > kBruteForceMaxSpheres));
   if (!useEmbree) {
     for (uint32_t m = 0; m < meshes_.size(); ++m) {
       const TriangleMesh& mesh = meshes_[m];
@@ -87,7 +158,10 @@ void SceneGeometry::build(AccelMode mode) {
         flat_.push_back({p0, p1, p2, m, i, trianglePlane(p0, p1, p2)});
       }
     }
-    return;
+    if (!spheresInBvh) {
+      flatSphereCount_ = spheres_.size();
+      return;
+    }
   }
 
   RTCDevice device = rtcNewDevice(nullptr);
@@ -99,7 +173,7 @@ void SceneGeometry::build(AccelMode mode) {
   rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_HIGH);
   // Watertight like the flat loop (no cracks between triangles sharing an edge); costs ~15-20%.
   rtcSetSceneFlags(scene, RTC_SCENE_FLAG_ROBUST);
-  for (uint32_t m = 0; m < meshes_.size(); ++m) {
+  for (uint32_t m = 0; useEmbree && m < meshes_.size(); ++m) {
     const TriangleMesh& mesh = meshes_[m];
     RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
     auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
@@ -115,11 +189,29 @@ void SceneGeometry::build(AccelMode mode) {
     rtcReleaseGeometry(geom);
     checkEmbree(device, "attaching a mesh");
   }
+  if (spheresInBvh) {
+    // User geometry rather than RTC_GEOMETRY_TYPE_SPHERE_POINT: Embree's own sphere test is a float
+    // quadratic, which loses small far spheres and re-hits a sphere from its own surface.
+    RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
+    rtcSetGeometryUserPrimitiveCount(geom, static_cast<unsigned>(spheres_.size()));
+    rtcSetGeometryUserData(geom, spheres_.data());  // stable: no sphere is added after build
+    rtcSetGeometryBoundsFunction(geom, sphereBounds, nullptr);
+    rtcSetGeometryIntersectFunction(geom, sphereIntersect);
+    rtcSetGeometryOccludedFunction(geom, sphereOccluded);
+    rtcCommitGeometry(geom);
+    sphereGeometryId_ = static_cast<uint32_t>(meshes_.size());
+    rtcAttachGeometryByID(scene, geom, sphereGeometryId_);
+    rtcReleaseGeometry(geom);
+    checkEmbree(device, "attaching the spheres");
+  }
   rtcCommitScene(scene);
   checkEmbree(device, "rtcCommitScene");
+  trianglesInEmbree_ = useEmbree;
+  spheresInEmbree_ = spheresInBvh;
+  flatSphereCount_ = spheresInBvh ? 0 : spheres_.size();
 }
 
-bool SceneGeometry::nearestEmbreeTriangle(const Ray& r, TriangleCandidate& c) const {
+bool SceneGeometry::nearestEmbreeTriangle(const Ray& r, TriangleCandidate& c, int* sphere) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRayHit rh;
@@ -128,6 +220,11 @@ bool SceneGeometry::nearestEmbreeTriangle(const Ray& r, TriangleCandidate& c) co
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(static_cast<RTCScene>(scene_.get()), &context, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+  if (spheresInEmbree_ && rh.hit.geomID == sphereGeometryId_) {
+    *sphere = static_cast<int>(rh.hit.primID);
+    c.isect.t = rh.ray.tfar;
+    return false;
+  }
   c.mesh = rh.hit.geomID;
   c.prim = rh.hit.primID;
   c.isect = {rh.ray.tfar, 1.f - rh.hit.u - rh.hit.v, rh.hit.u, rh.hit.v};
@@ -169,7 +266,7 @@ bool SceneGeometry::nearestFlatTriangle(const Ray& r, TriangleCandidate& c) cons
 bool SceneGeometry::intersect(const Ray& ray, SurfaceHit& hit) const {
   Ray r = ray;
   int sphereHit = -1;
-  for (size_t i = 0; i < spheres_.size(); ++i) {
+  for (size_t i = 0; i < flatSphereCount_; ++i) {
     float t;
     if (spheres_[i].intersect(r, t)) {
       r.tMax = t;
@@ -190,7 +287,23 @@ bool SceneGeometry::intersect(const Ray& ray, SurfaceHit& hit) const {
   }
 
   TriangleCandidate tri;
-  const bool triHit = scene_ ? nearestEmbreeTriangle(r, tri) : !flat_.empty() && nearestFlatTriangle(r, tri);
+  bool triHit = false;
+  if (!flat_.empty() && nearestFlatTriangle(r, tri)) {
+    triHit = true;
+    r.tMax = tri.isect.t;
+  }
+  if (scene_) {
+    // Every Embree hit is nearer than the ones above (it is bounded by r.tMax).
+    int bvhSphere = -1;
+    if (nearestEmbreeTriangle(r, tri, &bvhSphere)) {
+      triHit = true;
+    } else if (bvhSphere >= 0) {
+      sphereHit = bvhSphere;
+      r.tMax = tri.isect.t;
+      triHit = false;
+      quadHit = nullptr;
+    }
+  }
   if (triHit) {
     // Embree hits keep offsets relative to the triangle's coordinates (its t carries that error);
     // brute-force hits are projected and offset relative to |p| (see projectOntoPlane).
@@ -210,19 +323,22 @@ bool SceneGeometry::intersect(const Ray& ray, SurfaceHit& hit) const {
 }
 
 bool SceneGeometry::occluded(const Ray& ray, int32_t skipSphere) const {
-  for (size_t i = 0; i < spheres_.size(); ++i)
+  for (size_t i = 0; i < flatSphereCount_; ++i)
     if (static_cast<int32_t>(i) != skipSphere && spheres_[i].occludes(ray)) return true;
   for (const Parallelogram& q : quads_) {
     float t, u, v;
     if (intersectParallelogram(q, ray, ray.tMax, t, u, v)) return true;
   }
-  if (scene_) {
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
+  // An empty segment (a light closer than the origin's offset) is blocked by nothing; Embree would
+  // hand back its negative tfar, which reads as a hit below.
+  if (scene_ && ray.tMax > ray.tMin) {
+    OcclusionContext context;
+    rtcInitIntersectContext(&context.base);
+    context.skipSphere = skipSphere;
     RTCRay r;
     setupRay(ray, ray.tMax, r);
-    rtcOccluded1(static_cast<RTCScene>(scene_.get()), &context, &r);
-    return r.tfar < 0.f;  // Embree sets tfar = -inf on a hit
+    rtcOccluded1(static_cast<RTCScene>(scene_.get()), &context.base, &r);
+    if (r.tfar < 0.f) return true;  // Embree sets tfar = -inf on a hit
   }
   if (flat_.empty()) return false;
   const TriangleRay tr(ray);

@@ -1,7 +1,9 @@
 // All the geometry of a scene behind two queries: nearest hit and occlusion. Spheres are tested
-// analytically in a flat loop; triangles are tested by brute force in a flat array when there are
-// few of them (pairs forming a parallelogram, such as a two-triangle floor, as one primitive),
-// otherwise through an Embree 3 BVH. No virtual calls and no allocation per query;
+// analytically in a flat loop when there are few of them, otherwise as Embree user geometry that calls
+// the same robust test; triangles are tested by brute force in a flat array when there are few of
+// them (pairs forming a parallelogram, such as a two-triangle floor, as one primitive), otherwise
+// through Embree. Whatever goes to Embree shares one BVH (one traversal per query). No virtual calls
+// and no allocation per query;
 // concurrent const queries are thread-safe once build() has returned.
 #pragma once
 
@@ -33,6 +35,15 @@ enum class AccelMode : uint8_t {
 // The loop costs ~10 ns per triangle, Embree ~40 ns fixed plus a slow log(N): crossover near 8.
 inline constexpr size_t kBruteForceMaxTriangles = 8;
 
+// Up to this many spheres the flat loop is used, above it the spheres go into the BVH
+// (bench/geometry_bench.cpp, BM_Spheres*; figures in docs/performance.md).
+inline constexpr size_t kBruteForceMaxSpheres = 32;
+
+// The sphere mode that AccelMode::Auto stands for under the environment variable
+// PENUMBRA_SPHERE_ACCEL (unset or "auto": Auto; "bvh": Embree; "brute-force": BruteForce), so tests
+// and `penumbra check` can force either path on every scene. Throws penumbra::Error on another value.
+AccelMode sphereAccelFromEnvironment();
+
 class SceneGeometry {
  public:
   SceneGeometry() = default;
@@ -44,8 +55,10 @@ class SceneGeometry {
   // The mesh is copied (its vertex normals are needed to shade Embree hits).
   void addMesh(const TriangleMesh& mesh, uint32_t objectId);
   // Prepares the acceleration structure; must be called after the last add and before queries.
+  // `mode` decides for triangles, `sphereMode` for spheres (Auto: sphereAccelFromEnvironment(), then
+  // kBruteForceMaxSpheres). Both paths find the same sphere hits: the BVH calls Sphere::intersect.
   // Throws penumbra::Error if Embree fails.
-  void build(AccelMode mode = AccelMode::Auto);
+  void build(AccelMode mode = AccelMode::Auto, AccelMode sphereMode = AccelMode::Auto);
 
   // Nearest hit with ray.tMin < t < ray.tMax.
   bool intersect(const Ray& ray, SurfaceHit& hit) const;
@@ -59,7 +72,10 @@ class SceneGeometry {
   size_t triangleCount() const { return triangleCount_; }
   // Brute-force path only: triangle pairs intersected as parallelograms.
   size_t parallelogramCount() const { return quads_.size(); }
-  bool usesEmbree() const { return scene_ != nullptr; }
+  // Whether triangles go through Embree.
+  bool usesEmbree() const { return scene_ && trianglesInEmbree_; }
+  // Whether spheres go through Embree (as user geometry).
+  bool spheresUseBvh() const { return scene_ && spheresInEmbree_; }
   const std::vector<Sphere>& spheres() const { return spheres_; }
   const std::vector<TriangleMesh>& meshes() const { return meshes_; }
 
@@ -75,7 +91,9 @@ class SceneGeometry {
     uint32_t mesh = 0, prim = 0;
     const FlatTriangle* flat = nullptr;  // set on the brute-force path (its hit is re-projected)
   };
-  [[gnu::noinline]] bool nearestEmbreeTriangle(const Ray& r, TriangleCandidate& c) const;
+  // The nearest hit in the Embree scene closer than r.tMax: a triangle (c filled) or a sphere
+  // (*sphere set to its index).
+  [[gnu::noinline]] bool nearestEmbreeTriangle(const Ray& r, TriangleCandidate& c, int* sphere) const;
   [[gnu::noinline]] bool nearestFlatTriangle(const Ray& r, TriangleCandidate& c) const;
   // Owners of Embree's reference-counted handles, opaque here so that this header needs no Embree.
   struct ReleaseEmbreeDevice {
@@ -93,6 +111,10 @@ class SceneGeometry {
   std::vector<FlatTriangle> flat_;    // brute-force path only: triangles not in a parallelogram
   size_t triangleCount_ = 0;
   Bounds bounds_;
+  bool trianglesInEmbree_ = false;
+  bool spheresInEmbree_ = false;
+  size_t flatSphereCount_ = 0;     // spheres in the flat loops: all of them, or none when in the BVH
+  uint32_t sphereGeometryId_ = 0;  // Embree geometry id of the spheres (after the meshes)
   std::unique_ptr<void, ReleaseEmbreeDevice> device_;  // RTCDevice, created only when a BVH is needed
   std::unique_ptr<void, ReleaseEmbreeScene> scene_;    // RTCScene (released first: declared last)
 };

@@ -14,6 +14,14 @@
 namespace penumbra {
 namespace {
 
+// Triangle mode × sphere mode: every way the two kinds of primitive can be split between the flat
+// loops and the BVH.
+constexpr std::pair<AccelMode, AccelMode> kAccelCombinations[] = {
+    {AccelMode::BruteForce, AccelMode::BruteForce},
+    {AccelMode::Embree, AccelMode::BruteForce},
+    {AccelMode::BruteForce, AccelMode::Embree},
+    {AccelMode::Embree, AccelMode::Embree}};
+
 SceneGeometry rockScene(AccelMode mode, int subdivisions) {
   SceneGeometry g;
   g.addMesh(makeRockMesh(subdivisions, 42), 3);
@@ -71,6 +79,108 @@ TEST(SceneGeometry, NearestOfSpheresAndTrianglesWithIds) {
   Bounds b = g.bounds();
   EXPECT_EQ(b.min, Vec3(-10, -10, -2));
   EXPECT_EQ(b.max, Vec3(10, 10, 6));
+}
+
+TEST(SceneGeometry, SpheresGoToTheBvhAboveTheThreshold) {
+  if (sphereAccelFromEnvironment() != AccelMode::Auto) GTEST_SKIP() << "PENUMBRA_SPHERE_ACCEL forces a path";
+  for (size_t n : {kBruteForceMaxSpheres, kBruteForceMaxSpheres + 1}) {
+    SceneGeometry g;
+    for (size_t i = 0; i < n; ++i) g.addSphere(Sphere{Vec3(float(3 * i), 0, 0), 1}, uint32_t(i));
+    g.build(AccelMode::Auto, AccelMode::Auto);
+    EXPECT_EQ(g.spheresUseBvh(), n > kBruteForceMaxSpheres);
+    EXPECT_FALSE(g.usesEmbree());
+  }
+}
+
+// Spheres in the BVH, alone or sharing it with triangles, or beside flat triangles and parallelograms:
+// the same nearest hits (bit for bit: the BVH calls the same sphere test) and the same occlusion,
+// with and without the skipped sphere of a shadow ray.
+TEST(SceneGeometry, SphereBvhAgreesWithTheFlatLoopBitForBit) {
+  std::mt19937 rng(12);
+  std::uniform_real_distribution<float> u(-1.f, 1.f);
+  auto build = [](AccelMode mode, AccelMode sphereMode) {
+    SceneGeometry g;
+    std::mt19937 placement(13);
+    std::uniform_real_distribution<float> p(-1.f, 1.f);
+    for (uint32_t i = 0; i < 300; ++i)
+      g.addSphere(
+          Sphere{Vec3(p(placement), p(placement), p(placement)) * 3.f, 0.05f + 0.3f * std::abs(p(placement))},
+          i);
+    g.addMesh(makeGridPlane(Vec3(-4, -4, -3.5f), Vec3(8, 0, 0), Vec3(0, 8, 0), 1, 1), 1000);
+    g.addMesh(makeRockMesh(1, 5), 1001);
+    g.build(mode, sphereMode);
+    return g;
+  };
+  const SceneGeometry reference = build(AccelMode::BruteForce, AccelMode::BruteForce);
+  ASSERT_FALSE(reference.spheresUseBvh());
+  for (AccelMode mode : {AccelMode::BruteForce, AccelMode::Embree}) {
+    const SceneGeometry g = build(mode, AccelMode::Embree);
+    ASSERT_TRUE(g.spheresUseBvh());
+    const SceneGeometry sameTriangles = build(mode, AccelMode::BruteForce);
+    int sphereHits = 0;
+    for (int i = 0; i < 20000; ++i) {
+      Ray ray{randomUnit(rng) * 6.f, Vec3(0)};
+      ray.d = glm::normalize(Vec3(u(rng), u(rng), u(rng)) * 2.f - ray.o);
+      if (i % 3 == 0) ray.tMax = 3.f + 4.f * std::abs(u(rng));
+      SurfaceHit a, b;
+      const bool ha = sameTriangles.intersect(ray, a), hb = g.intersect(ray, b);
+      ASSERT_EQ(ha, hb) << i;
+      const int32_t skip = int32_t(i % 300);
+      EXPECT_EQ(sameTriangles.occluded(ray, skip), g.occluded(ray, skip)) << i;
+      EXPECT_EQ(sameTriangles.occluded(ray), g.occluded(ray)) << i;
+      if (!ha) continue;
+      EXPECT_EQ(a.objectId, b.objectId) << i;
+      EXPECT_EQ(a.t, b.t) << i;
+      EXPECT_EQ(a.p, b.p) << i;
+      EXPECT_EQ(a.ng, b.ng) << i;
+      EXPECT_EQ(a.offsetScale, b.offsetScale) << i;
+      sphereHits += a.objectId < 300;
+      if (mode == AccelMode::BruteForce) {  // the same triangle path as the reference too
+        SurfaceHit r;
+        ASSERT_TRUE(reference.intersect(ray, r));
+        EXPECT_EQ(r.objectId, b.objectId);
+        EXPECT_EQ(r.t, b.t);
+      }
+    }
+    EXPECT_GT(sphereHits, 5000);
+  }
+}
+
+// Rays from a point 1e-6 r below a sphere (a receiver touching a light) hit it at t ~ 1e-6 r on
+// both paths: the BVH's box test must not cull a sphere that the ray starts next to.
+TEST(SceneGeometry, RaysFromJustOutsideASphereHitItInTheBvh) {
+  std::mt19937 rng(14);
+  for (AccelMode sphereMode : {AccelMode::BruteForce, AccelMode::Embree}) {
+    SceneGeometry g;
+    g.addMesh(makeGridPlane(Vec3(-10, -10, 0), Vec3(20, 0, 0), Vec3(0, 20, 0), 1, 1), 0);
+    g.addSphere(Sphere{Vec3(0.31f, 0.17f, 1.0000009536743164f), 1.f}, 1);
+    g.build(AccelMode::Auto, sphereMode);
+    const Vec3 x(0.31f, 0.17f, 0.f);
+    int hits = 0;
+    for (int i = 0; i < 2000; ++i) {
+      Vec3 w = randomUnit(rng);
+      w.z = std::abs(w.z);
+      SurfaceHit hit;
+      const Ray ray{offsetRayOrigin(x, Vec3(0, 0, 1), 10.f, w), w};
+      hits += g.intersect(ray, hit) && hit.objectId == 1;
+    }
+    EXPECT_GT(hits, 1900) << (sphereMode == AccelMode::Embree ? "bvh" : "brute force");
+  }
+}
+
+// A shadow ray through the centre of a sphere is blocked by it unless it is the skipped one.
+TEST(SceneGeometry, ShadowRaysSkipTheirLightInTheBvh) {
+  for (AccelMode sphereMode : {AccelMode::BruteForce, AccelMode::Embree}) {
+    SceneGeometry g;
+    for (uint32_t i = 0; i < 40; ++i) g.addSphere(Sphere{Vec3(float(3 * i), 0, 0), 1}, i);
+    g.build(AccelMode::Auto, sphereMode);
+    const Ray through{Vec3(6, 0, -5), Vec3(0, 0, 1), 0.f, 10.f};
+    EXPECT_TRUE(g.occluded(through));
+    EXPECT_TRUE(g.occluded(through, 1));
+    EXPECT_FALSE(g.occluded(through, 2));
+    // An empty segment is blocked by nothing (a light nearer than the origin's offset).
+    EXPECT_FALSE(g.occluded(Ray{Vec3(6, 0, -5), Vec3(0, 0, 1), 0.f, -1e-5f}));
+  }
 }
 
 TEST(SceneGeometry, MoveKeepsEmbreeScene) {
@@ -132,12 +242,13 @@ TEST(SceneGeometry, BruteForceAndEmbreeAgree) {
 
 // AO-style rays leaving the surface of a convex shape never hit that shape again.
 TEST(SceneGeometry, NoSelfIntersectionOnConvexShapes) {
-  for (AccelMode mode : {AccelMode::BruteForce, AccelMode::Embree}) {
+  for (auto [mode, sphereMode] : kAccelCombinations) {
     for (float k : {1e-4f, 1.f, 1e4f}) {
       SceneGeometry g;
       g.addMesh(makeGridPlane(Vec3(-k, -k, -0.5f * k), Vec3(2 * k, 0, 0), Vec3(0, 2 * k, 0), 4, 4), 1);
       g.addSphere(Sphere{Vec3(0.1f, 0.2f, 0.3f) * k, 0.5f * k}, 2);
-      g.build(mode);
+      g.build(mode, sphereMode);
+      ASSERT_EQ(g.spheresUseBvh(), sphereMode == AccelMode::Embree);
       std::mt19937 rng(8);
       std::uniform_real_distribution<float> u(-1.f, 1.f);
       int tested = 0;
@@ -198,14 +309,14 @@ TEST(SceneGeometry, ConcurrentQueriesMatchSerial) {
 // AO = 1 − R³/(ρ² + R²)^{3/2}. Cosine-weighted directions (local Malley warp) make AO = E[V]; the
 // estimate must be within 4 binomial standard errors at every scale (self-hits would bias it down).
 TEST(SceneGeometry, AmbientOcclusionOfSphereOnPlaneMatchesClosedForm) {
-  for (AccelMode mode : {AccelMode::BruteForce, AccelMode::Embree}) {
+  for (auto [mode, sphereMode] : kAccelCombinations) {
     for (float k : {1e-4f, 1.f, 1e4f}) {
       const float R = 0.5f * k;
       SceneGeometry g;
       g.addMesh(makeGridPlane(Vec3(-100 * k, -100 * k, 0), Vec3(200 * k, 0, 0), Vec3(0, 200 * k, 0), 1, 1),
                 0);
       g.addSphere(Sphere{Vec3(0.3f * k, -0.2f * k, R), R}, 1);
-      g.build(mode);
+      g.build(mode, sphereMode);
       for (float rhoOverR : {0.3f, 1.f, 2.5f}) {
         // Find the shading point by casting a ray at the plane from below (the sphere is above), so it
         // carries real rounding; ng is +z by winding whichever side the ray came from.

@@ -5,6 +5,8 @@
 //   hemisphere (uniform or cosine warp): trace the sampled direction, add Le of an emitter it hits;
 //   area: a uniform point on each light sphere, pdf converted to solid angle (far side adds 0);
 //   solid angle: a uniform direction in the cone each light sphere subtends.
+// Area and solid angle sample every light per shading sample (light selection `all`), or one light
+// chosen per shading sample (uniform, by power, by the light BVH), its probability divided out.
 // `simple` is the same integrator with delta lights only.
 #pragma once
 
@@ -21,8 +23,9 @@ namespace penumbra {
 template <Strategy kStrategy>
 struct DirectIntegrator {
   static_assert(kStrategy == Strategy::Simple || kStrategy == Strategy::DirectUniformHemisphere ||
-                kStrategy == Strategy::DirectCosineHemisphere || kStrategy == Strategy::DirectArea ||
-                kStrategy == Strategy::DirectSolidAngle);
+                kStrategy == Strategy::DirectCosineHemisphere || samplesLightArea(kStrategy) ||
+                samplesLightSolidAngle(kStrategy));
+  static constexpr LightSelection kSelection = lightSelectionOf(kStrategy);
   int samples = 1;
 
   Color3 Li(const Scene& scene, const Ray& ray, Sampler& sampler) const {
@@ -39,7 +42,13 @@ struct DirectIntegrator {
     Color3 E = deltaIrradiance(scene, sp);
     if constexpr (kSamplesHemisphere) {
       if (scene.hasAreaLights()) E += hemisphereIrradiance(scene, sp, sampler);
-    } else if constexpr (kStrategy == Strategy::DirectArea || kStrategy == Strategy::DirectSolidAngle) {
+    } else if constexpr (kSelection == LightSelection::Uniform) {
+      E += selectedLightIrradiance(scene, scene.uniformSelection, sp, sampler);
+    } else if constexpr (kSelection == LightSelection::Power) {
+      E += selectedLightIrradiance(scene, scene.powerSelection, sp, sampler);
+    } else if constexpr (kSelection == LightSelection::Bvh) {
+      E += selectedLightIrradiance(scene, scene.lightBvh, sp, sampler);
+    } else if constexpr (samplesLightArea(kStrategy) || samplesLightSolidAngle(kStrategy)) {
       E += lightSamplingIrradiance(scene, sp, sampler);
     }
     return L + material.albedo * kInvPi * E;
@@ -103,8 +112,8 @@ struct DirectIntegrator {
       float lightScale = maxAbsComponent(light.sphere.center) + light.sphere.radius;
       for (int i = 0; i < samples; ++i) {
         Vec2 u = sampler.next2D();
-        LightSample s = kStrategy == Strategy::DirectArea ? light.sampleArea(sp.hit.p, u)
-                                                          : light.sampleSolidAngle(sp.hit.p, u);
+        LightSample s =
+            samplesLightArea(kStrategy) ? light.sampleArea(sp.hit.p, u) : light.sampleSolidAngle(sp.hit.p, u);
         if (!(s.pdf > 0.f) || isBlack(s.Le)) continue;
         float cosTheta = glm::dot(sp.ns, s.wi);
         if (!leavesSurface(sp, s.wi, cosTheta)) continue;
@@ -113,6 +122,33 @@ struct DirectIntegrator {
           continue;
         E += s.Le * (cosTheta / s.pdf);
       }
+    }
+    return E * (1.f / float(samples));
+  }
+
+  // One light per shading sample, chosen by `selection` with probability pick.pmf, then sampled by
+  // this strategy's measure: Le cos / (pdf · pmf) is unbiased for the sum over all lights.
+  template <class Selection>
+  Color3 selectedLightIrradiance(const Scene& scene, const Selection& selection, const ShadingPoint& sp,
+                                 Sampler& sampler) const {
+    Color3 E(0.f);
+    for (int i = 0; i < samples; ++i) {
+      // Two sampler dimensions give the choice 48 bits: a 24-bit float would quantise deep BVHs and
+      // large alias tables.
+      const Vec2 uPick = sampler.next2D();
+      const Vec2 u = sampler.next2D();
+      const LightPick pick = selection.pick(sp.hit.p, sp.ns, double(uPick.x) + double(uPick.y) * 0x1p-24);
+      if (!(pick.pmf > 0.0)) continue;
+      const SphereLight& light = scene.sphereLights[pick.light];
+      LightSample s =
+          samplesLightArea(kStrategy) ? light.sampleArea(sp.hit.p, u) : light.sampleSolidAngle(sp.hit.p, u);
+      if (!(s.pdf > 0.f) || isBlack(s.Le)) continue;
+      float cosTheta = glm::dot(sp.ns, s.wi);
+      if (!leavesSurface(sp, s.wi, cosTheta)) continue;
+      const float lightScale = maxAbsComponent(light.sphere.center) + light.sphere.radius;
+      if (scene.geometry.occluded(sp.spawnShadowRayAlong(s.wi, s.dist, lightScale), light.geometryIndex))
+        continue;
+      E += s.Le * static_cast<float>(double(cosTheta) / (double(s.pdf) * pick.pmf));
     }
     return E * (1.f / float(samples));
   }

@@ -12,13 +12,49 @@ enum class Strategy : uint8_t {
   DirectUniformHemisphere,  // direct light by uniform hemisphere directions
   DirectCosineHemisphere,   // direct light by cosine-weighted hemisphere directions
   DirectArea,               // direct light by uniform points on each light sphere
+  DirectAreaUniform,        // ... on one light per sample, chosen uniformly
+  DirectAreaPower,          // ... on one light per sample, chosen by emitted power
+  DirectAreaBvh,            // ... on one light per sample, chosen by the light BVH
   DirectSolidAngle,         // direct light by uniform directions in each light's cone
+  DirectSolidAngleUniform,  // ... of one light per sample, chosen uniformly
+  DirectSolidAnglePower,    // ... of one light per sample, chosen by emitted power
+  DirectSolidAngleBvh,      // ... of one light per sample, chosen by the light BVH
   AoUniform,                // ambient occlusion by uniform hemisphere directions
   AoCosine,                 // ambient occlusion by cosine-weighted directions
   Simple,                   // point and directional lights only
   Normals,                  // the shading normal as a colour
 };
-inline constexpr int kStrategyCount = 8;
+inline constexpr int kStrategyCount = 14;
+
+// How a light-sampling strategy of `direct` chooses the sphere lights it samples: every light for
+// every shading sample (All), or one per shading sample (core/lights/light_selection.h).
+enum class LightSelection : uint8_t { All, Uniform, Power, Bvh };
+
+constexpr LightSelection lightSelectionOf(Strategy s) {
+  switch (s) {
+    case Strategy::DirectAreaUniform:
+    case Strategy::DirectSolidAngleUniform:
+      return LightSelection::Uniform;
+    case Strategy::DirectAreaPower:
+    case Strategy::DirectSolidAnglePower:
+      return LightSelection::Power;
+    case Strategy::DirectAreaBvh:
+    case Strategy::DirectSolidAngleBvh:
+      return LightSelection::Bvh;
+    default:
+      return LightSelection::All;
+  }
+}
+// Whether s samples points uniformly on the light spheres (any light selection).
+constexpr bool samplesLightArea(Strategy s) {
+  return s == Strategy::DirectArea || s == Strategy::DirectAreaUniform || s == Strategy::DirectAreaPower ||
+         s == Strategy::DirectAreaBvh;
+}
+// Whether s samples directions uniformly in the lights' cones (any light selection).
+constexpr bool samplesLightSolidAngle(Strategy s) {
+  return s == Strategy::DirectSolidAngle || s == Strategy::DirectSolidAngleUniform ||
+         s == Strategy::DirectSolidAnglePower || s == Strategy::DirectSolidAngleBvh;
+}
 
 struct IntegratorDesc {
   Strategy strategy = Strategy::DirectSolidAngle;

@@ -38,6 +38,7 @@ inline void addSphere(Scene& scene, const Vec3& center, float radius, Color3 rad
 // Builds the queries; call after the last add.
 inline void finish(Scene& scene) {
   scene.geometry.build();
+  buildLightSelections(scene);
   scene.rayLengthBound = scene.geometry.bounds().diagonal() * 1.01f;
 }
 

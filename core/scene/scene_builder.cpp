@@ -274,6 +274,7 @@ LoadedScene buildScene(SceneNode desc) {
   }
   out.settings = buildSettings(desc, &out.warnings);
   scene->geometry.build();
+  buildLightSelections(*scene);
   Bounds b = scene->geometry.bounds();
   for (const SphereLight& l : scene->sphereLights) {
     b.expand(l.sphere.center - Vec3(l.sphere.radius));

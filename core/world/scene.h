@@ -7,6 +7,8 @@
 
 #include "core/geometry/scene_geometry.h"
 #include "core/lights/directional_light.h"
+#include "core/lights/light_bvh.h"
+#include "core/lights/light_selection.h"
 #include "core/lights/point_light.h"
 #include "core/lights/sphere_light.h"
 #include "core/math/vec.h"
@@ -22,6 +24,10 @@ struct Scene {
   SceneGeometry geometry;
   std::vector<SurfaceMaterial> materials;  // indexed by SurfaceHit::objectId
   std::vector<SphereLight> sphereLights;
+  // Ways to choose one of sphereLights per shading sample (buildLightSelections fills them).
+  UniformLightSelection uniformSelection;
+  PowerLightSelection powerSelection;
+  LightBvh lightBvh;
   std::vector<PointLight> pointLights;
   std::vector<DirectionalLight> directionalLights;
   // Longest segment inside the scene's bounds: AO rays and directional shadow rays stop there.
@@ -30,5 +36,12 @@ struct Scene {
   bool hasAreaLights() const { return !sphereLights.empty(); }
   bool hasDeltaLights() const { return !pointLights.empty() || !directionalLights.empty(); }
 };
+
+// Builds the light selections over scene.sphereLights; call after the last light is added.
+inline void buildLightSelections(Scene& scene) {
+  scene.uniformSelection = makeUniformLightSelection(scene.sphereLights);
+  scene.powerSelection = makePowerLightSelection(scene.sphereLights);
+  scene.lightBvh = makeLightBvh(scene.sphereLights);
+}
 
 }  // namespace penumbra
