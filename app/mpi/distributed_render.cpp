@@ -115,7 +115,7 @@ int run(const Options& o, const Session& mpi) {
   const bool tty = rank == 0 && isatty(STDERR_FILENO);
   Engine engine;
   bool started = false;
-  mpi.maxOf(0);  // start together: the time limit counts from here
+  mpi.barrier();  // start together: the time limit counts from here
   const double t0 = mpi.wallSeconds();
   const double cpu0 = processCpuSeconds();
   bool interrupted = false;
@@ -152,6 +152,7 @@ int run(const Options& o, const Session& mpi) {
       started ? engine.film().sums() : std::vector<double>(size_t(cam.width) * cam.height * 6, 0.0);
   const RenderProgress mine = started ? engine.progress() : RenderProgress{};
   std::vector<uint64_t> counts = {mine.spp, mine.badSamples, uint64_t((processCpuSeconds() - cpu0) * 1e6)};
+  mpi.barrier();  // the last round's stragglers: waited for asleep, and not counted as reduction time
   const double r0 = mpi.wallSeconds();
   mpi.sumToRoot(sums);
   mpi.sumToRoot(counts);

@@ -3,9 +3,11 @@
 #include <mpi.h>
 
 #include <algorithm>
+#include <chrono>
 #include <climits>
 #include <cstdio>
 #include <cstdlib>
+#include <thread>
 
 namespace penumbra::mpi {
 
@@ -24,19 +26,26 @@ Session::~Session() {
   MPI_Finalize();
 }
 
-int Session::maxOf(int value) const {
-  int out = value;
-  MPI_Allreduce(&value, &out, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
-  return out;
-}
-
-int Session::minOf(int value) const {
-  int out = value;
-  MPI_Allreduce(&value, &out, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
-  return out;
-}
-
 namespace {
+
+// Waits for a non-blocking collective, sleeping between tests: a rank that waits for a slower one
+// gives its core away instead of spinning in MPI's busy poll (which, on a node shared with the
+// rank's own worker threads or other jobs, takes CPU from the work being waited for).
+void waitSleeping(MPI_Request& request) {
+  for (int done = 0;;) {
+    MPI_Test(&request, &done, MPI_STATUS_IGNORE);
+    if (done) return;
+    std::this_thread::sleep_for(std::chrono::microseconds(200));
+  }
+}
+
+int allreduce(int value, MPI_Op op) {
+  int out = value;
+  MPI_Request request;
+  MPI_Iallreduce(&value, &out, 1, MPI_INT, op, MPI_COMM_WORLD, &request);
+  waitSleeping(request);
+  return out;
+}
 
 template <class T>
 void reduceChunks(std::vector<T>& values, MPI_Datatype type, int rank) {
@@ -51,6 +60,20 @@ void reduceChunks(std::vector<T>& values, MPI_Datatype type, int rank) {
 }
 
 }  // namespace
+
+int Session::maxOf(int value) const {
+  return allreduce(value, MPI_MAX);
+}
+
+int Session::minOf(int value) const {
+  return allreduce(value, MPI_MIN);
+}
+
+void Session::barrier() const {
+  MPI_Request request;
+  MPI_Ibarrier(MPI_COMM_WORLD, &request);
+  waitSleeping(request);
+}
 
 void Session::sumToRoot(std::vector<double>& values) const {
   reduceChunks(values, MPI_DOUBLE, rank_);

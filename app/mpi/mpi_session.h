@@ -19,11 +19,12 @@ class Session {
   int size() const { return size_; }
   int ranksOnThisNode() const { return localSize_; }
 
-  // Collectives: every rank must call them in the same order.
+  // Collectives: every rank must call them in the same order. The small ones sleep while they wait.
   int maxOf(int value) const;
   int minOf(int value) const;
-  // Element-wise sums onto rank 0 (MPI_Reduce, in chunks below MPI's int count); other ranks' `values`
-  // are left unchanged.
+  void barrier() const;
+  // Element-wise sums onto rank 0 (MPI_Reduce, in chunks below MPI's int count; blocking: call it
+  // after a barrier so that no rank waits in it); other ranks' `values` are left unchanged.
   void sumToRoot(std::vector<double>& values) const;
   void sumToRoot(std::vector<uint64_t>& values) const;
   double wallSeconds() const;  // MPI_Wtime
