@@ -7,6 +7,7 @@
 #                without any block still takes part
 #   interrupt    SIGINT to mpirun mid-render: rank 0 writes a valid partial image and says so
 #   killed_rank  a rank killed mid-render ends the job; the existing output is untouched
+#   reference    --reference writes a reference (metadata name the ranks) that `converge --reference` reads
 #   scene_error  one rank's scene fails to load: nothing renders, the existing output is untouched
 set -u
 case_=$1 MPIRUN=$2 PMPI=$3 PENUMBRA=$4 COMPARE=$5 SRC=$6
@@ -90,6 +91,13 @@ killed_rank)
   [ $rc -ne 0 ] || fail "the job succeeded without a rank"
   cmp "$T/old.exr" "$T/k.exr" || fail "the old output changed"
   [ ! -f "$T/k.stderr.exr" ] || fail "a standard error image was written" ;;
+reference)
+  mpi 2 render "$SCENE" "${SMALL[@]}" --reference --spp 64 --threads 1 -o "$T/ref.exr" >/dev/null || fail "mpirun"
+  "$COMPARE" --info "$T/ref.exr" | grep -q "^reference=rendered .* on 2 MPI ranks" || fail "metadata lack the ranks"
+  [ -n "$(meta "$T/ref.exr" sceneHash)" ] || fail "no sceneHash"
+  timeout 120 "$PENUMBRA" converge "$SCENE" "${SMALL[@]}" --spp 4 --strategies area --reference "$T/ref.exr" \
+    -o "$T/conv" >"$T/out" 2>&1 || { cat "$T/out"; fail "converge"; }
+  grep -q "reference: $T/ref.exr (with standard error)" "$T/out" || { cat "$T/out"; fail "converge did not use it"; } ;;
 scene_error)
   echo "old image" >"$T/old.exr"; cp "$T/old.exr" "$T/s.exr"
   timeout -k 5 120 "$MPIRUN" --allow-run-as-root --oversubscribe \
