@@ -19,11 +19,17 @@ SMALL=(--set camera.width=48 --set camera.height=40 --set integrator.nSamples=2)
 T=$(mktemp -d); trap 'rm -rf "$T"' EXIT
 fail() { echo "FAIL: $*"; exit 1; }
 mpi() { local k=$1; shift; timeout -k 5 120 "$MPIRUN" --allow-run-as-root --oversubscribe -np "$k" "$PMPI" "$@"; }
-# mpirun in the background, its pid in $pid, killed by a watchdog after 120 s.
+# mpirun in the background, its pid in $pid, killed by a watchdog after 120 s; mpi_wait waits for it
+# (exit code in $rc) and ends the watchdog, so that nothing outlives the test.
 mpi_bg() {
   local k=$1; shift
   "$MPIRUN" --allow-run-as-root --oversubscribe -np "$k" "$PMPI" "$@" & pid=$!
-  (sleep 120; kill -KILL $pid 2>/dev/null) >/dev/null 2>&1 &
+  (sleep 120 & echo $! >"$T/watchdog"; wait $! && kill -KILL $pid) >/dev/null 2>&1 &
+}
+mpi_wait() {
+  wait $pid; rc=$?
+  for i in $(seq 50); do [ -s "$T/watchdog" ] && break; sleep 0.1; done
+  kill "$(cat "$T/watchdog")" 2>/dev/null
 }
 meta() { "$COMPARE" --info "$1" | sed -n "s/^$2=//p"; }
 
@@ -63,7 +69,7 @@ interrupt)
       -o "$T/p.exr" >"$T/out" 2>"$T/err"
     sleep 4
     kill -$sig $pid
-    wait $pid; rc=$?
+    mpi_wait
     echo "SIG$sig: mpirun exit code $rc; $(cat "$T/out")"
     [ -f "$T/p.exr" ] || { cat "$T/err"; fail "SIG$sig: no partial image"; }
     spp=$(meta "$T/p.exr" spp)
@@ -86,7 +92,7 @@ killed_rank)
   [ -n "$victim" ] || { kill -KILL $pid; fail "rank 1 not found"; }
   sleep 3
   kill -KILL "$victim"
-  wait $pid; rc=$?
+  mpi_wait
   echo "mpirun exit code $rc"; tail -5 "$T/err"
   [ $rc -ne 0 ] || fail "the job succeeded without a rank"
   cmp "$T/old.exr" "$T/k.exr" || fail "the old output changed"
