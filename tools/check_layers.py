@@ -4,8 +4,8 @@
 Core layers, bottom to top; a file may include its own layer and any layer below it:
   math < image, sampling < geometry < lights < world < integrators < render < scene < analysis
 App layers, bottom to top (every app layer may include all of core):
-  platform, net < ui < cli
-(net: streaming to the tev viewer over TCP.) Layers of one rank sit beside each other (image and
+  platform, net < ui < cli < mpi
+(net: streaming to the tev viewer over TCP; mpi: penumbra-mpi, the render shared by MPI ranks.) Layers of one rank sit beside each other (image and
 sampling, platform and net) and include neither each other nor anything above them.
 Core includes nothing from app/, no GL, GLFW, ImGui or OSMesa header; app/cli includes app/ui and
 app/platform only in its GL-linked view and warp-gui commands, app/net in any command. Neither core/ nor app/ includes
@@ -29,7 +29,7 @@ CORE_RANK = {
     "scene": 7,
     "analysis": 8,
 }
-APP_RANK = {"platform": 0, "net": 0, "ui": 1, "cli": 2}
+APP_RANK = {"platform": 0, "net": 0, "ui": 1, "cli": 2, "mpi": 3}
 GRAPHICS = re.compile(r"^(GL/|GLFW/|imgui|GLES|EGL/|backends/imgui)")
 INCLUDE = re.compile(r'^\s*#\s*include\s*([<"])([^>"]+)[>"]')
 

@@ -11,10 +11,12 @@ Engine::~Engine() {
   cancel();
 }
 
-void Engine::start(std::shared_ptr<const RenderJob> job, RenderLimits limits, int threads) {
+void Engine::start(std::shared_ptr<const RenderJob> job, RenderLimits limits, int threads,
+                   SampleSchedule schedule) {
   cancel();
   job_ = std::move(job);
   limits_ = limits;
+  schedule_ = schedule;
   const CameraDesc& cam = job_->settings.camera;
   if (film_.width() != cam.width || film_.height() != cam.height)
     film_.reset(cam.width, cam.height);
@@ -167,9 +169,10 @@ void Engine::workerLoop(bool preview) {
   Image* meanRows = publisher_.rowMeanTarget();
   Image* errorRows = publisher_.rowErrorTarget();
   for (;;) {
+    const uint32_t sampleIndex = uint32_t(schedule_.sampleIndex(pass));
     uint64_t bad = 0;
     for (int y; !cancel_.load(std::memory_order_relaxed) && (y = nextRow_.fetch_add(1)) < height;) {
-      renderRow.row(y, pass, sampler, film_, bad, cancel_);
+      renderRow.row(y, sampleIndex, sampler, film_, bad, cancel_);
       // This worker owns row y until the pass ends: resolve it now, from sums still in cache.
       if (meanRows) film_.resolveMean(pass + 1, *meanRows, y, y + 1);
       if (errorRows) film_.resolveStandardError(pass + 1, *errorRows, y, y + 1);

@@ -1,6 +1,7 @@
 // Progressive renderer: whole-image passes of one sample per pixel on a pool of worker threads.
-// Pass p uses sample index p in every pixel, so the image depends only on (scene, settings, seed),
-// never on thread count or scheduling. Cancellation takes effect within one pixel (its samples).
+// Pass p uses sample index p in every pixel (or the index a SampleSchedule gives it), so the image
+// depends only on (scene, settings, seed), never on thread count or scheduling. Cancellation takes effect
+// within one pixel (its samples).
 //
 // The engine schedules passes; its parts keep the rest: WorkerPool (threads and their priority),
 // PassBarrier (the workers' meeting at each pass boundary), RenderClock (time with pauses excluded,
@@ -17,6 +18,7 @@
 #include "core/render/publish_signal.h"
 #include "core/render/render_clock.h"
 #include "core/render/render_job.h"
+#include "core/render/sample_schedule.h"
 #include "core/render/snapshot_publisher.h"
 #include "core/render/worker_pool.h"
 
@@ -40,8 +42,10 @@ class Engine {
   Engine(const Engine&) = delete;
   Engine& operator=(const Engine&) = delete;
 
-  // Starts a fresh accumulation (cancelling any running one). threads <= 0: all cores.
-  void start(std::shared_ptr<const RenderJob> job, RenderLimits limits = {}, int threads = 0);
+  // Starts a fresh accumulation (cancelling any running one). threads <= 0: all cores. `schedule`
+  // maps passes to sample indices for the whole accumulation (extend keeps it).
+  void start(std::shared_ptr<const RenderJob> job, RenderLimits limits = {}, int threads = 0,
+             SampleSchedule schedule = {});
   // Abandons the running pass and joins the workers; the film keeps the completed passes.
   void cancel();
   // Finishes the current pass, then stops (what Ctrl-C in `penumbra render` does).
@@ -104,7 +108,8 @@ class Engine {
   void finish();        // marks the accumulation finished (once) and stops its clock
 
   std::shared_ptr<const RenderJob> job_;
-  RenderLimits limits_;  // under the barrier's lock while workers run
+  RenderLimits limits_;      // under the barrier's lock while workers run
+  SampleSchedule schedule_;  // of the current accumulation: set by start() only
   Film film_;
   WorkerPool workers_;
   PassBarrier barrier_;

@@ -2,11 +2,14 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <thread>
 
 #include "core/geometry/procedural_mesh.h"
 #include "core/math/frame.h"
+#include "core/sampling/sampler_table.h"
 
 namespace penumbra {
 namespace {
@@ -359,6 +362,66 @@ TEST(Engine, StreamedSnapshotsEqualTheFilmAtTheirSpp) {
 
 TEST(Engine, TakenSnapshotsEqualTheFilmAtTheirSpp) {
   expectStreamedSnapshotsEqualTheFilm(true);
+}
+
+}  // namespace
+}  // namespace penumbra
+
+namespace penumbra {
+namespace {
+
+// The film sums of the parts of a block schedule, each rendered round by round (one block per
+// extend, as processes that share a render do), added together and divided by the passes rendered.
+std::vector<double> summedParts(std::shared_ptr<RenderJob> job, uint32_t spp, uint32_t block, uint32_t parts,
+                                bool overlapping = false) {
+  std::vector<double> total;
+  uint64_t totalPasses = 0;
+  for (uint32_t r = 0; r < parts; ++r) {
+    const SampleSchedule schedule = SampleSchedule::blocks(block, overlapping ? 0 : r, parts);
+    const uint32_t passes = uint32_t(schedule.passesBelow(spp));
+    if (passes == 0) continue;
+    Engine engine;
+    engine.start(job, RenderLimits{std::min(block, passes), 0.0}, 2, schedule);
+    engine.wait();
+    for (uint32_t done = engine.progress().spp; done < passes; done = engine.progress().spp) {
+      EXPECT_TRUE(engine.extend(RenderLimits{std::min(done + block, passes), 0.0}));
+      engine.wait();
+    }
+    EXPECT_EQ(engine.progress().spp, passes);
+    totalPasses += passes;
+    const std::vector<double>& sums = engine.film().sums();
+    if (total.empty()) total.assign(sums.size(), 0.0);
+    for (size_t i = 0; i < sums.size(); ++i) total[i] += sums[i];
+  }
+  if (!overlapping) EXPECT_EQ(totalPasses, spp);
+  for (double& v : total) v /= double(totalPasses);
+  return total;
+}
+
+double maxRelativeDifference(const std::vector<double>& a, const std::vector<double>& b) {
+  double worst = 0;
+  for (size_t i = 0; i < a.size(); ++i)
+    worst = std::max(worst, std::abs(a[i] - b[i]) / std::max({std::abs(a[i]), std::abs(b[i]), 1e-30}));
+  return worst;
+}
+
+TEST(Engine, BlockSchedulePartsSumToTheWholeRender) {
+  for (const SamplerRow& row : samplerTable()) {  // every sampler, low-discrepancy ones included
+    const SamplerKind kind = row.kind;
+    auto job = smallJob();
+    job->settings.samplerKind = kind;
+    Engine whole;
+    whole.start(job, RenderLimits{37, 0.0}, 2);  // 37: not a multiple of the block or of the parts
+    whole.wait();
+    std::vector<double> expected = whole.film().sums();
+    for (double& v : expected) v /= 37.0;
+    for (uint32_t parts : {1u, 2u, 3u})
+      EXPECT_LT(maxRelativeDifference(summedParts(job, 37, 4, parts), expected), 1e-12)
+          << samplerKindName(kind) << ", " << parts << " parts";
+    // A schedule whose parts overlap (every part from block 0) renders some indices twice and others
+    // never: a valid estimate, but not the same one, and the check sees it.
+    EXPECT_GT(maxRelativeDifference(summedParts(job, 37, 4, 2, /*overlapping=*/true), expected), 1e-3);
+  }
 }
 
 }  // namespace

@@ -30,6 +30,11 @@ class Film {
     s[5] += double(value.z) * value.z;
   }
 
+  // The raw sums, 6 doubles per pixel in row order (r, g, b, r^2, g^2, b^2): what processes that
+  // share a render add up.
+  const std::vector<double>& sums() const { return sums_; }
+  std::vector<double>& sums() { return sums_; }
+
   int width() const { return width_; }
   int height() const { return height_; }
 

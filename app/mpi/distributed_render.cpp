@@ -1,0 +1,231 @@
+#include "app/mpi/distributed_render.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <limits>
+#include <thread>
+
+#include "app/cli/scene_options.h"
+#include "core/analysis/reference.h"
+#include "core/image/image_io.h"
+#include "core/math/error.h"
+#include "core/render/cpu_clock.h"
+#include "core/render/engine.h"
+
+namespace penumbra::mpi {
+
+namespace {
+
+std::atomic<int> gInterrupted{0};
+extern "C" void onInterrupt(int) {
+  gInterrupted = 1;
+}
+
+struct Options {
+  cli::SceneOptions scene;
+  std::string output;
+  uint32_t spp = 0;
+  double seconds = 0;
+  int64_t seed = -1;
+  int threads = 0;
+  uint32_t block = 16;
+  bool reference = false;
+};
+
+struct Loaded {
+  LoadedScene scene;
+  std::shared_ptr<RenderJob> job;
+  std::string output;
+};
+
+// Everything that can fail before rendering; runs on every rank.
+Loaded prepare(const Options& o) {
+  if ((o.block & (o.block - 1)) != 0)
+    throw Error("--block must be a power of two, not " + std::to_string(o.block));
+  if (!o.output.empty()) imageFormatFromPath(o.output);  // a bad extension fails before rendering
+  Loaded l;
+  l.scene = o.scene.load();
+  l.job = std::make_shared<RenderJob>();
+  l.job->scene = l.scene.scene;
+  l.job->settings = l.scene.settings;
+  if (o.seed >= 0) l.job->settings.seed = uint64_t(o.seed);
+  l.output = o.output;
+  if (o.reference) {
+    l.job->settings.integrator = referenceEstimator(l.job->settings.integrator);
+    if (o.seed < 0) l.job->settings.seed = kReferenceSeed;
+    if (l.output.empty()) l.output = referenceCachePath(l.scene);
+  }
+  if (l.output.empty()) throw Error("render: -o/--output is required (optional only with --reference)");
+  return l;
+}
+
+void drawProgress(uint64_t spp, uint64_t target, double seconds, double limit) {
+  double fraction = target > 0 ? double(spp) / double(target) : (limit > 0 ? seconds / limit : 0.0);
+  fraction = std::min(fraction, 1.0);
+  const int filled = int(fraction * 30);
+  std::fprintf(stderr, "\r[%.*s%*s] %3d%%  ~%llu spp  %.1f s", filled,
+               "==============================", 30 - filled, "", int(fraction * 100),
+               (unsigned long long)spp, seconds);
+  std::fflush(stderr);
+}
+
+int run(const Options& o, const Session& mpi) {
+  const int rank = mpi.rank(), ranks = mpi.size();
+  // Every rank loads and checks; the lowest failing rank reports, and no rank renders.
+  Loaded l;
+  std::string failure;
+  try {
+    l = prepare(o);
+  } catch (const std::exception& e) {
+    failure = e.what();
+  }
+  const int firstFailed = mpi.minOf(failure.empty() ? ranks : rank);
+  if (firstFailed < ranks) {
+    if (rank == firstFailed)
+      std::fprintf(stderr, "error (rank %d of %d): %s\n", rank, ranks, failure.c_str());
+    if (rank == 0 && firstFailed != 0)
+      std::fprintf(stderr, "error: rank %d could not prepare the render; nothing was rendered or written\n",
+                   firstFailed);
+    return 2;
+  }
+
+  const RenderSettings& s = l.job->settings;
+  const uint32_t block = o.block;
+  const uint64_t target = o.spp > 0 ? o.spp : (o.seconds > 0 ? 0 : (o.reference ? 4096u : s.sampleCount));
+  const SampleSchedule schedule = SampleSchedule::blocks(block, uint32_t(rank), uint32_t(ranks));
+  RenderLimits limits;
+  const uint64_t myPasses = target > 0 ? schedule.passesBelow(target) : std::numeric_limits<uint32_t>::max();
+  // Rounds until every index below the target is rendered: rank r renders its m-th block in round m.
+  const uint64_t rounds =
+      target > 0 ? ((target + block - 1) / block + ranks - 1) / ranks : std::numeric_limits<uint64_t>::max();
+  const int threads = o.threads > 0
+                          ? o.threads
+                          : std::max(1, int(std::thread::hardware_concurrency()) / mpi.ranksOnThisNode());
+
+  gInterrupted = 0;
+  std::signal(SIGINT, onInterrupt);
+  std::signal(SIGTERM, onInterrupt);  // what mpirun sends every rank when it gets SIGINT
+  std::signal(SIGUSR1, onInterrupt);  // forwarded by mpirun to every rank without ending the job
+
+  const bool tty = rank == 0 && isatty(STDERR_FILENO);
+  Engine engine;
+  bool started = false;
+  mpi.barrier();  // start together: the time limit counts from here
+  const double t0 = mpi.wallSeconds();
+  const double cpu0 = processCpuSeconds();
+  bool interrupted = false;
+  for (uint64_t round = 0;; ++round) {
+    // Rank 0 decides on time at block boundaries; any rank's interrupt stops everyone.
+    int stop = gInterrupted ? 2 : 0;  // 2: interrupted, 1: time is up
+    if (rank == 0 && o.seconds > 0 && mpi.wallSeconds() - t0 >= o.seconds) stop = std::max(stop, 1);
+    stop = mpi.maxOf(stop);
+    if (stop == 2) interrupted = true;
+    if (stop || round >= rounds) break;
+    const uint32_t roundTarget = uint32_t(std::min<uint64_t>((round + 1) * block, myPasses));
+    const uint32_t done = started ? engine.progress().spp : 0;
+    if (roundTarget <= done) continue;  // no block of this rank in this round (the last one)
+    limits.targetSpp = roundTarget;
+    if (!started) {
+      engine.start(l.job, limits, threads, schedule);
+      started = true;
+    } else if (!engine.extend(limits)) {
+      throw Error("the engine could not continue the accumulation");
+    }
+    while (!engine.progress().finished) {
+      if (gInterrupted) engine.requestStop();  // ends after the running pass
+      if (tty)
+        drawProgress(uint64_t(engine.progress().spp) * ranks, target, mpi.wallSeconds() - t0, o.seconds);
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    engine.wait();
+  }
+  const double renderSeconds = mpi.wallSeconds() - t0;
+
+  // The reduction: the film sums, and the counts (passes, bad samples, CPU microseconds).
+  const CameraDesc& cam = s.camera;
+  std::vector<double> sums =
+      started ? engine.film().sums() : std::vector<double>(size_t(cam.width) * cam.height * 6, 0.0);
+  const RenderProgress mine = started ? engine.progress() : RenderProgress{};
+  std::vector<uint64_t> counts = {mine.spp, mine.badSamples, uint64_t((processCpuSeconds() - cpu0) * 1e6)};
+  mpi.barrier();  // the last round's stragglers: waited for asleep, and not counted as reduction time
+  const double r0 = mpi.wallSeconds();
+  mpi.sumToRoot(sums);
+  mpi.sumToRoot(counts);
+  const double reduceSeconds = mpi.wallSeconds() - r0;
+  const int maxThreads = mpi.maxOf(started ? engine.threadCount() : threads);
+  if (rank != 0) return interrupted ? kExitInterrupted : 0;
+
+  if (tty) {
+    drawProgress(counts[0], target, renderSeconds, o.seconds);
+    std::fprintf(stderr, "\n");
+  }
+  const uint32_t spp = uint32_t(counts[0]);
+  const double seconds = mpi.wallSeconds() - t0;
+  Film film(cam.width, cam.height);
+  film.sums() = std::move(sums);
+  ImageMetadata meta;
+  for (auto& [k, v] : describeSettings(s)) meta.add(k, v);
+  meta.add("spp", std::to_string(spp));
+  meta.add("seconds", std::to_string(seconds));
+  meta.add("scene", l.scene.path.empty() ? "<built-in>" : l.scene.path);
+  meta.add("badSamples", std::to_string(counts[1]));
+  meta.add("mpiRanks", std::to_string(ranks));
+  meta.add("threadsPerRank", std::to_string(maxThreads));
+  meta.add("sampleBlock", std::to_string(block));
+  meta.add("cpuSeconds", std::to_string(double(counts[2]) * 1e-6));
+  meta.add("reduceSeconds", std::to_string(reduceSeconds));
+  if (interrupted) meta.add("interrupted", "true");
+  const std::string how = "rendered " + strategyLabel(s.integrator) + " " + std::to_string(spp) + " spp on " +
+                          std::to_string(ranks) + " MPI ranks x " + std::to_string(maxThreads) + " threads";
+  if (o.reference) meta.add("sceneHash", sceneContentHash(l.scene.desc));
+  if (spp == 0) throw Error("no pass was completed; nothing written");
+  // writeReference: the mean (with "reference" = how it was made) and OUT.stderr.exr; both atomic.
+  Reference ref{film.mean(spp), film.standardError(spp), how};
+  writeReference(l.output, ref, meta);
+
+  std::printf(
+      "%s: %dx%d, %u spp, %.3f s (reduction %.3f s), %.2f M samples/s, %llu NaN/Inf/negative, %s, "
+      "%d ranks x %d threads, %.2f CPU s%s\n",
+      l.output.c_str(), cam.width, cam.height, spp, seconds, reduceSeconds,
+      seconds > 0 ? double(spp) * cam.width * cam.height / seconds * 1e-6 : 0.0,
+      (unsigned long long)counts[1], strategyLabel(s.integrator).c_str(), ranks, maxThreads,
+      double(counts[2]) * 1e-6, interrupted ? " (interrupted)" : "");
+  std::fflush(stdout);
+  return interrupted ? kExitInterrupted : 0;
+}
+
+}  // namespace
+
+void addDistributedRenderCommand(CLI::App& app, const Session& session, int& exitCode) {
+  auto opts = std::make_shared<Options>();
+  CLI::App* cmd = app.add_subcommand(
+      "render", "Render a scene over the ranks of an MPI job; rank 0 writes OUT and OUT.stderr.exr");
+  opts->scene.addTo(*cmd);
+  cmd->add_option("-o,--output", opts->output,
+                  "Output image (.exr, .pfm or .png); required unless --reference");
+  cmd->add_flag(
+      "--reference", opts->reference,
+      "Converged reference (as `penumbra render --reference`): the lowest-variance estimator, 4096 spp "
+      "unless --spp/--time, default output the cache next to the scene that `penumbra converge` reads");
+  cmd->add_option("--spp", opts->spp, "Samples per pixel over all ranks (default: the scene's sampleCount)")
+      ->check(CLI::Range(1u, 1u << 30));
+  cmd->add_option("--time", opts->seconds, "Render for this many seconds (whole blocks on every rank)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--seed", opts->seed, "Random seed (default: the scene's, else 0)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--threads", opts->threads,
+                  "Worker threads per rank (default: the cores over the ranks on a node)")
+      ->check(CLI::Range(1, 1024));
+  cmd->add_option(
+         "--block", opts->block,
+         "Sample indices per block, a power of two: rank r renders blocks r, r+K, r+2K, ... (default 16)")
+      ->check(CLI::Range(1u, 1u << 20));
+  cmd->callback([opts, &session, &exitCode] { exitCode = run(*opts, session); });
+}
+
+}  // namespace penumbra::mpi

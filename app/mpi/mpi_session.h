@@ -1,0 +1,38 @@
+// The process's MPI session (MPI_Init_thread .. MPI_Finalize) and the few collectives a shared
+// render needs, over MPI_COMM_WORLD. Only the main thread calls MPI (MPI_THREAD_FUNNELED): the
+// engine's workers never do.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+namespace penumbra::mpi {
+
+class Session {
+ public:
+  Session(int& argc, char**& argv);
+  ~Session();
+  Session(const Session&) = delete;
+  Session& operator=(const Session&) = delete;
+
+  int rank() const { return rank_; }
+  int size() const { return size_; }
+  int ranksOnThisNode() const { return localSize_; }
+
+  // Collectives: every rank must call them in the same order. The small ones sleep while they wait.
+  int maxOf(int value) const;
+  int minOf(int value) const;
+  void barrier() const;
+  // Element-wise sums onto rank 0 (MPI_Reduce, in chunks below MPI's int count; blocking: call it
+  // after a barrier so that no rank waits in it); other ranks' `values` are left unchanged.
+  void sumToRoot(std::vector<double>& values) const;
+  void sumToRoot(std::vector<uint64_t>& values) const;
+  double wallSeconds() const;  // MPI_Wtime
+  // Ends every rank of the job (MPI_Abort) with `code`.
+  [[noreturn]] void abort(int code) const;
+
+ private:
+  int rank_ = 0, size_ = 1, localSize_ = 1;
+};
+
+}  // namespace penumbra::mpi

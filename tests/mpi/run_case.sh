@@ -1,0 +1,118 @@
+#!/usr/bin/env bash
+# End-to-end tests of penumbra-mpi under mpirun (shared memory only, every step under `timeout`).
+# usage: run_case.sh CASE MPIRUN PENUMBRA_MPI PENUMBRA IMAGE_COMPARE SOURCE_DIR
+#   equality     K = 1, 2, 3 ranks against the single-process render, every sampler x three strategies,
+#                within 1e-6 relative per pixel (spp 37 with blocks of 4: uneven over ranks and blocks)
+#   uneven       spp not divisible by the ranks or the block renders exactly that spp; a rank
+#                without any block still takes part
+#   interrupt    SIGINT to mpirun mid-render: rank 0 writes a valid partial image and says so
+#   killed_rank  a rank killed mid-render ends the job; the existing output is untouched
+#   reference    --reference writes a reference (metadata name the ranks) that `converge --reference` reads
+#   scene_error  one rank's scene fails to load: nothing renders, the existing output is untouched
+set -u
+case_=$1 MPIRUN=$2 PMPI=$3 PENUMBRA=$4 COMPARE=$5 SRC=$6
+export OMPI_MCA_btl=self,vader           # no network beyond this machine
+export OMPI_MCA_btl_vader_single_copy_mechanism=none  # works in containers without CMA
+export OMPI_MCA_rmaps_base_oversubscribe=1 OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+SCENE=$SRC/scenes/hw2/Tests/sphere-area.xml
+SMALL=(--set camera.width=48 --set camera.height=40 --set integrator.nSamples=2)
+T=$(mktemp -d); trap 'rm -rf "$T"' EXIT
+fail() { echo "FAIL: $*"; exit 1; }
+mpi() { local k=$1; shift; timeout -k 5 120 "$MPIRUN" --allow-run-as-root --oversubscribe -np "$k" "$PMPI" "$@"; }
+# mpirun in the background, its pid in $pid, killed by a watchdog after 120 s; mpi_wait waits for it
+# (exit code in $rc) and ends the watchdog, so that nothing outlives the test.
+mpi_bg() {
+  local k=$1; shift
+  "$MPIRUN" --allow-run-as-root --oversubscribe -np "$k" "$PMPI" "$@" & pid=$!
+  (sleep 120 & echo $! >"$T/watchdog"; wait $! && kill -KILL $pid) >/dev/null 2>&1 &
+}
+mpi_wait() {
+  wait $pid; rc=$?
+  for i in $(seq 50); do [ -s "$T/watchdog" ] && break; sleep 0.1; done
+  kill "$(cat "$T/watchdog")" 2>/dev/null
+}
+meta() { "$COMPARE" --info "$1" | sed -n "s/^$2=//p"; }
+
+case $case_ in
+equality)
+  samplers=$("$PENUMBRA" render "$SCENE" --set sampler.type=none -o "$T/x.pfm" 2>&1 | grep -o "expected one of.*" |
+             sed 's/expected one of//; s/[,:()]/ /g')
+  [ -n "$samplers" ] || samplers="independent stratified"
+  echo "samplers: $samplers"
+  for sampler in $samplers; do
+    for m in "integrator.measure=solid-angle" "integrator.measure=area" "integrator.type=ao"; do
+      args=("${SMALL[@]}" --set "sampler.type=$sampler" --set "$m" --spp 37 --seed 5)
+      timeout 120 "$PENUMBRA" render "$SCENE" "${args[@]}" --threads 2 -o "$T/one.pfm" >/dev/null || fail "single render $sampler $m"
+      for k in 1 2 3; do
+        mpi $k render "$SCENE" "${args[@]}" --threads 1 --block 4 -o "$T/k$k.pfm" >/dev/null || fail "mpirun -np $k ($sampler, $m)"
+        echo -n "$sampler $m K=$k: "
+        "$COMPARE" "$T/one.pfm" "$T/k$k.pfm" 1e-6 || fail "$sampler $m K=$k differs from the single-process render"
+      done
+    done
+  done ;;
+uneven)
+  mpi 3 render "$SCENE" "${SMALL[@]}" --spp 37 --threads 1 --block 16 -o "$T/u.exr" >/dev/null || fail "mpirun"
+  [ "$(meta "$T/u.exr" spp)" = 37 ] || fail "spp $(meta "$T/u.exr" spp), expected 37"
+  [ "$(meta "$T/u.exr" mpiRanks)" = 3 ] || fail "mpiRanks"
+  [ -f "$T/u.stderr.exr" ] || fail "no standard error image"
+  # 5 spp in blocks of 16 over 2 ranks: rank 1 renders nothing and still joins the reduction.
+  timeout 120 "$PENUMBRA" render "$SCENE" "${SMALL[@]}" --spp 5 --threads 1 -o "$T/one.pfm" >/dev/null || fail "single"
+  mpi 2 render "$SCENE" "${SMALL[@]}" --spp 5 --threads 1 --block 16 -o "$T/k2.pfm" >/dev/null || fail "mpirun 5 spp"
+  "$COMPARE" "$T/one.pfm" "$T/k2.pfm" 1e-6 || fail "5 spp over 2 ranks" ;;
+interrupt)
+  # mpirun answers SIGINT by sending every rank SIGTERM, then SIGKILL this many seconds later
+  # (default 1): the ranks finish their pass, reduce and write within that grace.
+  export OMPI_MCA_odls_base_sigkill_timeout=5
+  for sig in INT USR1; do  # USR1: forwarded to every rank at once, and the job ends normally
+    rm -f "$T/p.exr" "$T/p.stderr.exr"
+    mpi_bg 2 render "$SCENE" --set camera.width=192 --set camera.height=160 --spp 1000000 --threads 1 --block 1 \
+      -o "$T/p.exr" >"$T/out" 2>"$T/err"
+    sleep 4
+    kill -$sig $pid
+    mpi_wait
+    echo "SIG$sig: mpirun exit code $rc; $(cat "$T/out")"
+    [ -f "$T/p.exr" ] || { cat "$T/err"; fail "SIG$sig: no partial image"; }
+    spp=$(meta "$T/p.exr" spp)
+    [ "$(meta "$T/p.exr" interrupted)" = true ] || fail "SIG$sig: metadata lack interrupted=true"
+    [ "$spp" -ge 1 ] && [ "$spp" -lt 1000000 ] || fail "SIG$sig: spp $spp"
+    [ "$(meta "$T/p.exr" valid)" = 1 ] || fail "SIG$sig: invalid pixels"
+    [ "$(meta "$T/p.stderr.exr" valid)" = 1 ] || fail "SIG$sig: invalid standard error"
+    [ $sig = INT ] || [ $rc = 3 ] || fail "SIGUSR1: exit code $rc, expected 3"
+  done ;;
+killed_rank)
+  echo "old image" >"$T/old.exr"; cp "$T/old.exr" "$T/k.exr"
+  mpi_bg 3 render "$SCENE" --spp 1000000 --threads 1 -o "$T/k.exr" >"$T/out" 2>"$T/err"
+  victim=""
+  for i in $(seq 1 300); do
+    for p in $(pgrep -P $pid); do
+      grep -qz "^OMPI_COMM_WORLD_RANK=1$" /proc/$p/environ 2>/dev/null && victim=$p
+    done
+    [ -n "$victim" ] && break; sleep 0.1
+  done
+  [ -n "$victim" ] || { kill -KILL $pid; fail "rank 1 not found"; }
+  sleep 3
+  kill -KILL "$victim"
+  mpi_wait
+  echo "mpirun exit code $rc"; tail -5 "$T/err"
+  [ $rc -ne 0 ] || fail "the job succeeded without a rank"
+  cmp "$T/old.exr" "$T/k.exr" || fail "the old output changed"
+  [ ! -f "$T/k.stderr.exr" ] || fail "a standard error image was written" ;;
+reference)
+  mpi 2 render "$SCENE" "${SMALL[@]}" --reference --spp 64 --threads 1 -o "$T/ref.exr" >/dev/null || fail "mpirun"
+  "$COMPARE" --info "$T/ref.exr" | grep -q "^reference=rendered .* on 2 MPI ranks" || fail "metadata lack the ranks"
+  [ -n "$(meta "$T/ref.exr" sceneHash)" ] || fail "no sceneHash"
+  timeout 120 "$PENUMBRA" converge "$SCENE" "${SMALL[@]}" --spp 4 --strategies area --reference "$T/ref.exr" \
+    -o "$T/conv" >"$T/out" 2>&1 || { cat "$T/out"; fail "converge"; }
+  grep -q "reference: $T/ref.exr (with standard error)" "$T/out" || { cat "$T/out"; fail "converge did not use it"; } ;;
+scene_error)
+  echo "old image" >"$T/old.exr"; cp "$T/old.exr" "$T/s.exr"
+  timeout -k 5 120 "$MPIRUN" --allow-run-as-root --oversubscribe \
+    -np 2 "$PMPI" render "$SCENE" --spp 4 -o "$T/s.exr" : -np 1 "$PMPI" render "$T/missing.xml" --spp 4 -o "$T/s.exr" \
+    >"$T/out" 2>"$T/err"; rc=$?
+  echo "mpirun exit code $rc"; cat "$T/err"
+  [ $rc -ne 0 ] || fail "exit code 0"
+  grep -q "rank 2" "$T/err" || fail "the message does not name the failing rank"
+  cmp "$T/old.exr" "$T/s.exr" || fail "the old output changed" ;;
+*) fail "unknown case $case_" ;;
+esac
+echo PASS
