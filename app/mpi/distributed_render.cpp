@@ -10,6 +10,7 @@
 #include <limits>
 #include <thread>
 
+#include "app/cli/option_checks.h"
 #include "app/cli/scene_options.h"
 #include "core/analysis/reference.h"
 #include "core/image/image_io.h"
@@ -215,7 +216,7 @@ void addDistributedRenderCommand(CLI::App& app, const Session& session, int& exi
   cmd->add_option("--spp", opts->spp, "Samples per pixel over all ranks (default: the scene's sampleCount)")
       ->check(CLI::Range(1u, 1u << 30));
   cmd->add_option("--time", opts->seconds, "Render for this many seconds (whole blocks on every rank)")
-      ->check(CLI::PositiveNumber);
+      ->check(cli::finitePositiveNumber());
   cmd->add_option("--seed", opts->seed, "Random seed (default: the scene's, else 0)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--threads", opts->threads,
