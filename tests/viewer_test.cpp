@@ -165,15 +165,10 @@ TEST(ViewerWindow, RealWindowUnderXvfb) {
   if (std::system("command -v xvfb-run > /dev/null 2>&1") != 0)
     GTEST_SKIP() << "xvfb-run is not installed (apt-get install xvfb xauth): skipping the real-window test";
   std::string shot = tempDir() + "/window.png";
-  // xvfb-run -a can race another X server starting at the same moment; the viewer then falls back to
-  // offscreen. Retry a couple of times before judging.
-  RunResult r;
-  for (int attempt = 0; attempt < 3; ++attempt) {
-    r = run("xvfb-run -a -n " + std::to_string(140 + 7 * attempt) + " -s '-screen 0 1024x768x24' " +
-            std::string(PENUMBRA_BINARY) + " view " + defaultSceneFile() + " " + kSets +
-            " --frames 30 --window 720x560 --print-layout --screenshot " + shot);
-    if (r.exitCode == 0 && r.out.find("GLFW") != std::string::npos) break;
-  }
+  RunResult r =
+      test::runUnderXvfb(std::string(PENUMBRA_BINARY) + " view " + defaultSceneFile() + " " + kSets +
+                             " --frames 30 --window 720x560 --print-layout --screenshot " + shot,
+                         140);
   ASSERT_EQ(r.exitCode, 0) << r.out;
   ASSERT_NE(r.out.find("GLFW"), std::string::npos) << r.out;
   Layout l = parseLayout(r.out);

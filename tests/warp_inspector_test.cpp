@@ -134,17 +134,12 @@ TEST(WarpInspectorWindow, RealWindowUnderXvfb) {
   if (std::system("command -v xvfb-run > /dev/null 2>&1") != 0)
     GTEST_SKIP() << "xvfb-run is not installed (apt-get install xvfb xauth): skipping the real-window test";
   std::string shot = tempDir() + "/window.png";
-  // -n 170: its own display numbers, so that it never races the viewer's xvfb-run -a under ctest -j;
-  // retried because xvfb-run -a can still race an X server starting elsewhere at the same moment.
-  RunResult r;
-  for (int attempt = 0; attempt < 3; ++attempt) {
-    r = run("xvfb-run -a -n " + std::to_string(170 + 7 * attempt) + " -s '-screen 0 1024x768x24' " +
-            std::string(PENUMBRA_BINARY) +
-            " warp concentric-disk --gui --points 10 --grid-lines --frames 20 --window 960x640 --print-layout"
-            " --screenshot " +
-            shot);
-    if (r.exitCode == 0 && r.out.find("GLFW") != std::string::npos) break;
-  }
+  RunResult r = test::runUnderXvfb(
+      std::string(PENUMBRA_BINARY) +
+          " warp concentric-disk --gui --points 10 --grid-lines --frames 20 --window 960x640"
+          " --print-layout --screenshot " +
+          shot,
+      1200);
   ASSERT_EQ(r.exitCode, 0) << r.out;
   EXPECT_NE(r.out.find("GLFW"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("panel histogram"), std::string::npos) << r.out;
