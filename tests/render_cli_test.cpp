@@ -10,9 +10,9 @@
 #include <string>
 
 #include "core/image/image_io.h"
+#include "core/math/temp_dir_fixture.h"
 #include "core/render/memory_estimate.h"
 #include "tests/run_command.h"
-#include "core/math/temp_dir_fixture.h"
 
 namespace penumbra {
 namespace {
