@@ -4,9 +4,6 @@
 // one warning and nothing else. Every command runs under `timeout`, every wait is bounded.
 #include <gtest/gtest.h>
 
-#include <arpa/inet.h>
-#include <netinet/in.h>
-#include <sys/socket.h>
 #include <unistd.h>
 
 #include <cmath>
@@ -124,6 +121,11 @@ void expectSameImageAsWithoutStreaming(const std::string& dir, const std::string
   EXPECT_EQ(fileBytes(streamed), fileBytes(plain));
 }
 
+// The small render at 8 spp, streamed to `address`, written to `out`.
+test::CommandResult renderStreamingTo(const std::string& address, const std::string& out) {
+  return penumbra("render '" + kScene + "'" + kSmall + " --spp 8 --display-server " + address + " -o " + out);
+}
+
 // One "warning: display server 127.0.0.1:PORT: ..." line and no other warning.
 void expectOneWarning(const std::string& out, int port) {
   EXPECT_EQ(countOf(out, "warning"), 1) << out;
@@ -133,8 +135,7 @@ void expectOneWarning(const std::string& out, int port) {
 TEST_F(DisplayServer, ViewerClosingAfterTheFirstPacketIsOneWarning) {
   FakeTev tev(FakeTev::Mode::CloseAfterFirstPacket);
   const std::string out = file("out.pfm");
-  test::CommandResult r = penumbra("render '" + kScene + "'" + kSmall + " --spp 8 --display-server " +
-                                   tev.address() + " -o " + out);
+  test::CommandResult r = renderStreamingTo(tev.address(), out);
   ASSERT_EQ(r.exitCode, 0) << r.out;
   expectOneWarning(r.out, tev.port());
   EXPECT_NE(r.out.find("closed the connection"), std::string::npos) << r.out;
@@ -145,8 +146,7 @@ TEST_F(DisplayServer, ViewerClosingAfterTheFirstPacketIsOneWarning) {
 TEST_F(DisplayServer, ViewerNeverAcceptingIsOneWarning) {
   FakeTev tev(FakeTev::Mode::NeverAccept);
   const std::string out = file("out.pfm");
-  test::CommandResult r = penumbra("render '" + kScene + "'" + kSmall + " --spp 8 --display-server " +
-                                   tev.address() + " -o " + out);
+  test::CommandResult r = renderStreamingTo(tev.address(), out);
   ASSERT_EQ(r.exitCode, 0) << r.out;
   expectOneWarning(r.out, tev.port());
   EXPECT_EQ(tev.connections(), 0);
@@ -155,19 +155,12 @@ TEST_F(DisplayServer, ViewerNeverAcceptingIsOneWarning) {
 
 TEST_F(DisplayServer, RefusedConnectionIsOneWarning) {
   // A port bound (so nobody else takes it during the test) but not listening: connections are refused.
-  const int s = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
-  sockaddr_in a{};
-  a.sin_family = AF_INET;
-  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  socklen_t len = sizeof a;
-  ASSERT_EQ(::bind(s, reinterpret_cast<sockaddr*>(&a), sizeof a), 0);
-  ASSERT_EQ(::getsockname(s, reinterpret_cast<sockaddr*>(&a), &len), 0);
-  const int port = ntohs(a.sin_port);
+  int fd = -1;
+  const int port = test::unusedPort(fd);
+  ASSERT_GT(port, 0);
   const std::string out = file("out.pfm");
-  test::CommandResult r =
-      penumbra("render '" + kScene + "'" + kSmall +
-               " --spp 8 --display-server 127.0.0.1:" + std::to_string(port) + " -o " + out);
-  ::close(s);
+  test::CommandResult r = renderStreamingTo("127.0.0.1:" + std::to_string(port), out);
+  ::close(fd);
   ASSERT_EQ(r.exitCode, 0) << r.out;
   expectOneWarning(r.out, port);
   EXPECT_NE(r.out.find("refused"), std::string::npos) << r.out;

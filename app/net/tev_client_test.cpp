@@ -56,14 +56,20 @@ TEST(DisplayServerSpec, MalformedValuesNameWhatWasExpected) {
   }
 }
 
+// Connects `c` to the fake tev and writes one small CreateImage packet (kept in `packet`).
+void connectAndSendOnePacket(const FakeTev& tev, TevConnection& c, std::vector<uint8_t>& packet,
+                             std::string& why) {
+  ASSERT_TRUE(c.connect(serverAt(tev.port()), 3, why)) << why;
+  encodeCreateImage({false, "n", 4, 4, {"Y"}}, packet);
+  ASSERT_TRUE(c.write(packet, 3, why)) << why;
+}
+
 TEST(TevConnection, WritesAndEndsAStreamThePeerReadToTheEnd) {
   FakeTev tev;
   TevConnection c;
   std::string why;
-  ASSERT_TRUE(c.connect(serverAt(tev.port()), 3, why)) << why;
   std::vector<uint8_t> packet;
-  encodeCreateImage({false, "n", 4, 4, {"Y"}}, packet);
-  ASSERT_TRUE(c.write(packet, 3, why)) << why;
+  ASSERT_NO_FATAL_FAILURE(connectAndSendOnePacket(tev, c, packet, why));
   EXPECT_FALSE(c.peerClosed());
   EXPECT_TRUE(c.finish(3, why)) << why;
   EXPECT_TRUE(tev.waitForStreamsEnded(1, 5));
@@ -86,10 +92,9 @@ TEST(TevConnection, PeerThatNeverReadsFailsTheEndOfStreamWithinItsTimeout) {
   FakeTev tev(FakeTev::Mode::NeverAccept);
   TevConnection c;
   std::string why;
-  ASSERT_TRUE(c.connect(serverAt(tev.port()), 3, why)) << why;  // the kernel accepts into the backlog
   std::vector<uint8_t> packet;
-  encodeCreateImage({false, "n", 4, 4, {"Y"}}, packet);
-  ASSERT_TRUE(c.write(packet, 3, why)) << why;
+  // The kernel accepts the connection into the backlog, and takes the packet, without tev accepting.
+  ASSERT_NO_FATAL_FAILURE(connectAndSendOnePacket(tev, c, packet, why));
   const auto t0 = std::chrono::steady_clock::now();
   EXPECT_FALSE(c.finish(0.3, why));
   EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 5.0);
@@ -100,10 +105,8 @@ TEST(TevConnection, PeerThatClosedIsNoticed) {
   FakeTev tev(FakeTev::Mode::CloseAfterFirstPacket);
   TevConnection c;
   std::string why;
-  ASSERT_TRUE(c.connect(serverAt(tev.port()), 3, why)) << why;
   std::vector<uint8_t> packet;
-  encodeCreateImage({false, "n", 4, 4, {"Y"}}, packet);
-  ASSERT_TRUE(c.write(packet, 3, why)) << why;
+  ASSERT_NO_FATAL_FAILURE(connectAndSendOnePacket(tev, c, packet, why));
   ASSERT_TRUE(tev.waitForStreamsEnded(1, 5));
   bool noticed = false;  // by a write (the peer's reset) or by peerClosed; bounded either way
   for (int i = 0; i < 100 && !noticed; ++i) {
