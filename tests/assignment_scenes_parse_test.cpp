@@ -6,7 +6,9 @@
 #include <functional>
 
 #include "core/math/error.h"
+#include "core/scene/light_selection_default.h"
 #include "core/scene/obj_loader.h"
+#include "core/scene/scene_builder.h"
 #include "core/scene/xml_parser.h"
 #include "tests/test_support.h"
 
@@ -46,6 +48,28 @@ TEST(AssignmentScenes, AllParseAndMeshesLoad) {
     EXPECT_EQ(again.children.size(), root.children.size());
   }
   EXPECT_EQ(missingAjax, 3);
+}
+
+// The assignment's scenes have one or two sphere lights: with either light measure the builder keeps
+// sampling every light (the light-count default), as the assignment does.
+TEST(AssignmentScenes, LightSamplingMeasuresSampleEveryLight) {
+  int lit = 0;
+  for (const std::string& f : test::assignmentSceneFiles()) {
+    SCOPED_TRACE(f);
+    SceneNode root = parseSceneFile(f);
+    EXPECT_LE(countSphereLights(root), 2u);
+    if (countSphereLights(root) > 0) ++lit;
+    for (const char* measure : {"", "area", "solid-angle"}) {
+      SceneNode d = root;
+      if (*measure) {
+        applyOverride(d, "integrator.type", "direct");
+        applyOverride(d, "integrator.measure", measure);
+      }
+      const Strategy s = buildSettings(d).integrator.strategy;
+      EXPECT_EQ(lightSelectionOf(s), LightSelection::All) << measure;
+    }
+  }
+  EXPECT_GT(lit, 0);
 }
 
 TEST(AssignmentScenes, AliasSpellingsAreVisible) {

@@ -18,6 +18,7 @@
 #include "core/math/error.h"
 #include "core/render/engine.h"
 #include "core/render/memory_estimate.h"
+#include "core/scene/light_selection_default.h"
 
 namespace penumbra::cli {
 
@@ -159,6 +160,11 @@ int runRender(const RenderOptions& o) {
   meta.add("scene", loaded.path.empty() ? "<built-in>" : loaded.path);
   meta.add("badSamples", std::to_string(p.badSamples));
   meta.add("interrupted", interrupted ? "true" : "false");
+  // Whether the light selection was the scene's or the light-count default (a reference has its own).
+  const std::string selection = job->settings.integrator == loaded.settings.integrator
+                                    ? lightSelectionSummary(loaded.desc, job->settings.integrator.strategy)
+                                    : "";
+  if (!selection.empty()) meta.add("lightSelectionChoice", selection);
   if (o.reference) {
     meta.add("sceneHash", sceneContentHash(loaded.desc));
     Reference ref{
@@ -177,6 +183,7 @@ int runRender(const RenderOptions& o) {
               p.seconds > 0 ? double(p.samples) / p.seconds * 1e-6 : 0.0, (unsigned long long)p.badSamples,
               strategyLabel(job->settings.integrator).c_str(), engine.threadCount(),
               interrupted ? " (interrupted: the completed passes were written)" : "");
+  if (!selection.empty()) std::printf("%s\n", selection.c_str());
   std::fflush(stdout);
   if (tev) {
     if (interrupted)

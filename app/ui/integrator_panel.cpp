@@ -5,28 +5,53 @@
 
 #include "app/ui/panel_text.h"
 #include "app/ui/panels.h"
+#include "core/render/light_selection_rows.h"
 
 namespace penumbra::ui {
 
 void drawIntegratorPanel(ViewerController& c, PanelState&) {
   if (!ImGui::CollapsingHeader("Integrator", ImGuiTreeNodeFlags_DefaultOpen)) return;
-  RenderSettings s = c.settings();
-  IntegratorDesc& d = s.integrator;
   const bool areaLights = c.sceneHasAreaLights();
 
-  // Every strategy of the table, in its order; those the scene cannot use are disabled.
-  if (ImGui::BeginCombo("strategy", std::string(strategyRow(d.strategy).label).c_str())) {
-    for (const StrategyRow& row : strategyTable()) {
-      bool applies = strategyApplies(row.strategy, areaLights);
-      if (ImGui::Selectable(std::string(row.label).c_str(), row.strategy == d.strategy,
+  // One entry per measure (its all-lights row), in table order; those the scene cannot use are
+  // disabled. The light selection is the control below, so picking a measure keeps it.
+  const Strategy live = c.settings().integrator.strategy;
+  if (ImGui::BeginCombo("strategy", std::string(strategyRow(allLightsRow(live)).label).c_str())) {
+    for (Strategy choice : c.strategyChoices()) {
+      const StrategyRow& row = strategyRow(choice);
+      bool applies = strategyApplies(choice, areaLights);
+      if (ImGui::Selectable(std::string(row.label).c_str(), choice == allLightsRow(live),
                             applies ? 0 : ImGuiSelectableFlags_Disabled))
-        d.strategy = row.strategy;
+        c.setStrategy(choice);
       if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
         ImGui::SetTooltip("%s%s", std::string(row.description).c_str(),
                           applies ? "" : (std::string(" (") + sceneNeedText(row.needs) + ")").c_str());
     }
     ImGui::EndCombo();
   }
+  // Which lights each shading sample samples: a row of the table each, switched live. Two rows
+  // whatever the strategy, so the sections below never move.
+  if (c.takesLightSelection()) {
+    const Strategy now = c.settings().integrator.strategy;
+    const LightSelection selected = lightSelectionOf(now);
+    if (ImGui::BeginCombo("light selection", std::string(lightSelectionName(selected)).c_str())) {
+      for (LightSelection l : lightSelectionsOf(now)) {
+        std::string name(lightSelectionName(l));
+        if (l == c.defaultLightSelection()) name += "  (default here)";
+        if (ImGui::Selectable(name.c_str(), l == selected)) c.setLightSelection(l);
+        if (ImGui::IsItemHovered())
+          ImGui::SetTooltip("%s", std::string(strategyRow(*withLightSelection(now, l)).description).c_str());
+      }
+      ImGui::EndCombo();
+    }
+    hintText("%s", c.lightSelectionDefaultText().c_str());
+  } else {
+    ImGui::TextDisabled("(no light selection)");
+    ImGui::TextUnformatted("");
+  }
+
+  RenderSettings s = c.settings();
+  IntegratorDesc& d = s.integrator;
   // Fixed height: the fallback line and the samples field keep their rows whatever the strategy, so
   // the sections below never move when it changes.
   Strategy rendered = applicableStrategy(d.strategy, areaLights);

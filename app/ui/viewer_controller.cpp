@@ -11,6 +11,8 @@
 #include "core/image/image_io.h"
 #include "core/math/error.h"
 #include "core/math/frame.h"
+#include "core/render/light_selection_rows.h"
+#include "core/scene/light_selection_default.h"
 #include "core/scene/xml_parser.h"
 
 namespace penumbra::ui {
@@ -308,6 +310,49 @@ void ViewerController::setSettings(const RenderSettings& s) {
     startLeft();  // the right side renders its own strategy: keep its accumulation
   else
     start();
+}
+
+std::vector<Strategy> ViewerController::strategyChoices() const {
+  std::vector<Strategy> out;
+  for (const StrategyRow& row : strategyTable())
+    if (allLightsRow(row.strategy) == row.strategy) out.push_back(row.strategy);
+  return out;
+}
+
+void ViewerController::setStrategy(Strategy choice) {
+  RenderSettings s = settings_;
+  const Strategy live = s.integrator.strategy;
+  const LightSelection keep =
+      penumbra::takesLightSelection(live) ? lightSelectionOf(live) : defaultLightSelection();
+  s.integrator.strategy = withLightSelection(choice, keep).value_or(choice);
+  setSettings(s);
+}
+
+bool ViewerController::takesLightSelection() const {
+  return penumbra::takesLightSelection(settings_.integrator.strategy);
+}
+
+void ViewerController::setLightSelection(LightSelection selection) {
+  std::optional<Strategy> row = withLightSelection(settings_.integrator.strategy, selection);
+  if (!row) return;
+  RenderSettings s = settings_;
+  s.integrator.strategy = *row;
+  setSettings(s);
+}
+
+size_t ViewerController::sphereLightCount() const {
+  return scene_.scene ? scene_.scene->sphereLights.size() : 0;
+}
+
+LightSelection ViewerController::defaultLightSelection() const {
+  return penumbra::defaultLightSelection(sphereLightCount());
+}
+
+std::string ViewerController::lightSelectionDefaultText() const {
+  return "default for " + sphereLightsText(sphereLightCount()) + ": " +
+         std::string(lightSelectionName(defaultLightSelection())) + " (" +
+         std::string(lightSelectionName(LightSelection::All)) + " up to " + std::to_string(kAllLightsUpTo) +
+         ")";
 }
 
 void ViewerController::setLimits(const RenderLimits& l) {

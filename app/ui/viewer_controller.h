@@ -127,6 +127,24 @@ class ViewerController {
   // render, e.g. "stops at 64 spp (target spp)" or "stops after 10.0 s (time budget, equal time)".
   std::string stopText() const;
 
+  // ---- strategy and light selection ------------------------------------------------------------
+  // The strategy list: every row that is its own all-lights row (the rows of one light-sampling
+  // measure that differ only in lightSelection appear once, as their `all` row).
+  std::vector<Strategy> strategyChoices() const;
+  // Switches to one of strategyChoices(), keeping the live light selection where both take one (a
+  // strategy that takes none hands over to the scene's default). Restarts when it changed.
+  void setStrategy(Strategy choice);
+  // Whether the live strategy takes a light selection (the panel shows its control only then).
+  bool takesLightSelection() const;
+  // Switches the live strategy to the row of its measure with `selection`; ignored where it has none.
+  void setLightSelection(LightSelection selection);
+  // The scene's sphere lights, and the selection the scene builder picks for them when the scene
+  // names none (core/scene/light_selection_default.h).
+  size_t sphereLightCount() const;
+  LightSelection defaultLightSelection() const;
+  // "default for 64 sphere lights: bvh (all up to 8)", for the panel.
+  std::string lightSelectionDefaultText() const;
+
   // ---- camera ----------------------------------------------------------------------------------
   void orbit(float dxPixels, float dyPixels);
   void pan(float dxPixels, float dyPixels);

@@ -6,12 +6,15 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <string>
 #include <thread>
 
+#include "core/scene/light_selection_default.h"
+#include "core/scene/scaling_scene.h"
 #include "core/scene/scene_builder.h"
 
 namespace fs = std::filesystem;
@@ -163,6 +166,67 @@ TEST(ViewerController, InvalidSceneKeepsTheLastGoodOneAndShowsFileAndLine) {
   EXPECT_NE(c.sceneError().find("-bad.xml:3"), std::string::npos) << c.sceneError();
   EXPECT_EQ(c.scene().scene, scene);
   fs::remove(bad);
+}
+
+// The light-selection control: the strategy list shows each measure once, the selection switches the
+// row live (a restart, the same shared scene), a measure change keeps it, and the saved XML names it.
+TEST(ViewerController, LightSelectionSwitchesTheRowLiveAndTheListShowsEachMeasureOnce) {
+  const int many = int(kAllLightsUpTo) + 1;
+  ui::ViewerController c(loadSceneFromString(scalingSceneXml(many, 16, 100000), "scaling.xml", "."), {}, 2);
+  EXPECT_EQ(c.sphereLightCount(), size_t(many));
+  EXPECT_EQ(c.defaultLightSelection(), kManyLightsSelection);
+  // The scene names no lightSelection: the builder resolved it by the light count.
+  EXPECT_EQ(c.settings().integrator.strategy, Strategy::DirectSolidAngleBvh);
+  EXPECT_TRUE(c.takesLightSelection());
+  EXPECT_EQ(c.lightSelectionDefaultText(), "default for " + std::to_string(many) +
+                                               " sphere lights: bvh (all up to " +
+                                               std::to_string(kAllLightsUpTo) + ")");
+
+  std::vector<Strategy> list = c.strategyChoices();
+  for (Strategy s : list) EXPECT_EQ(lightSelectionOf(s), LightSelection::All) << strategyRow(s).label;
+  for (Strategy s : {Strategy::DirectUniformHemisphere, Strategy::DirectCosineHemisphere,
+                     Strategy::DirectArea, Strategy::DirectSolidAngle, Strategy::AoCosine, Strategy::Normals})
+    EXPECT_NE(std::find(list.begin(), list.end(), s), list.end()) << strategyRow(s).label;
+
+  c.start();
+  waitForSpp(c, 1);
+  uint64_t r0 = c.restartCount();
+  c.setLightSelection(LightSelection::Power);
+  EXPECT_EQ(c.settings().integrator.strategy, Strategy::DirectSolidAnglePower);
+  EXPECT_EQ(c.restartCount(), r0 + 1);
+  EXPECT_EQ(c.engine().job()->settings.integrator.strategy, Strategy::DirectSolidAnglePower);
+  EXPECT_EQ(c.engine().job()->scene.get(), c.scene().scene.get());
+  c.setLightSelection(LightSelection::Power);  // unchanged: no restart
+  EXPECT_EQ(c.restartCount(), r0 + 1);
+  // Another measure keeps the selection.
+  c.setStrategy(Strategy::DirectArea);
+  EXPECT_EQ(c.settings().integrator.strategy, Strategy::DirectAreaPower);
+  EXPECT_EQ(c.restartCount(), r0 + 2);
+  // The saved XML names the selection the render used.
+  LoadedScene saved = loadSceneFromString(c.liveSceneXml(), "live.xml", ".");
+  EXPECT_EQ(saved.settings.integrator.strategy, Strategy::DirectAreaPower);
+  EXPECT_NE(c.liveSceneXml().find("name=\"lightSelection\" value=\"power\""), std::string::npos);
+  // A measure without light selection: no control, and the control's setter does nothing.
+  c.setStrategy(Strategy::DirectCosineHemisphere);
+  EXPECT_FALSE(c.takesLightSelection());
+  uint64_t r1 = c.restartCount();
+  c.setLightSelection(LightSelection::Uniform);
+  EXPECT_EQ(c.settings().integrator.strategy, Strategy::DirectCosineHemisphere);
+  EXPECT_EQ(c.restartCount(), r1);
+  // Back to a light-sampling measure: the scene's default selection.
+  c.setStrategy(Strategy::DirectSolidAngle);
+  EXPECT_EQ(c.settings().integrator.strategy, Strategy::DirectSolidAngleBvh);
+  c.setLightSelection(LightSelection::All);
+  EXPECT_EQ(c.settings().integrator.strategy, Strategy::DirectSolidAngle);
+}
+
+TEST(ViewerController, TheAssignmentSceneDefaultsToAllLights) {
+  ui::ViewerController c(smallDefaultScene(), {}, 1);
+  EXPECT_EQ(c.sphereLightCount(), 1u);
+  EXPECT_EQ(c.defaultLightSelection(), LightSelection::All);
+  EXPECT_EQ(c.settings().integrator.strategy, Strategy::DirectSolidAngle);
+  EXPECT_EQ(c.lightSelectionDefaultText(),
+            "default for 1 sphere light: all (all up to " + std::to_string(kAllLightsUpTo) + ")");
 }
 
 TEST(ViewerCompare, EnablingStartsASecondAccumulationDisablingStopsIt) {

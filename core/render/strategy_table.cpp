@@ -1,5 +1,7 @@
 #include "core/render/strategy_table.h"
 
+#include "core/render/light_selection_rows.h"
+
 #include "core/integrators/ao_integrator.h"
 #include "core/integrators/direct_integrator.h"
 #include "core/integrators/normals_integrator.h"
@@ -348,6 +350,10 @@ std::vector<CanonicalProperty> canonicalProperties(const IntegratorDesc& desc) {
   for (const StrategyProperty& p : r.select)
     if (!p.name.empty()) out.push_back({p.name.canonical(), std::string(p.value.canonical()), false});
   return out;
+}
+
+const Spellings& lightSelectionProperty() {
+  return kLightSelection;
 }
 
 }  // namespace penumbra

@@ -7,8 +7,10 @@
 #include "core/geometry/procedural_mesh.h"
 #include "core/math/error.h"
 #include "core/math/float_util.h"
+#include "core/render/light_selection_rows.h"
 #include "core/render/strategy_table.h"
 #include "core/sampling/sampler_table.h"
+#include "core/scene/light_selection_default.h"
 #include "core/scene/obj_loader.h"
 #include "core/scene/xml_parser.h"
 
@@ -109,8 +111,9 @@ void buildSampler(const SceneNode& node, RenderSettings& s) {
 }
 
 // The strategy table decides: the rows of the node's type, narrowed by each selecting property in
-// turn (an absent property takes the value its default row names).
-void buildIntegrator(const SceneNode& node, RenderSettings& s) {
+// turn (an absent property takes the value its default row names; an absent lightSelection, the
+// one defaultLightSelection picks for the scene's sphere lights).
+void buildIntegrator(const SceneNode& node, size_t sphereLights, RenderSettings& s) {
   std::vector<Strategy> candidates = strategiesOfType(node.type);
   if (candidates.empty()) unknownType(node, acceptedIntegratorTypes().c_str());
   IntegratorDesc& d = s.integrator;
@@ -140,6 +143,8 @@ void buildIntegrator(const SceneNode& node, RenderSettings& s) {
     }
   }
   d.strategy = candidates.front();
+  if (!node.props.find(lightSelectionProperty().list()))
+    d.strategy = withLightSelection(d.strategy, defaultLightSelection(sphereLights)).value_or(d.strategy);
 }
 
 // ---- geometry and lights ------------------------------------------------------------------------
@@ -256,9 +261,14 @@ RenderSettings buildSettings(const SceneNode& desc, std::vector<std::string>* wa
   if (const SceneNode* cam = desc.child("camera")) buildCamera(*cam, s);
   if (const SceneNode* smp = desc.child("sampler")) buildSampler(*smp, s);
   if (const SceneNode* integ = desc.child("integrator"))
-    buildIntegrator(*integ, s);
-  else if (warnings)
-    warnings->push_back(desc.file + ": warning: no <integrator>; using " + strategyLabel(IntegratorDesc{}));
+    buildIntegrator(*integ, countSphereLights(desc), s);
+  else {
+    s.integrator.strategy =
+        withLightSelection(s.integrator.strategy, defaultLightSelection(countSphereLights(desc)))
+            .value_or(s.integrator.strategy);
+    if (warnings)
+      warnings->push_back(desc.file + ": warning: no <integrator>; using " + strategyLabel(s.integrator));
+  }
   return s;
 }
 

@@ -1,0 +1,36 @@
+// Which lights `direct` samples when the scene leaves lightSelection out: every light for every
+// shading sample while there are few, one chosen light per sample above a measured light count.
+// The scene builder resolves the absent property with it; `render` and the viewer say what it chose.
+#pragma once
+
+#include <cstddef>
+#include <string>
+
+#include "core/integrators/integrator_desc.h"
+#include "core/scene/scene_desc.h"
+
+namespace penumbra {
+
+// Measured crossover of equal-time efficiency (README, "Many lights": the crossover table).
+inline constexpr size_t kAllLightsUpTo = 8;
+// The selection that wins above kAllLightsUpTo at every light count measured.
+inline constexpr LightSelection kManyLightsSelection = LightSelection::Bvh;
+
+// all up to kAllLightsUpTo sphere lights, kManyLightsSelection above.
+constexpr LightSelection defaultLightSelection(size_t sphereLights) {
+  return sphereLights <= kAllLightsUpTo ? LightSelection::All : kManyLightsSelection;
+}
+
+// The sphere lights a scene description builds (spheres with an area emitter).
+size_t countSphereLights(const SceneNode& scene);
+// "1 sphere light", "64 sphere lights".
+std::string sphereLightsText(size_t count);
+// Whether the scene's <integrator> names its light selection.
+bool sceneNamesLightSelection(const SceneNode& scene);
+
+// What `render` and the viewer say about the light selection of `strategy` in `scene`: "" when the
+// strategy takes none, else e.g. "light selection bvh (the default for 64 sphere lights: all up to
+// 8, bvh above)" or "light selection power (set in the scene)".
+std::string lightSelectionSummary(const SceneNode& scene, Strategy strategy);
+
+}  // namespace penumbra

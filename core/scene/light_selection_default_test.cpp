@@ -1,0 +1,84 @@
+// The scene builder's light selection when the scene names none: every light up to kAllLightsUpTo
+// sphere lights, kManyLightsSelection above, for every measure that takes a light selection; a named
+// selection always wins.
+#include "core/scene/light_selection_default.h"
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "core/render/light_selection_rows.h"
+#include "core/render/strategy_table.h"
+#include "core/scene/scaling_scene.h"
+#include "core/scene/scene_builder.h"
+#include "core/scene/xml_parser.h"
+
+namespace penumbra {
+namespace {
+
+// The scaling scene with n sphere lights (and n blockers), its integrator set by `sets`.
+RenderSettings settingsFor(int lights, const std::vector<std::pair<std::string, std::string>>& sets) {
+  SceneNode desc = parseSceneString(scalingSceneXml(lights, 16, 1), "scaling.xml", ".");
+  for (const auto& [k, v] : sets) applyOverride(desc, k, v);
+  EXPECT_EQ(countSphereLights(desc), size_t(lights));
+  return buildSettings(desc);
+}
+
+// The figures that set the threshold (README, "Many lights": the crossover table): the default is
+// `all` through 8 lights and `bvh` from 16 on, with either light measure.
+TEST(LightSelectionDefault, FollowsTheMeasuredCrossover) {
+  EXPECT_EQ(kAllLightsUpTo, 8u);
+  EXPECT_EQ(kManyLightsSelection, LightSelection::Bvh);
+  for (size_t n : {0, 1, 2, 4, 8}) EXPECT_EQ(defaultLightSelection(n), LightSelection::All) << n;
+  for (size_t n : {9, 16, 64, 1000}) EXPECT_EQ(defaultLightSelection(n), LightSelection::Bvh) << n;
+}
+
+TEST(LightSelectionDefault, AbsentResolvesByTheSceneLightCount) {
+  const int at = int(kAllLightsUpTo), above = int(kAllLightsUpTo) + 1;
+  // The scaling scene names measure solid-angle and no lightSelection.
+  EXPECT_EQ(settingsFor(1, {}).integrator.strategy, Strategy::DirectSolidAngle);
+  EXPECT_EQ(settingsFor(at, {}).integrator.strategy, Strategy::DirectSolidAngle);
+  EXPECT_EQ(settingsFor(above, {}).integrator.strategy, Strategy::DirectSolidAngleBvh);
+  EXPECT_EQ(settingsFor(64, {}).integrator.strategy, Strategy::DirectSolidAngleBvh);
+  // Area sampling resolves the same way; the hemisphere measures take no light selection.
+  EXPECT_EQ(settingsFor(at, {{"integrator.measure", "area"}}).integrator.strategy, Strategy::DirectArea);
+  EXPECT_EQ(settingsFor(above, {{"integrator.measure", "area"}}).integrator.strategy,
+            Strategy::DirectAreaBvh);
+  EXPECT_EQ(settingsFor(above, {{"integrator.measure", "hemisphere"}}).integrator.strategy,
+            Strategy::DirectCosineHemisphere);
+  // No <integrator> at all: the default strategy, resolved likewise.
+  SceneNode bare = parseSceneString(scalingSceneXml(above, 16, 1), "scaling.xml", ".");
+  std::erase_if(bare.children, [](const SceneNode& c) { return c.tag == "integrator"; });
+  std::vector<std::string> warnings;
+  EXPECT_EQ(buildSettings(bare, &warnings).integrator.strategy, Strategy::DirectSolidAngleBvh);
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("direct/solid-angle-bvh"), std::string::npos) << warnings[0];
+}
+
+TEST(LightSelectionDefault, ANamedSelectionAlwaysWins) {
+  for (int n : {1, int(kAllLightsUpTo) + 1, 64})
+    for (const char* measure : {"solid-angle", "area"})
+      for (const char* name : {"all", "uniform", "power", "bvh"}) {
+        RenderSettings s =
+            settingsFor(n, {{"integrator.measure", measure}, {"integrator.lightSelection", name}});
+        EXPECT_EQ(lightSelectionName(lightSelectionOf(s.integrator.strategy)), name) << n << " " << measure;
+        EXPECT_EQ(samplesLightArea(s.integrator.strategy), std::string(measure) == "area");
+      }
+}
+
+// What `render` prints and writes into the image metadata.
+TEST(LightSelectionDefault, SummarySaysWhetherTheSceneOrTheDefaultChose) {
+  SceneNode many = parseSceneString(scalingSceneXml(64, 16, 1), "scaling.xml", ".");
+  EXPECT_EQ(lightSelectionSummary(many, buildSettings(many).integrator.strategy),
+            "light selection bvh (the default for 64 sphere lights: all up to 8, bvh above)");
+  SceneNode one = parseSceneString(scalingSceneXml(1, 16, 1), "scaling.xml", ".");
+  EXPECT_EQ(lightSelectionSummary(one, buildSettings(one).integrator.strategy),
+            "light selection all (the default for 1 sphere light: all up to 8, bvh above)");
+  applyOverride(many, "integrator.lightSelection", "power");
+  EXPECT_EQ(lightSelectionSummary(many, buildSettings(many).integrator.strategy),
+            "light selection power (set in the scene)");
+  EXPECT_EQ(lightSelectionSummary(many, Strategy::DirectCosineHemisphere), "");
+}
+
+}  // namespace
+}  // namespace penumbra
