@@ -4,19 +4,30 @@
 // strategy chosen at compile time (one instantiation per measure, so no per-sample branching):
 //   hemisphere (uniform or cosine warp): trace the sampled direction, add Le of an emitter it hits;
 //   area: a uniform point on each light sphere, pdf converted to solid angle (far side adds 0);
-//   solid angle: a uniform direction in the cone each light sphere subtends.
+//   solid angle: a uniform direction in the cone each light sphere subtends;
+//   projected solid angle: a direction in that cone with density cos θ / Ω⊥ above the horizon, whose
+//   estimate Le Ω⊥ has no variance where the light is unoccluded.
 // `simple` (seed hw1) is the same integrator with delta lights only.
 #pragma once
 
 #include <cmath>
 
+#include "core/integrators/direct_lighting.h"
+#include "core/integrators/light_technique.h"
 #include "core/integrators/shading_point.h"
 #include "core/sampling/sampler.h"
 #include "core/sampling/warp.h"
 
 namespace penumbra {
 
-enum class DirectStrategy : uint8_t { DeltaOnly, UniformHemisphere, CosineHemisphere, Area, SolidAngle };
+enum class DirectStrategy : uint8_t {
+  DeltaOnly,
+  UniformHemisphere,
+  CosineHemisphere,
+  Area,
+  SolidAngle,
+  ProjectedSolidAngle
+};
 
 template <DirectStrategy kStrategy>
 struct DirectIntegrator {
@@ -36,38 +47,13 @@ struct DirectIntegrator {
     Color3 E = deltaIrradiance(scene, sp);
     if constexpr (kSamplesHemisphere) {
       if (scene.hasAreaLights()) E += hemisphereIrradiance(scene, sp, sampler);
-    } else if constexpr (kStrategy == DirectStrategy::Area || kStrategy == DirectStrategy::SolidAngle) {
+    } else if constexpr (kStrategy != DirectStrategy::DeltaOnly) {
       E += lightSamplingIrradiance(scene, sp, sampler);
     }
     return L + material.albedo * kInvPi * E;
   }
 
  private:
-  // A direction w (with cosine `cosTheta` to the shading normal) can carry light only if it also
-  // leaves the geometric surface on the lit side.
-  static bool leavesSurface(const ShadingPoint& sp, const Vec3& w, float cosTheta) {
-    return cosTheta > 0.f && glm::dot(w, sp.ng) > 0.f;
-  }
-
-  static Color3 deltaIrradiance(const Scene& scene, const ShadingPoint& sp) {
-    Color3 E(0.f);
-    for (const PointLight& light : scene.pointLights) {
-      DeltaLightSample s = light.sample(sp.hit.p);
-      float cosTheta = glm::dot(sp.ns, s.wi);
-      if (isBlack(s.Li) || !leavesSurface(sp, s.wi, cosTheta)) continue;
-      if (scene.geometry.occluded(sp.spawnRayTo(light.position, maxAbsComponent(light.position)))) continue;
-      E += s.Li * cosTheta;
-    }
-    for (const DirectionalLight& light : scene.directionalLights) {
-      DeltaLightSample s = light.sample(sp.hit.p);
-      float cosTheta = glm::dot(sp.ns, s.wi);
-      if (isBlack(s.Li) || !leavesSurface(sp, s.wi, cosTheta)) continue;
-      if (scene.geometry.occluded(sp.spawnRay(s.wi, scene.rayLengthBound))) continue;
-      E += s.Li * cosTheta;
-    }
-    return E;
-  }
-
   Color3 hemisphereIrradiance(const Scene& scene, const ShadingPoint& sp, Sampler& sampler) const {
     Color3 E(0.f);
     for (int i = 0; i < samples; ++i) {
@@ -93,21 +79,27 @@ struct DirectIntegrator {
     return E * (1.f / float(samples));  // the reciprocal is off the critical path
   }
 
+  static constexpr LightMeasure kLightMeasure = kStrategy == DirectStrategy::Area ? LightMeasure::Area
+                                                : kStrategy == DirectStrategy::SolidAngle
+                                                    ? LightMeasure::SolidAngle
+                                                    : LightMeasure::ProjectedSolidAngle;
+
   Color3 lightSamplingIrradiance(const Scene& scene, const ShadingPoint& sp, Sampler& sampler) const {
     Color3 E(0.f);
     for (const SphereLight& light : scene.sphereLights) {
+      const LightTechnique<kLightMeasure> technique(light, sp);
       float lightScale = maxAbsComponent(light.sphere.center) + light.sphere.radius;
       for (int i = 0; i < samples; ++i) {
         Vec2 u = sampler.next2D();
-        LightSample s = kStrategy == DirectStrategy::Area ? light.sampleArea(sp.hit.p, u)
-                                                          : light.sampleSolidAngle(sp.hit.p, u);
+        if (!technique.canSample()) continue;
+        LightSample s = technique.sample(u);
         if (!(s.pdf > 0.f) || isBlack(s.Le)) continue;
         float cosTheta = glm::dot(sp.ns, s.wi);
         if (!leavesSurface(sp, s.wi, cosTheta)) continue;
         // Every traced sample faces x (far-side area samples have Le = 0): the light cannot block it.
         if (scene.geometry.occluded(sp.spawnRayTowards(s.wi, s.dist, lightScale), light.geometryIndex))
           continue;
-        E += s.Le * (cosTheta / s.pdf);
+        E += s.Le * technique.cosOverPdf(s, cosTheta);
       }
     }
     return E * (1.f / float(samples));
