@@ -15,6 +15,7 @@ constexpr double kMinProjectedSolidAngle = 0x1p-120;
 // Float directions carry ~2^-24 relative error per component (see SphereLight::pdfSolidAngle).
 constexpr double kDirectionSlack = 0x1p-22;
 constexpr double kQuarterPi = 0.78539816339744830962;
+constexpr double kPiD = 3.14159265358979323846;
 
 double sqrtNonNeg(double v) {
   return std::sqrt(std::max(v, 0.0));
@@ -45,6 +46,13 @@ double circleExcessArea(double y, double s) {
 
 }  // namespace
 
+// √(1 − y²) − xc as (k − y²) / (√(1 − y²) + xc) (no cancellation for small caps); 0 where both vanish
+// (x on the light's surface at y = 1).
+double ProjectedSphereCap::circleGap(double y, double s1) const {
+  const double sum = s1 + xc;
+  return sum > 0.0 ? (k - y * y) / sum : 0.0;
+}
+
 bool ProjectedSphereCap::init(const SphereLight& light, const Vec3& x, const Vec3& n) {
   const double r = light.sphere.radius;
   origin = DVec3(x);
@@ -56,31 +64,33 @@ bool ProjectedSphereCap::init(const SphereLight& light, const Vec3& x, const Vec
   distance = d;
   radiance = light.radiance;
 
-  ez = glm::normalize(DVec3(n));
-  const DVec3 wc = toCenter / d;
-  sinAlpha = r / d;
-  cosAlpha = std::sqrt((d - r) * (d + r)) / d;
+  ez = DVec3(n);  // unit to float precision: the frame's and Ω⊥'s error stays at float rounding
+  const double invD = 1.0 / d;
+  const DVec3 wc = toCenter * invD;
+  sinAlpha = r * invD;
+  cosAlpha = std::sqrt((d - r) * (d + r)) * invD;
   cosCentre = glm::dot(wc, ez);
   if (cosCentre <= -sinAlpha) return false;  // entirely below the horizon
   // sin θ and the frame from the cross product: accurate near θ = 0 and for narrow caps.
   const DVec3 side = glm::cross(ez, wc);
-  sinCentre = glm::length(side);
+  sinCentre = std::sqrt(glm::dot(side, side));
   if (sinCentre > 0.0) {
-    ey = side / sinCentre;
+    ey = side * (1.0 / sinCentre);
     ex = glm::cross(ey, ez);  // = (wc − cos θ ez) / sin θ
   } else {
     orthonormalBasis(ez, ex, ey);
   }
-
-  projectedSolidAngle = sphereLightIrradianceFactor(cosCentre, sinCentre, sinAlpha, cosAlpha);
-  if (!(projectedSolidAngle >= kMinProjectedSolidAngle)) return false;
-  invProjectedSolidAngle = 1.0 / projectedSolidAngle;
 
   xc = cosAlpha * sinCentre;
   a = sinAlpha * cosCentre;
   b = sinAlpha;
   k = sinAlpha * sinAlpha + cosAlpha * cosAlpha * cosCentre * cosCentre;
   straddling = cosCentre < sinAlpha;
+  // The closed form; above the horizon it is the ellipse's area π a b (its first case, inlined).
+  projectedSolidAngle =
+      straddling ? sphereLightIrradianceFactor(cosCentre, sinCentre, sinAlpha, cosAlpha) : kPiD * a * b;
+  if (!(projectedSolidAngle >= kMinProjectedSolidAngle)) return false;
+  invProjectedSolidAngle = 1.0 / projectedSolidAngle;
   if (straddling) {
     // Tangent points: x = cos α / sin θ on the unit circle, y² = 1 − x² = (sin²α − cos²θ) / sin²θ.
     const double yt =
@@ -113,7 +123,7 @@ double ProjectedSphereCap::sliceWidth(double y) const {
   const double s1 = sqrtNonNeg((1.0 - y) * (1.0 + y));
   const double u = std::min(1.0, y / b);
   const double s2 = sqrtNonNeg((1.0 - u) * (1.0 + u));
-  if (y <= yTangent) return std::max(0.0, (k - y * y) / (s1 + xc) + a * s2);
+  if (y <= yTangent) return std::max(0.0, circleGap(y, s1) + a * s2);
   return 2.0 * a * s2;
 }
 
@@ -124,7 +134,7 @@ double ProjectedSphereCap::areaBelow(double y) const {
   const double s2 = sqrtNonNeg((1.0 - u) * (1.0 + u));
   if (y > yTangent) return areaBelowTangent + 2.0 * a * b * (quarterDiskArea(u, s2) - gTangent);
   const double s1 = sqrtNonNeg((1.0 - y) * (1.0 + y));
-  return circleExcessArea(y, s1) + y * (k - y * y) / (s1 + xc) + a * b * quarterDiskArea(u, s2);
+  return circleExcessArea(y, s1) + y * circleGap(y, s1) + a * b * quarterDiskArea(u, s2);
 }
 
 // Newton's method on the monotone areaBelow, kept inside a shrinking bracket: a step that leaves it
@@ -142,10 +152,23 @@ ProjectedSphereCap::Inversion ProjectedSphereCap::invertArea(double target) cons
   int step = 0;
   while (step < kMaxInversionSteps) {
     ++step;
-    const double f = areaBelow(y) - target;
+    // areaBelow(y) and sliceWidth(y), sharing their square roots.
+    const double s1 = sqrtNonNeg((1.0 - y) * (1.0 + y));
+    const double u = std::min(1.0, y / b);
+    const double s2 = sqrtNonNeg((1.0 - u) * (1.0 + u));
+    double area, width;
+    if (y > yTangent) {
+      area = areaBelowTangent + 2.0 * a * b * (quarterDiskArea(u, s2) - gTangent);
+      width = 2.0 * a * s2;
+    } else {
+      const double circle = circleGap(y, s1);
+      area = circleExcessArea(y, s1) + y * circle + a * b * quarterDiskArea(u, s2);
+      width = std::max(0.0, circle + a * s2);
+    }
+    const double f = area - target;
     if (std::fabs(f) <= inversionTolerance) break;
     (f < 0.0 ? lo : hi) = y;
-    double next = y - f / sliceWidth(y);
+    double next = y - f / width;
     if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
     if (std::fabs(next - y) <= ulps || hi - lo <= ulps) break;
     y = next;
@@ -181,12 +204,12 @@ LightSample ProjectedSphereCap::sample(Vec2 u) const {
   const DVec3 perp = toCenter - tca * dir.w;
   const double h = sqrtNonNeg(radius * radius - glm::dot(perp, perp));
   const double dist = (glm::dot(toCenter, toCenter) - radius * radius) / (tca + h);
-  const DVec3 fromCenter = dist * dir.w - toCenter;
+  const Vec3 fromCenter(dist * dir.w - toCenter);
   LightSample ls;
   ls.wi = Vec3(dir.w);
   ls.dist = static_cast<float>(dist);
   ls.p = Vec3(origin + dist * dir.w);
-  ls.n = Vec3(fromCenter / radius);
+  ls.n = fromCenter * (1.f / static_cast<float>(radius));
   ls.pdf = static_cast<float>(dir.cosTheta * invProjectedSolidAngle);
   ls.Le = radiance;
   return ls;

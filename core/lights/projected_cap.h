@@ -90,6 +90,9 @@ struct ProjectedSphereCap {
   };
   // y with areaBelow(y) = target ∈ [0, halfArea], to the stop rule above.
   Inversion invertArea(double target) const;
+
+ private:
+  double circleGap(double y, double s1) const;
 };
 
 }  // namespace penumbra
