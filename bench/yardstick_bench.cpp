@@ -1,10 +1,10 @@
-// The issue's yardstick, measured in the same run as the renderer: a hand-specialised scalar loop for
-// hw2 sphere-area.xml against penumbra's general renderer on the same scene. On a shared machine
+// The yardstick, measured in the same run as the renderer: a hand-specialised scalar loop for
+// scenes/hw2/Tests/sphere-area.xml against penumbra's general renderer on the same scene. On a shared machine
 // whose speed drifts by a third within minutes, "M samples/s" alone says little; the ratio of the
 // two, measured seconds apart, says how far the general renderer is from what this scene allows.
 //   build/penumbra_bench --benchmark_filter=SphereArea --benchmark_repetitions=5
 //     --benchmark_enable_random_interleaving=true --benchmark_report_aggregates_only=true
-// Yardstick target of issue 3: penumbra on 2 threads ≥ 12 M/s, the loop ~12 M/s on one core, i.e.
+// The target: penumbra on 2 threads ≥ 12 M/s, the loop ~12 M/s on one core, i.e.
 // BM_Penumbra_SphereArea/threads:2 ≥ 1.0 × BM_Yardstick_SphereArea.
 //
 // The loop knows everything in advance: a unit sphere at the origin on the plane z = −1 (200 × 200),
@@ -57,11 +57,11 @@ struct FastRng {
 struct SphereAreaLoop {
   const Float3 eye{4, 4, 0};
   Float3 forward, right, up;
-  float tanHalf = std::tan(20.f * 3.14159265f / 180.f);
+  float tanHalf = std::tan(20.f * kPi / 180.f);
   const Float3 lightCentre{1, -1.5f, 1.75f};
   const float lightRadius = 0.1f;
   // albedo/π · radiance · light area (the area pdf's 1/(4πr²) folded in).
-  const float scale = 0.5f / 3.14159265f * 300.f * 4.f * 3.14159265f * 0.1f * 0.1f;
+  const float scale = 0.5f / kPi * 300.f * 4.f * kPi * 0.1f * 0.1f;
   std::vector<float> sums = std::vector<float>(size_t(kSize) * kSize, 0.f);
 
   SphereAreaLoop() {
@@ -107,7 +107,7 @@ struct SphereAreaLoop {
 
     // Uniform point on the light sphere.
     const float z = 1.f - 2.f * rng.next(), r = std::sqrt(std::fmax(0.f, 1.f - z * z));
-    const float phi = 6.2831853f * rng.next();
+    const float phi = 2.f * kPi * rng.next();
     const Float3 nl{r * std::cos(phi), r * std::sin(phi), z};
     const Float3 toL = lightCentre + lightRadius * nl - p;
     const float dist2 = dot(toL, toL), invDist = 1.f / std::sqrt(dist2);
@@ -140,12 +140,11 @@ BENCHMARK(BM_Yardstick_SphereArea)->Unit(benchmark::kMillisecond)->UseRealTime()
 // The general renderer on the scene as shipped (gaussian filter, area measure, one shadow ray), in
 // whole passes through the progressive engine; items are camera samples.
 void BM_Penumbra_SphereArea(benchmark::State& state) {
-  LoadedScene s = loadSceneFromString(defaultSceneXml(), "<built-in hw2 sphere>", ".");
+  LoadedScene s = loadSceneFromString(defaultSceneXml(), "<built-in sphere scene>", ".");
   auto job = std::make_shared<RenderJob>();
   job->scene = s.scene;
   job->settings = s.settings;
-  job->settings.integrator.measure = DirectMeasure::Area;
-  job->settings.integrator.samples = 1;
+  job->settings.integrator = IntegratorDesc{Strategy::DirectArea, 1};
   const int threads = int(state.range(0));
   constexpr uint32_t kPasses = 8;
   Engine engine;

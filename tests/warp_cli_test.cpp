@@ -1,6 +1,7 @@
 // End-to-end tests of `penumbra warp`: runs the built binary and checks exit codes and output.
 #include <gtest/gtest.h>
 
+#include "core/math/vec.h"
 #include "tests/run_command.h"
 
 #include <sys/wait.h>
@@ -13,6 +14,7 @@
 namespace {
 
 using CliRun = penumbra::test::CommandResult;
+using penumbra::kPiD;
 
 // Runs `penumbra <args>` through the shell (stderr merged into the output).
 CliRun penumbra(const std::string& args, const std::string& prefix = "") {
@@ -74,8 +76,8 @@ TEST(WarpCli, DumpThenPdfRoundTrip) {
   std::istringstream pin(pdf.out);
   double a, b, c;
   ASSERT_TRUE(pin >> a >> b >> c) << pdf.out;
-  EXPECT_NEAR(a, 1.0 / M_PI, 1e-7);
-  EXPECT_NEAR(b, 0.8 / M_PI, 1e-7);
+  EXPECT_NEAR(a, 1.0 / kPiD, 1e-7);
+  EXPECT_NEAR(b, 0.8 / kPiD, 1e-7);
   EXPECT_EQ(c, 0.0);
 
   CliRun piped = penumbra("warp uniform-cone --param 0.5 --pdf",
@@ -84,7 +86,7 @@ TEST(WarpCli, DumpThenPdfRoundTrip) {
   std::istringstream qin(piped.out);
   int count = 0;
   while (qin >> a) {
-    EXPECT_NEAR(a, 1.0 / (2 * M_PI * 0.5), 1e-6);
+    EXPECT_NEAR(a, 1.0 / (2 * kPiD * 0.5), 1e-6);
     ++count;
   }
   EXPECT_EQ(count, 20);

@@ -4,9 +4,12 @@
 Core layers, bottom to top; a file may include its own layer and any layer below it:
   math < image, sampling < geometry < lights < world < integrators < render < scene < analysis
 App layers, bottom to top (every app layer may include all of core):
-  platform < ui < cli
-Core includes nothing from app/, no GL, GLFW, ImGui or OSMesa header; app/cli only through
-app/ui and app/platform (its GL-linked view and warp-gui commands).
+  platform, net < ui < cli
+(net: streaming to the tev viewer over TCP.) Layers of one rank sit beside each other (image and
+sampling, platform and net) and include neither each other nor anything above them.
+Core includes nothing from app/, no GL, GLFW, ImGui or OSMesa header; app/cli includes app/ui and
+app/platform only in its GL-linked view and warp-gui commands, app/net in any command. Neither core/ nor app/ includes
+anything from tests/: unit-test fixtures live beside the code they serve.
 
 Usage: tools/check_layers.py [SOURCE_DIR]   (exit 0: clean, 1: violations listed, 2: bad usage)
 """
@@ -26,7 +29,7 @@ CORE_RANK = {
     "scene": 7,
     "analysis": 8,
 }
-APP_RANK = {"platform": 0, "ui": 1, "cli": 2}
+APP_RANK = {"platform": 0, "net": 0, "ui": 1, "cli": 2}
 GRAPHICS = re.compile(r"^(GL/|GLFW/|imgui|GLES|EGL/|backends/imgui)")
 INCLUDE = re.compile(r'^\s*#\s*include\s*([<"])([^>"]+)[>"]')
 
@@ -59,6 +62,9 @@ def check_file(root: pathlib.Path, path: pathlib.Path):
                 yield f"{where}: core includes no GL or ImGui header"
             continue
         dest = layer_of(pathlib.PurePosixPath(target))
+        if target.startswith("tests/"):
+            yield f"{where}: {area}/ never includes tests/ (keep test fixtures beside their code)"
+            continue
         if dest is None:
             continue
         dest_area, dest_layer = dest
@@ -69,6 +75,8 @@ def check_file(root: pathlib.Path, path: pathlib.Path):
                 yield f"{where}: unknown layer '{dest_area}/{dest_layer}'"
             elif ranks[dest_layer] > ranks[layer]:
                 yield f"{where}: '{dest_layer}' is above '{layer}' in the layer order"
+            elif ranks[dest_layer] == ranks[layer] and dest_layer != layer:
+                yield f"{where}: '{dest_layer}' sits beside '{layer}' in the layer order, not below it"
 
 
 def main(argv):

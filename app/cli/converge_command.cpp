@@ -1,9 +1,10 @@
-// penumbra converge: error against run time (or spp) for every sampling strategy (issue 6).
+// penumbra converge: error against run time (or spp) for every sampling strategy.
 #include <cstdio>
 #include <filesystem>
 
 #include "app/cli/commands.h"
 #include "app/cli/convergence_report.h"
+#include "app/cli/display_server_option.h"
 #include "app/cli/scene_options.h"
 #include "core/analysis/convergence.h"
 #include "core/math/error.h"
@@ -24,6 +25,7 @@ struct ConvergeOptions {
   int threads = 0;
   uint64_t seed = 0;
   std::string timeAxis = "wall";
+  DisplayServerOption display;
 };
 
 void logLine(const std::string& s) {
@@ -31,10 +33,12 @@ void logLine(const std::string& s) {
 }
 
 int runConverge(const ConvergeOptions& o) {
+  std::optional<net::DisplayServer> displayServer = o.display.resolve();
   LoadedScene loaded = o.scene.load();
   if (o.spp == 0 && o.seconds <= 0) throw Error("converge: give --time SECONDS or --spp N");
   std::vector<IntegratorDesc> strategies = parseStrategies(loaded.settings.integrator, o.strategies);
   if (o.seed == kReferenceSeed) throw Error("converge: --seed must differ from the reference's seed");
+  std::unique_ptr<net::TevStreamer> tev = openStream(displayServer);  // each strategy's final image
   ReferenceRequest rq;
   rq.path = o.reference;
   rq.cacheDir = o.cacheDir;
@@ -56,6 +60,7 @@ int runConverge(const ConvergeOptions& o) {
     std::printf("%-28s %6u spp  %7.2f s  RMSE %.4e  (no-light %.4e)  %zu points\n", r.strategy.c_str(), r.spp,
                 r.seconds, r.points.back().error.all.rmse, r.points.back().error.noLight.rmse,
                 r.points.size());
+    if (tev) tev->send(net::TevFrame{tevImageName(loaded.path, s, " converge"), r.finalImage, Image()});
   }
 
   ReportInfo info;
@@ -85,9 +90,9 @@ void addConvergeCommand(CLI::App& app, int& exitCode) {
   auto opts = std::make_shared<ConvergeOptions>();
   CLI::App* cmd = app.add_subcommand("converge", "Error against time (or spp) for every sampling strategy");
   opts->scene.addTo(*cmd);
-  cmd->add_option("--strategies", opts->strategies,
-                  "all, or a comma-separated list: uniform-hemisphere,cosine-hemisphere,area,solid-angle "
-                  "(ao: uniform,cosine)");
+  cmd->add_option(
+      "--strategies", opts->strategies,
+      "all, or a comma-separated list of the scene integrator's strategies (" + strategyNamesHelp() + ")");
   cmd->add_option("--time", opts->seconds, "Seconds per strategy (error against time)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--spp", opts->spp, "Samples per pixel per strategy (error against samples)")
@@ -107,6 +112,7 @@ void addConvergeCommand(CLI::App& app, int& exitCode) {
                   "x axis of convergence.png in time mode: wall (default) or cpu (the render's CPU seconds, "
                   "stable when other processes compete for the cores)")
       ->check(CLI::IsMember({"wall", "cpu"}));
+  opts->display.addTo(*cmd);
   cmd->callback([opts, &exitCode] { exitCode = runConverge(*opts); });
 }
 

@@ -133,7 +133,7 @@ void drawAxes(cairo_t* cr, const Axes& a, const std::string& xLabel, const std::
   text(cr, a.x0 + a.w / 2, a.y0 + a.h + 34, xLabel, 14, 0.5, 0);
   cairo_save(cr);
   cairo_translate(cr, a.x0 - 52, a.y0 + a.h / 2);
-  cairo_rotate(cr, -M_PI / 2);
+  cairo_rotate(cr, -kPiD / 2);
   text(cr, 0, 0, yLabel, 14, 0.5, 0.5);
   cairo_restore(cr);
   text(cr, a.x0 + a.w / 2, a.y0 - 10, title, 15, 0.5, 1, true);
@@ -298,7 +298,7 @@ void plotConvergence(const std::string& path, const std::vector<ConvergenceRun>&
         if (!(x > 0) || !(y > 0)) continue;
         const ErrorStats& s = noLight ? p.error.noLight : p.error.all;
         double se = s.mseStdErr / (2 * y);
-        cairo_arc(cr, a.px(x), a.py(y), 2.8, 0, 2 * M_PI);
+        cairo_arc(cr, a.px(x), a.py(y), 2.8, 0, 2 * kPiD);
         cairo_fill(cr);
         if (se > 0) {
           cairo_move_to(cr, a.px(x), a.py(y + se));
@@ -462,10 +462,7 @@ void writeSummary(const std::string& path, const std::vector<ConvergenceRun>& ru
          "MSE).\n\n";
   const ConvergenceRun* base = nullptr;
   for (const ConvergenceRun& r : runs)
-    if ((r.integrator.type == IntegratorType::Direct && r.integrator.measure == DirectMeasure::Hemisphere &&
-         r.integrator.warp == HemisphereWarp::Uniform) ||
-        (r.integrator.type == IntegratorType::Ao && r.integrator.warp == HemisphereWarp::Uniform))
-      base = &r;
+    if (strategyRow(r.integrator.strategy).baseline) base = &r;
   out << "| strategy | spp | wall s | CPU s | MSE | RMSE | relMSE | efficiency (wall) | speed-up (wall) | "
          "speed-up (CPU) | MSE no-light | efficiency no-light (wall) | speed-up no-light (wall) | "
          "speed-up no-light (CPU) |\n";

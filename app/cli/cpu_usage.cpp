@@ -4,7 +4,7 @@
 #include <fstream>
 #include <string>
 
-#include "core/render/engine.h"
+#include "core/render/cpu_clock.h"
 
 namespace penumbra::cli {
 

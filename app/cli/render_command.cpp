@@ -7,6 +7,7 @@
 #include <thread>
 
 #include "app/cli/commands.h"
+#include "app/cli/display_server_option.h"
 #include "app/cli/scene_options.h"
 #include "core/analysis/reference.h"
 #include "core/image/image_io.h"
@@ -30,6 +31,7 @@ struct RenderOptions {
   int64_t seed = -1;
   int threads = 0;
   bool reference = false;  // converged reference: lowest-variance estimator, stored with its standard error
+  DisplayServerOption display;
 };
 
 void drawProgress(const RenderProgress& p, uint32_t target, double seconds) {
@@ -46,6 +48,7 @@ void drawProgress(const RenderProgress& p, uint32_t target, double seconds) {
 }
 
 int runRender(const RenderOptions& o) {
+  std::optional<net::DisplayServer> displayServer = o.display.resolve();
   LoadedScene loaded = o.scene.load();
   auto job = std::make_shared<RenderJob>();
   job->scene = loaded.scene;
@@ -68,6 +71,9 @@ int runRender(const RenderOptions& o) {
   auto previous = std::signal(SIGINT, onInterrupt);
   Engine engine;
   engine.start(job, limits, o.threads);
+  std::unique_ptr<net::TevStreamer> tev = openStream(displayServer);
+  const std::string tevName = tevImageName(loaded.path, job->settings.integrator);
+  if (tev) tev->follow(engine, tevName);
   bool tty = isatty(STDERR_FILENO);
   while (!engine.progress().finished) {
     if (gInterrupted) engine.requestStop();
@@ -104,6 +110,8 @@ int runRender(const RenderOptions& o) {
               p.seconds > 0 ? double(p.samples) / p.seconds * 1e-6 : 0.0, (unsigned long long)p.badSamples,
               strategyLabel(job->settings.integrator).c_str(), engine.threadCount(),
               gInterrupted ? " (interrupted)" : "");
+  std::fflush(stdout);
+  if (tev) tev->finish(net::TevFrame{tevName, engine.film().mean(p.spp), engine.film().standardError(p.spp)});
   return 0;
 }
 
@@ -115,11 +123,14 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
   opts->scene.addTo(*cmd);
   cmd->add_option("-o,--output", opts->output,
                   "Output image (.exr float, .pfm float, .png sRGB 8-bit); required unless --reference");
+  std::string references;
+  for (const StrategyRow& row : strategyTable())
+    if (row.reference) (references += references.empty() ? "" : ", ") += row.label;
   cmd->add_flag(
       "--reference", opts->reference,
-      "Converged reference: the lowest-variance estimator (direct: solid-angle, ao: cosine), 4096 spp "
-      "unless --spp/--time, written with NAME.stderr.exr; default output: the cache next to the scene "
-      "(SCENE.xml.ref-HASH.exr) that `penumbra converge` reads");
+      "Converged reference: the lowest-variance estimator (" + references +
+          "), 4096 spp unless --spp/--time, written with NAME.stderr.exr; default output: the cache "
+          "next to the scene (SCENE.xml.ref-HASH.exr) that `penumbra converge` reads");
   cmd->add_option("--spp", opts->spp, "Samples per pixel (default: the scene's sampleCount)")
       ->check(CLI::Range(1u, 1u << 30));
   cmd->add_option("--time", opts->seconds, "Render for this many seconds (whole passes)")
@@ -128,6 +139,7 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--threads", opts->threads, "Worker threads (default: all cores)")
       ->check(CLI::Range(1, 1024));
+  opts->display.addTo(*cmd);
   cmd->callback([opts, &exitCode] { exitCode = runRender(*opts); });
 }
 

@@ -5,15 +5,12 @@
 // wrong library). `penumbra view --offscreen`, and `penumbra view` on a machine without a display,
 // re-execute the sibling penumbra-offscreen with the same options, so users see one command.
 // This file is compiled into each executable (not into penumbra_cli, which the tests link without GL).
-#include <unistd.h>
-#include <cerrno>
 #include <cstdio>
-#include <cstring>
-#include <filesystem>
 #include <string>
 #include <vector>
 
 #include "app/cli/commands.h"
+#include "app/cli/display_server_option.h"
 #include "app/cli/scene_options.h"
 #include "app/platform/offscreen_exec.h"
 #include "app/platform/platform.h"
@@ -35,12 +32,24 @@ struct ViewOptions {
   int threads = 0;
   std::string compare;
   std::string window;  // WxH
+  DisplayServerOption display;
 };
 
 constexpr const char* kFallbackScreenshot = "penumbra-view.png";
 
-// Re-runs this command in penumbra-offscreen; returns only on failure.
-[[noreturn]] void execOffscreen(const ViewOptions& o) {
+// The viewer's image (R, G, B) as tev's "<scene> [<strategy>]": offered after every poll (sent when an
+// update is due), and sent once more when the viewer closes. Compare mode streams its left side.
+void streamToTev(net::TevStreamer& tev, const ui::ViewerController& c, bool last) {
+  if (c.snapshotRestart() != c.restartCount()) return;  // the previous accumulation's image
+  const std::string name = tevImageName(c.scene().path, c.settings().integrator);
+  if (!last)
+    tev.offer(name, c.snapshot());
+  else if (c.snapshot().spp > 0)
+    tev.send(net::TevFrame{name, c.snapshot().mean, Image()});
+}
+
+// This command's arguments for penumbra-offscreen.
+std::vector<std::string> offscreenArgs(const ViewOptions& o) {
   std::vector<std::string> args = {"view"};
   if (!o.scene.scenePath.empty()) args.push_back(o.scene.scenePath);
   for (const std::string& s : o.scene.sets) args.insert(args.end(), {"--set", s});
@@ -54,21 +63,17 @@ constexpr const char* kFallbackScreenshot = "penumbra-view.png";
   if (o.threads > 0) args.insert(args.end(), {"--threads", std::to_string(o.threads)});
   if (!o.window.empty()) args.insert(args.end(), {"--window", o.window});
   if (!o.compare.empty()) args.insert(args.end(), {"--compare", o.compare});
-  platform::execOffscreen(args);
+  if (!o.display.spec.empty()) args.insert(args.end(), {"--display-server", o.display.spec});
+  return args;
 }
 
 int runView(ViewOptions o) {
   const bool offscreenBuild = platform::isOffscreenBuild();
-  if (!offscreenBuild) {
-    std::string why;
-    if (!o.offscreen && !platform::displayAvailable(why)) {
-      std::fprintf(stderr, "penumbra view: %s; rendering offscreen instead (OSMesa) and writing %s\n",
-                   why.c_str(), o.screenshot.empty() ? kFallbackScreenshot : o.screenshot.c_str());
-      o.offscreen = true;
-    }
-    if (o.offscreen) execOffscreen(o);
-  }
+  platform::runOffscreenUnlessWindowed("penumbra view", o.offscreen,
+                                       o.screenshot.empty() ? kFallbackScreenshot : o.screenshot,
+                                       [&] { return offscreenArgs(o); });
 
+  std::optional<net::DisplayServer> displayServer = o.display.resolve();  // a bad host exits with 2
   LoadedScene loaded = o.scene.load();  // throws penumbra::Error (exit code 2) on a bad scene
   ui::ViewerOptions vo;
   vo.bench = o.bench;
@@ -84,6 +89,8 @@ int runView(ViewOptions o) {
         vo.windowWidth < 64 || vo.windowHeight < 64)
       throw Error("--window " + o.window + ": expected WIDTHxHEIGHT, e.g. 1280x800");
   }
+  std::unique_ptr<net::TevStreamer> tev = openStream(displayServer);
+  if (tev) vo.onSnapshot = [&tev](const ui::ViewerController& c, bool last) { streamToTev(*tev, c, last); };
   return ui::runViewer(std::move(loaded), o.scene.overrides(), vo);
 }
 
@@ -109,6 +116,7 @@ void addViewCommand(CLI::App& app, int& exitCode) {
                   "Start in compare mode: this strategy (e.g. solid-angle) right of the divider, "
                   "the scene's on the left, each with half of the threads");
   cmd->add_option("--window", opts->window, "Window / offscreen buffer size, e.g. 1280x800");
+  opts->display.addTo(*cmd);
   cmd->add_flag("--print-layout", opts->printLayout, "Print where the image is drawn (for tests)")->group("");
   cmd->callback([opts, &exitCode] { exitCode = runView(*opts); });
 }

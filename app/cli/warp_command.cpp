@@ -12,6 +12,7 @@
 #include "core/sampling/chi2.h"
 #include "core/sampling/rng.h"
 #include "core/sampling/warp.h"
+#include "core/sampling/warp_params.h"
 
 namespace penumbra::cli {
 
@@ -37,49 +38,6 @@ struct WarpArgs {
   bool gridLines = false;
   WarpGuiArgs view;
 };
-
-std::string typeList() {
-  std::string s;
-  for (int i = 0; i < kWarpTypeCount; ++i) {
-    if (i) s += ", ";
-    s += warpTypeName(static_cast<WarpType>(i));
-  }
-  return s;
-}
-
-WarpType parseType(const std::string& name) {
-  WarpType t;
-  if (!parseWarpType(name, t))
-    throw Error("unknown warp type '" + name + "' (expected one of: " + typeList() + ")");
-  return t;
-}
-
-std::string number(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", v);
-  return buf;
-}
-
-float defaultParam(WarpType type) {
-  return type == WarpType::Beckmann ? 0.2f : 0.5f;
-}
-
-// Validates the parameter of `type` (throws penumbra::Error -> exit code 2) and returns it as float.
-float checkedParam(WarpType type, bool given, double value, const char* option) {
-  if (!warpHasParameter(type)) {
-    if (given)
-      throw Error(std::string("warp '") + warpTypeName(type) + "' takes no parameter (" + option + ")");
-    return 0.f;
-  }
-  if (!given) return defaultParam(type);
-  if (type == WarpType::UniformCone && !(value >= -1.0 && value < 1.0))
-    throw Error(std::string("uniform-cone: ") + option + " is cos(theta_max) and must be in [-1, 1), got " +
-                number(value));
-  if (type == WarpType::Beckmann && !(value > 0.0 && std::isfinite(value)))
-    throw Error(std::string("beckmann: ") + option + " is the roughness alpha and must be > 0, got " +
-                number(value));
-  return static_cast<float>(value);
-}
 
 // A deliberately wrong pdf for each warp (for --mismatch): the test must reject the pair.
 void mismatchPartner(WarpType type, float param, WarpType& pdfType, float& pdfParam) {
@@ -144,15 +102,15 @@ void evaluatePdfs(WarpType type, float param) {
 }
 
 int runSingle(const WarpArgs& a, const CLI::App& cmd) {
-  WarpType type = parseType(a.type);
-  float param = checkedParam(type, cmd.count("--param") > 0, a.param, "--param");
+  WarpType type = parseWarpTypeOrThrow(a.type);
+  float param = checkedWarpParam(type, cmd.count("--param") > 0, a.param, "--param");
   WarpType pdfType = type;
   float pdfParam = param;
   if (a.mismatch) {
     mismatchPartner(type, param, pdfType, pdfParam);
   } else if (!a.pdfOf.empty()) {
-    pdfType = parseType(a.pdfOf);
-    pdfParam = checkedParam(pdfType, cmd.count("--pdf-param") > 0, a.pdfParam, "--pdf-param");
+    pdfType = parseWarpTypeOrThrow(a.pdfOf);
+    pdfParam = checkedWarpParam(pdfType, cmd.count("--pdf-param") > 0, a.pdfParam, "--pdf-param");
   }
 
   Chi2Options opt;
@@ -236,7 +194,7 @@ void addWarpCommand(CLI::App& app, int& exitCode, WarpGuiRunner gui) {
   auto args = std::make_shared<WarpArgs>();
   CLI::App* cmd = app.add_subcommand(
       "warp", "Chi-square test a sample warp against its pdf; dump samples; evaluate pdfs");
-  cmd->add_option("type", args->type, "Warp: " + typeList());
+  cmd->add_option("type", args->type, "Warp: " + warpTypeList());
   cmd->add_option("--param", args->param,
                   "uniform-cone: cos(theta_max) in [-1, 1) (default 0.5); beckmann: alpha > 0 (default 0.2)");
   cmd->add_option("--samples", args->samples, "Number of samples for the test")
@@ -286,8 +244,8 @@ void addWarpCommand(CLI::App& app, int& exitCode, WarpGuiRunner gui) {
     if (a.gui) {
       if (!gui) throw Error("--gui: the warp inspector is not part of this build");
       WarpGuiArgs g = a.view;
-      g.type = a.type.empty() ? WarpType::CosineHemisphere : parseType(a.type);
-      g.param = checkedParam(g.type, cmd->count("--param") > 0, a.param, "--param");
+      g.type = a.type.empty() ? WarpType::CosineHemisphere : parseWarpTypeOrThrow(a.type);
+      g.param = checkedWarpParam(g.type, cmd->count("--param") > 0, a.param, "--param");
       g.log2Points = a.points;
       g.pointSet = a.pointSet;
       g.mismatch = a.mismatch;
@@ -306,10 +264,10 @@ void addWarpCommand(CLI::App& app, int& exitCode, WarpGuiRunner gui) {
       exitCode = runAll(a);
       return;
     }
-    if (a.type.empty()) throw Error("missing warp TYPE (one of: " + typeList() + "), or use --all");
+    if (a.type.empty()) throw Error("missing warp TYPE (one of: " + warpTypeList() + "), or use --all");
     if (cmd->count("--dump") || a.pdf) {
-      WarpType type = parseType(a.type);
-      float param = checkedParam(type, cmd->count("--param") > 0, a.param, "--param");
+      WarpType type = parseWarpTypeOrThrow(a.type);
+      float param = checkedWarpParam(type, cmd->count("--param") > 0, a.param, "--param");
       if (a.pdf)
         evaluatePdfs(type, param);
       else

@@ -1,11 +1,7 @@
 // `penumbra warp --gui`: the warp inspector in its own window, or offscreen (penumbra-offscreen,
 // OSMesa) with --offscreen or without a display, by the same re-execution as `penumbra view`.
 // Compiled into the executables with the viewer (it needs GL), like view_command.cpp.
-#include <unistd.h>
-#include <cerrno>
 #include <cstdio>
-#include <cstring>
-#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -21,7 +17,8 @@ namespace {
 
 constexpr const char* kFallbackScreenshot = "penumbra-warp.png";
 
-[[noreturn]] void execOffscreen(const WarpGuiArgs& g) {
+// This command's arguments for penumbra-offscreen.
+std::vector<std::string> offscreenArgs(const WarpGuiArgs& g) {
   char param[32];
   std::snprintf(param, sizeof param, "%.9g", g.param);
   std::vector<std::string> args = {"warp",
@@ -42,26 +39,20 @@ constexpr const char* kFallbackScreenshot = "penumbra-warp.png";
   if (!g.window.empty()) args.insert(args.end(), {"--window", g.window});
   if (g.noWait) args.push_back("--no-wait");
   if (g.printLayout) args.push_back("--print-layout");
-  platform::execOffscreen(args);
+  return args;
 }
 
 }  // namespace
 
 int runWarpGui(const WarpGuiArgs& in) {
-  WarpGuiArgs g = in;
+  const WarpGuiArgs& g = in;
   ui::WarpGuiOptions o;
   if (!ui::parsePointSet(g.pointSet, o.settings.pointSet))
     throw Error("--point-set " + g.pointSet + ": expected independent, grid or stratified");
   const bool offscreenBuild = platform::isOffscreenBuild();
-  if (!offscreenBuild) {
-    std::string why;
-    if (!g.offscreen && !platform::displayAvailable(why)) {
-      std::fprintf(stderr, "penumbra warp --gui: %s; rendering offscreen instead (OSMesa) and writing %s\n",
-                   why.c_str(), g.screenshot.empty() ? kFallbackScreenshot : g.screenshot.c_str());
-      g.offscreen = true;
-    }
-    if (g.offscreen) execOffscreen(g);
-  }
+  platform::runOffscreenUnlessWindowed("penumbra warp --gui", g.offscreen,
+                                       g.screenshot.empty() ? kFallbackScreenshot : g.screenshot,
+                                       [&] { return offscreenArgs(g); });
   o.settings.type = g.type;
   o.settings.param = warpHasParameter(g.type) ? g.param : 0.f;
   o.settings.log2Points = g.log2Points;

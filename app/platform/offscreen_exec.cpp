@@ -7,6 +7,7 @@
 #include <cstring>
 #include <filesystem>
 
+#include "app/platform/platform.h"
 #include "core/math/error.h"
 
 namespace penumbra::platform {
@@ -29,6 +30,18 @@ void execOffscreen(const std::vector<std::string>& args) {
   std::fflush(stderr);
   execv(bin.c_str(), argv.data());
   throw Error("cannot run " + bin + " for offscreen rendering: " + std::strerror(errno));
+}
+
+void runOffscreenUnlessWindowed(const char* command, bool offscreen, const std::string& output,
+                                const std::function<std::vector<std::string>()>& offscreenArgs) {
+  if (isOffscreenBuild()) return;
+  std::string why;
+  if (!offscreen && !displayAvailable(why)) {
+    std::fprintf(stderr, "%s: %s; rendering offscreen instead (OSMesa) and writing %s\n", command,
+                 why.c_str(), output.c_str());
+    offscreen = true;
+  }
+  if (offscreen) execOffscreen(offscreenArgs());
 }
 
 }  // namespace penumbra::platform

@@ -1,22 +1,9 @@
 #include <imgui.h>
 
+#include "app/ui/key_bindings.h"
 #include "app/ui/panels.h"
 
 namespace penumbra::ui {
-
-const Shortcut kShortcuts[] = {
-    {"Space", "pause / resume"},
-    {"R", "restart accumulation"},
-    {"S", "save the display as PNG (path in the Display panel)"},
-    {"F", "fit the image to the window / reset pan"},
-    {"+ / -", "exposure up / down by 1/2 stop"},
-    {"H", "show / hide this help"},
-    {"left drag", "orbit the camera about its target"},
-    {"left drag on the divider", "compare mode: move the split line"},
-    {"right / middle drag", "pan the camera"},
-    {"wheel", "dolly (Ctrl + wheel: zoom the display)"},
-};
-const int kShortcutCount = int(sizeof kShortcuts / sizeof kShortcuts[0]);
 
 void drawHelpPanel(ViewerController&, PanelState& st) {
   if (!st.showHelp) return;
@@ -24,12 +11,12 @@ void drawHelpPanel(ViewerController&, PanelState& st) {
                           ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
   if (ImGui::Begin("Help", &st.showHelp, ImGuiWindowFlags_AlwaysAutoResize)) {
     if (ImGui::BeginTable("keys", 2, ImGuiTableFlags_RowBg)) {
-      for (int i = 0; i < kShortcutCount; ++i) {
+      for (const KeyBinding& b : keyBindings()) {
         ImGui::TableNextRow();
         ImGui::TableNextColumn();
-        ImGui::TextUnformatted(kShortcuts[i].key);
+        ImGui::TextUnformatted(b.label);
         ImGui::TableNextColumn();
-        ImGui::TextUnformatted(kShortcuts[i].action);
+        ImGui::TextUnformatted(b.help);
       }
       ImGui::EndTable();
     }

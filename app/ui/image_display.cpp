@@ -191,7 +191,6 @@ void ImageDisplay::tonemap(Side& s, const FilmSnapshot& snap, const DisplaySetti
   s.tonemap = d.tonemap;
   s.falseColour = d.falseColour;
   ++s.made;
-  ++tonemaps_;
 }
 
 // Copies the texture's pixels from (srcX, srcY) on (row 0 = top) to the window rectangle

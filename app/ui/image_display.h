@@ -61,7 +61,6 @@ class ImageDisplay {
   void fillRect(int fbHeight, int x0, int y0, int x1, int y1, const float* rgb);
 
   Tonemapper tonemapper() const { return tonemapper_; }
-  uint64_t tonemaps() const { return tonemaps_; }  // images tone mapped so far
 
  private:
   // A texture with a framebuffer reading (and writing) it.
@@ -103,7 +102,6 @@ class ImageDisplay {
   };
   std::vector<Solid> solids_;                 // fillRect's textures, one per colour
   std::unique_ptr<DisplayLevelTable> table_;  // Cpu: for the current tone curve
-  uint64_t tonemaps_ = 0;
 };
 
 }  // namespace penumbra::ui

@@ -1,14 +1,10 @@
 #include "app/ui/viewer_app.h"
 
-#include <unistd.h>
 #include <algorithm>
-#include <array>
 #include <atomic>
 #include <chrono>
 #include <cstdio>
-#include <ctime>
-#include <filesystem>
-#include <fstream>
+#include <functional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -20,11 +16,13 @@
 
 #include "app/platform/platform.h"
 #include "app/ui/image_display.h"
+#include "app/ui/key_bindings.h"
 #include "app/ui/panels.h"
+#include "app/ui/ui_clock.h"
+#include "app/ui/viewer_bench.h"
 #include "app/ui/warp_inspector.h"
 #include "core/analysis/convergence.h"
 #include "core/analysis/error_metrics.h"
-#include "core/analysis/order_statistics.h"
 #include "core/image/image_io.h"
 #include "core/image/tonemap.h"
 #include "core/math/error.h"
@@ -32,16 +30,6 @@
 namespace penumbra::ui {
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double msSince(Clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
-double processCpuMs() {
-  timespec t;
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-  return double(t.tv_sec) * 1e3 + double(t.tv_nsec) * 1e-6;
-}
 
 // When the viewer draws (docs/viewer.md, "When the viewer redraws").
 constexpr double kFrameIntervalMs = 1000.0 / 60.0;     // at most one frame per 60 Hz display refresh
@@ -55,13 +43,7 @@ constexpr double kIdleWaitSeconds = 0.25;       // longest sleep (paces the scen
 constexpr double kStatsRefreshMs = 500;         // while rendering, a frame at least this often
 constexpr int kFramesAfterInput = 2;            // ImGui settles hover and click state a frame later
 
-// Parts of a frame, timed separately by the bench's breakdown.
-enum Stage { kUi, kTonemap, kImage, kPanels, kPresent, kStages };
-constexpr const char* kStageNames[kStages] = {"ImGui build (NewFrame..Render)", "tone map + upload",
-                                              "panel fill, background, image copy", "ImGui draw",
-                                              "present (swap / finish)"};
-
-class ViewerApp {
+class ViewerApp : public BenchViewer {
  public:
   ViewerApp(platform::Platform& p, ViewerController& c) : platform_(p), c_(c) {
     platform_.onDrop = [this](const std::vector<std::string>& files) {
@@ -82,7 +64,7 @@ class ViewerApp {
       }
     });
   }
-  ~ViewerApp() {
+  virtual ~ViewerApp() {
     stopWaker_ = true;
     waker_.join();
   }
@@ -116,10 +98,10 @@ class ViewerApp {
   }
 
   // Draws and presents one frame: ImGui panels, the image area, swap (or finish offscreen).
-  void frame() {
+  void frame() override {
     const auto t0 = Clock::now();
     lastFrameStart_ = t0;
-    stageStart();
+    if (stageTimer_) stageTimer_->begin();
     platform_.beginFrame();
     ImGui::NewFrame();
     if (!fontNearest_) {
@@ -139,9 +121,9 @@ class ViewerApp {
     drawPanels(fbH);
     if (c_.compareEnabled()) drawCompareLabels();
     ImGui::Render();
-    stageEnd(kUi);
+    if (stageTimer_) stageTimer_->end(kUi);
     display_.prepare(c_.display, c_.snapshot(), c_.compareEnabled() ? &c_.compareSnapshot() : nullptr);
-    stageEnd(kTonemap);
+    if (stageTimer_) stageTimer_->end(kTonemap);
 
     // Every pixel is written once: the panel column's background (its ImGui window draws none:
     // blending a textured rectangle over 400 x fbH pixels costs llvmpipe ~3 ms, copying a solid one
@@ -153,11 +135,11 @@ class ViewerApp {
                                wb.z * wb.w + kBackgroundRgb[2] * (1 - wb.w)};
     display_.fillRect(fbH, 0, 0, std::min(kSidebarWidth, fbW), fbH, panelRgb);
     display_.draw(layout_, fbW, fbH, kSidebarWidth);
-    stageEnd(kImage);
+    if (stageTimer_) stageTimer_->end(kImage);
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
-    stageEnd(kPanels);
+    if (stageTimer_) stageTimer_->end(kPanels);
     platform_.endFrame();
-    stageEnd(kPresent);
+    if (stageTimer_) stageTimer_->end(kPresent);
 
     lastFrameMs_ = msSince(t0);
     st_.frameMs = lastFrameMs_;
@@ -191,8 +173,7 @@ class ViewerApp {
   // requested only from about a pass and a half before one is due, so the workers resolve only
   // passes that will be shown. `continuous` draws every (paced) frame, as while a slider is dragged
   // (the bench measures both).
-  template <class Done>
-  void run(Done done, bool continuous = false) {
+  void run(const std::function<bool()>& done, bool continuous = false) override {
     int pending = 1;           // frames owed to input (or to `continuous`)
     bool snapshotDue = false;  // a new snapshot waits to be shown
     while (!platform_.shouldClose() && !done()) {
@@ -253,14 +234,14 @@ class ViewerApp {
 
   const ImageLayout& layout() const { return layout_; }
   const ImageDisplay& display() const { return display_; }
-  double lastFrameMs() const { return lastFrameMs_; }
-  uint64_t framesDrawn() const { return framesDrawn_; }
-  // Restart count of the image the last frame showed (0: none).
-  uint64_t shownRestart() const { return shownRestart_; }
-  // Bench breakdown: when set, each stage ends with glFinish and adds its wall and process CPU time.
-  std::array<double, kStages>* stageWallMs = nullptr;
-  std::array<double, kStages>* stageCpuMs = nullptr;
-  void forceTonemap() { display_.snapshotChanged(0); }
+
+  // BenchViewer.
+  double lastFrameMs() const override { return lastFrameMs_; }
+  uint64_t framesDrawn() const override { return framesDrawn_; }
+  uint64_t shownRestart() const override { return shownRestart_; }
+  Tonemapper tonemapper() const override { return display_.tonemapper(); }
+  void forceTonemap() override { display_.snapshotChanged(0); }
+  void timeStages(FrameStageTimer* timer) override { stageTimer_ = timer; }
 
  private:
   float dividerScreenX() const {
@@ -299,9 +280,7 @@ class ViewerApp {
       if (e >= 0) std::snprintf(buf + n, sizeof buf - n, "  RMSE %.4g", e);
       return std::string(buf);
     };
-    IntegratorDesc right = c_.compareIntegrator();
-    if (right.type == IntegratorType::Direct && !c_.sceneHasAreaLights())
-      right.measure = DirectMeasure::Hemisphere;
+    IntegratorDesc right = c_.renderedCompareIntegrator();
     std::string a = label(c_.settings().integrator, c_.snapshot(), leftError_);
     std::string b = label(right, c_.compareSnapshot(), rightError_);
     // Left label at the image's top-left corner, right label at its top-right corner (one line lower
@@ -331,10 +310,8 @@ class ViewerApp {
       if (ImGui::IsMouseClicked(ImGuiMouseButton_Left) && nearDivider) draggingDivider_ = true;
     }
     if (!ImGui::IsMouseDown(ImGuiMouseButton_Left)) draggingDivider_ = false;
-    if (draggingDivider_) {
-      float w = std::max(layout_.width * layout_.zoom, 1.f);
-      c_.display.compareDivider = std::clamp((io.MousePos.x - layout_.x) / w, 0.f, 1.f);
-    }
+    const unsigned held = io.KeyCtrl ? kCtrl : kNoModifier;
+    if (draggingDivider_) perform(Trigger::LeftDragOnDivider, held);
     // Pixel inspector and camera: only when the cursor is over the image area, not over a panel.
     st_.hoverValid = false;
     ImVec2 m = io.MousePos;
@@ -350,59 +327,67 @@ class ViewerApp {
       }
     }
     if (!io.WantCaptureMouse) {
-      ImVec2 d = io.MouseDelta;
-      if (ImGui::IsMouseDragging(ImGuiMouseButton_Left) && !draggingDivider_ && (d.x != 0 || d.y != 0))
-        c_.orbit(d.x, d.y);
+      const bool moved = io.MouseDelta.x != 0 || io.MouseDelta.y != 0;
+      if (ImGui::IsMouseDragging(ImGuiMouseButton_Left) && !draggingDivider_ && moved)
+        perform(Trigger::LeftDrag, held);
       if ((ImGui::IsMouseDragging(ImGuiMouseButton_Right) ||
            ImGui::IsMouseDragging(ImGuiMouseButton_Middle)) &&
-          (d.x != 0 || d.y != 0))
-        c_.pan(d.x / std::max(layout_.zoom, 1e-3f), d.y / std::max(layout_.zoom, 1e-3f));
-      if (io.MouseWheel != 0 && overArea) {
-        if (io.KeyCtrl) {
-          c_.display.zoom = std::clamp(c_.display.zoom * std::pow(1.25f, io.MouseWheel), 1.f / 16, 16.f);
-          if (c_.display.fit) c_.display.zoom = layout_.zoom * std::pow(1.25f, io.MouseWheel);
-          c_.display.fit = false;
-        } else {
-          c_.dolly(io.MouseWheel);
-        }
-      }
+          moved)
+        perform(Trigger::RightOrMiddleDrag, held);
+      if (io.MouseWheel != 0 && overArea) perform(Trigger::Wheel, held);
     }
-    if (!io.WantTextInput) {
-      for (ImWchar ch : io.InputQueueCharacters) {
-        switch (ch) {
-          case ' ':
-            c_.setPaused(!c_.paused());
-            break;
-          case 'r':
-          case 'R':
-            c_.restart();
-            break;
-          case 's':
-          case 'S':
-            st_.requestSavePng = true;
-            break;
-          case 'f':
-          case 'F':
-            c_.display.fit = true;
-            c_.display.panX = c_.display.panY = 0;
-            break;
-          case '+':
-          case '=':
-            c_.display.exposure += 0.5f;
-            break;
-          case '-':
-          case '_':
-            c_.display.exposure -= 0.5f;
-            break;
-          case 'h':
-          case 'H':
-          case '?':
-            st_.showHelp = !st_.showHelp;
-            break;
-          default:
-            break;
-        }
-      }
+    if (!io.WantTextInput)
+      for (ImWchar ch : io.InputQueueCharacters) perform(Trigger::Key, held, ch);
+  }
+
+  // Does what the key-binding table binds to this input (nothing when it binds nothing).
+  void perform(Trigger trigger, unsigned held, char32_t ch = 0) {
+    const KeyBinding* binding = findBinding(trigger, held, ch);
+    if (!binding) return;
+    const ImGuiIO& io = ImGui::GetIO();
+    const ImVec2 d = io.MouseDelta;
+    DisplaySettings& display = c_.display;
+    switch (binding->action) {
+      case ViewerAction::TogglePause:
+        c_.setPaused(!c_.paused());
+        break;
+      case ViewerAction::Restart:
+        c_.start();
+        break;
+      case ViewerAction::SavePng:
+        st_.requestSavePng = true;
+        break;
+      case ViewerAction::FitImage:
+        display.fit = true;
+        display.panX = display.panY = 0;
+        break;
+      case ViewerAction::ExposureUp:
+        display.exposure += 0.5f;
+        break;
+      case ViewerAction::ExposureDown:
+        display.exposure -= 0.5f;
+        break;
+      case ViewerAction::ToggleHelp:
+        st_.showHelp = !st_.showHelp;
+        break;
+      case ViewerAction::Orbit:
+        c_.orbit(d.x, d.y);
+        break;
+      case ViewerAction::MoveDivider:
+        display.compareDivider =
+            std::clamp((io.MousePos.x - layout_.x) / std::max(layout_.width * layout_.zoom, 1.f), 0.f, 1.f);
+        break;
+      case ViewerAction::Pan:
+        c_.pan(d.x / std::max(layout_.zoom, 1e-3f), d.y / std::max(layout_.zoom, 1e-3f));
+        break;
+      case ViewerAction::Dolly:
+        c_.dolly(io.MouseWheel);
+        break;
+      case ViewerAction::ZoomDisplay:
+        display.zoom = std::clamp(display.zoom * std::pow(1.25f, io.MouseWheel), 1.f / 16, 16.f);
+        if (display.fit) display.zoom = layout_.zoom * std::pow(1.25f, io.MouseWheel);
+        display.fit = false;
+        break;
     }
   }
 
@@ -433,21 +418,6 @@ class ViewerApp {
     }
   }
 
-  void stageStart() {
-    if (!stageWallMs) return;
-    stageT_ = Clock::now();
-    stageC_ = processCpuMs();
-  }
-  void stageEnd(Stage s) {
-    if (!stageWallMs) return;
-    glFinish();
-    double c = processCpuMs();
-    (*stageWallMs)[s] += msSince(stageT_);
-    (*stageCpuMs)[s] += c - stageC_;
-    stageT_ = Clock::now();
-    stageC_ = c;
-  }
-
   platform::Platform& platform_;
   ViewerController& c_;
   ImageDisplay display_;
@@ -465,219 +435,11 @@ class ViewerApp {
   double frameCostMs_ = 0;  // running average of lastFrameMs_ (paces pass-only frames)
   uint64_t framesDrawn_ = 0;
   uint64_t shownRestart_ = 0;
-  Clock::time_point stageT_{};
-  double stageC_ = 0;
+  FrameStageTimer* stageTimer_ = nullptr;  // the bench's frame breakdown
   bool fontNearest_ = false;
   std::atomic<bool> stopWaker_{false};
   std::thread waker_;
 };
-
-// CPU time of this process's threads, split by role (Linux /proc; ms). The UI thread is the main
-// thread; the GL rasteriser's threads are Mesa's "llvmpipe-N"; everything else (the render workers,
-// which come and go with every restart) is the process total minus those two.
-struct CpuSplit {
-  double ui = 0, gl = 0, total = 0;
-};
-CpuSplit cpuSplit() {
-  CpuSplit c;
-  c.total = processCpuMs();
-  const std::string self = std::to_string(::getpid());
-  std::error_code ec;
-  for (const auto& task : std::filesystem::directory_iterator("/proc/self/task", ec)) {
-    std::ifstream commFile(task.path() / "comm"), stat(task.path() / "schedstat");
-    std::string comm;
-    double ns = 0;
-    if (!std::getline(commFile, comm) || !(stat >> ns)) continue;
-    if (task.path().filename() == self)
-      c.ui += ns * 1e-6;
-    else if (comm.rfind("llvmpipe", 0) == 0)
-      c.gl += ns * 1e-6;
-  }
-  return c;
-}
-
-// One stretch of rendering: the engine's throughput, and the time of every UI frame drawn.
-struct Phase {
-  std::vector<double> frameMs;
-  double seconds = 0, samplesPerSecond = 0, uiCpuMs = 0, glCpuMs = 0;
-};
-
-// Throughput from the pass boundaries seen during a phase: samples of the passes completed between the
-// second boundary and the last one, over the time between them (the first pass after a restart also
-// carries the preview; counting whole passes over a fixed time would quantise by a pass, ~6 %).
-class PassClock {
- public:
-  // Pass boundaries are timed by the engine's clock when they happen, not when this loop sees them
-  // (a viewer that sleeps between frames sees them late).
-  void tick(const RenderProgress& p) {
-    if (p.spp == spp_) return;
-    spp_ = p.spp;
-    if (++boundaries_ == 2) first_ = p.passSeconds, firstSamples_ = p.samples;
-    if (boundaries_ >= 2) last_ = p.passSeconds, lastSamples_ = p.samples;
-  }
-  double samplesPerSecond() const {
-    double s = last_ - first_;
-    return s > 0 ? double(lastSamples_ - firstSamples_) / s : 0.0;
-  }
-
- private:
-  uint32_t spp_ = 0;
-  int boundaries_ = 0;
-  double first_ = 0, last_ = 0;
-  uint64_t firstSamples_ = 0, lastSamples_ = 0;
-};
-
-enum class Mode { EngineAlone, Watching, Redrawing };
-
-Phase runPhase(ViewerApp& app, ViewerController& c, double seconds, Mode mode) {
-  Phase r;
-  c.restart();
-  PassClock passes;
-  CpuSplit c0 = cpuSplit();
-  auto t0 = Clock::now();
-  if (mode == Mode::EngineAlone) {
-    // Only looks at the pass counter every 5 ms (negligible next to the UI's frames).
-    while (msSince(t0) < seconds * 1000) {
-      std::this_thread::sleep_for(std::chrono::milliseconds(5));
-      passes.tick(c.progress());
-    }
-  } else {
-    // Redrawing: the exposure changes before every frame, as while its slider is dragged, so every
-    // frame tone maps the image again and redraws the panels (a display-only change: no restart).
-    // The loop wakes on every snapshot, i.e. at every pass boundary, where the clock ticks.
-    const float exposure = c.display.exposure;
-    uint64_t frames = app.framesDrawn();
-    app.run(
-        [&] {
-          passes.tick(c.progress());
-          if (app.framesDrawn() != frames) {
-            frames = app.framesDrawn();
-            r.frameMs.push_back(app.lastFrameMs());
-            if (mode == Mode::Redrawing) c.display.exposure = exposure + (frames % 2 ? 0.25f : -0.25f);
-          }
-          return msSince(t0) >= seconds * 1000;
-        },
-        mode == Mode::Redrawing);
-    c.display.exposure = exposure;
-  }
-  r.seconds = msSince(t0) * 1e-3;
-  r.samplesPerSecond = passes.samplesPerSecond();
-  CpuSplit c1 = cpuSplit();
-  r.uiCpuMs = c1.ui - c0.ui;
-  r.glCpuMs = c1.gl - c0.gl;
-  return r;
-}
-
-// `penumbra view --bench`. Rounds of three phases on the same accumulation settings: the engine alone
-// (what `penumbra render` does), the viewer's own loop watching it (no input: it draws when a pass
-// arrives), and the loop redrawing every frame at the display rate with the exposure changing before
-// each (as while its slider is dragged: every frame tone maps the image and redraws the panels);
-// each round compares its phases, so a load change on a shared machine skews one round, not the
-// medians. Then restart latency, then where a frame's time goes.
-int runBench(platform::Platform& p, ViewerController& c, ViewerApp& app) {
-  const RenderSettings& s = c.settings();
-  const int cores = int(std::max(1u, std::thread::hardware_concurrency()));
-  std::printf("bench: %s, %dx%d, %s, %d worker threads (nice %d), %d cores, %s, tone mapping on the %s\n",
-              p.name(), s.camera.width, s.camera.height, strategyLabel(s.integrator).c_str(),
-              c.engine().threadCount(), kViewerWorkerNice, cores, p.glRenderer().c_str(),
-              app.display().tonemapper() == Tonemapper::Cpu ? "CPU (software GL)" : "GPU (display.frag)");
-  RenderLimits endless;
-  c.setLimits(endless);
-  const int rounds = 5;
-  const double seconds = 3.0;
-  std::vector<double> alone, watchLost, busyLost, watchFrames, busyFrames, watchRate, busyRate;
-  std::vector<double> watchUi, busyUi, watchGl, busyGl;
-  for (int i = 0; i < rounds; ++i) {
-    Phase a = runPhase(app, c, seconds, Mode::EngineAlone);
-    Phase w = runPhase(app, c, seconds, Mode::Watching);
-    Phase b = runPhase(app, c, seconds, Mode::Redrawing);
-    alone.push_back(a.samplesPerSecond);
-    watchLost.push_back(100.0 * (1.0 - w.samplesPerSecond / std::max(a.samplesPerSecond, 1e-9)));
-    busyLost.push_back(100.0 * (1.0 - b.samplesPerSecond / std::max(a.samplesPerSecond, 1e-9)));
-    watchFrames.insert(watchFrames.end(), w.frameMs.begin(), w.frameMs.end());
-    busyFrames.insert(busyFrames.end(), b.frameMs.begin(), b.frameMs.end());
-    watchRate.push_back(double(w.frameMs.size()) / w.seconds);
-    busyRate.push_back(double(b.frameMs.size()) / b.seconds);
-    // CPU share of the cores: UI thread, and GL rasteriser threads.
-    watchUi.push_back(100.0 * w.uiCpuMs / (w.seconds * 1e3 * cores));
-    watchGl.push_back(100.0 * w.glCpuMs / (w.seconds * 1e3 * cores));
-    busyUi.push_back(100.0 * b.uiCpuMs / (b.seconds * 1e3 * cores));
-    busyGl.push_back(100.0 * b.glCpuMs / (b.seconds * 1e3 * cores));
-  }
-
-  // Restart latency: a control change (the seed) in the middle of an accumulation, until a frame
-  // showing the new estimate (the engine's preview) is presented, and until its first full pass is.
-  std::vector<double> latency, previewEngine, fullPass, handled;
-  for (int i = 0; i < 10; ++i) {
-    auto w0 = Clock::now();
-    app.run([&] { return msSince(w0) >= 150 + 37 * i; });  // a different phase of the pass each time
-    RenderSettings next = c.settings();
-    next.seed += 1;
-    auto r0 = Clock::now();
-    c.setSettings(next);
-    handled.push_back(msSince(r0));
-    const uint64_t restart = c.restartCount();
-    double shown = -1;
-    app.run([&] {
-      if (shown < 0 && app.shownRestart() == restart) {
-        shown = msSince(r0);
-        if (c.snapshot().spp == 0) previewEngine.push_back(c.snapshot().seconds * 1e3);
-      }
-      return (app.shownRestart() == restart && c.snapshot().spp >= 1) || msSince(r0) > 10000;
-    });
-    latency.push_back(shown < 0 ? msSince(r0) : shown);
-    fullPass.push_back(msSince(r0));
-  }
-
-  // Where a frame's time goes: engine paused (so the CPU time is the UI's and GL's alone), every
-  // frame tone mapping the image as a frame with a new snapshot does, glFinish after each stage.
-  c.setPaused(true);
-  std::array<double, kStages> wall{}, cpu{};
-  app.stageWallMs = &wall;
-  app.stageCpuMs = &cpu;
-  const int breakdownFrames = 100;
-  for (int i = 0; i < breakdownFrames; ++i) {
-    app.forceTonemap();
-    app.frame();
-  }
-  app.stageWallMs = app.stageCpuMs = nullptr;
-  c.setPaused(false);
-
-  std::printf("bench: engine alone %.3f M samples/s (median of %d rounds of %.1f s per phase)\n",
-              median(alone) * 1e-6, rounds, seconds);
-  std::printf(
-      "bench: watching the accumulation (event-driven, no input): %.1f frames/s drawn, frame time median "
-      "%.2f ms, p90 %.2f ms; CPU: UI thread %.1f %% + GL threads %.1f %% of the cores; throughput %.1f %% "
-      "lost to the UI\n",
-      median(watchRate), median(watchFrames), percentile(watchFrames, 0.9), median(watchUi), median(watchGl),
-      median(watchLost));
-  std::printf(
-      "bench: dragging the exposure (a new tone mapping every frame, paced to 60 Hz): %.1f frames/s drawn, "
-      "frame time median %.2f ms (%.0f "
-      "fps), p90 %.2f ms; CPU: UI thread %.1f %% + GL threads %.1f %% of the cores; throughput %.1f %% lost "
-      "to the UI\n",
-      median(busyRate), median(busyFrames), 1000.0 / std::max(median(busyFrames), 1e-9),
-      percentile(busyFrames, 0.9), median(busyUi), median(busyGl), median(busyLost));
-  std::printf(
-      "bench: restart latency (control change -> first frame of the new estimate on screen) median %.1f ms, "
-      "max %.1f ms (the change itself: cancel and restart %.1f ms; the engine's preview published %.1f ms "
-      "after the restart; medians)\n",
-      median(latency), *std::max_element(latency.begin(), latency.end()), median(handled),
-      median(previewEngine));
-  std::printf("bench: control change -> first full pass on screen: median %.1f ms\n", median(fullPass));
-  std::printf(
-      "bench: frame breakdown (engine paused, image re-tone-mapped every frame, glFinish per part):\n");
-  for (int i = 0; i < kStages; ++i)
-    std::printf("bench:   %-32s %6.2f ms wall %6.2f ms CPU\n", kStageNames[i], wall[i] / breakdownFrames,
-                cpu[i] / breakdownFrames);
-  double frameMs = std::max(median(watchFrames), median(busyFrames));
-  std::printf(
-      "bench: targets: >= 60 fps (frame time <= 16.7 ms): %s; <= 50 ms restart latency: %s; <= 10 %% lost: "
-      "%s while watching, %s while dragging the exposure\n",
-      frameMs <= 1000.0 / 60 ? "met" : "NOT met", median(latency) <= 50 ? "met" : "NOT met",
-      median(watchLost) <= 10 ? "met" : "NOT met", median(busyLost) <= 10 ? "met" : "NOT met");
-  return 0;
-}
 
 void writeScreenshot(platform::Platform& p, const std::string& path) {
   int w = 0, h = 0;
@@ -692,6 +454,7 @@ void writeScreenshot(platform::Platform& p, const std::string& path) {
 
 int runViewer(LoadedScene scene, ViewerController::Overrides overrides, const ViewerOptions& o) {
   ViewerController controller(std::move(scene), std::move(overrides), o.threads);
+  if (o.onSnapshot) controller.onSnapshotPolled = [&o](const ViewerController& c) { o.onSnapshot(c, false); };
   const CameraDesc& cam = controller.settings().camera;
   platform::WindowOptions wo;
   wo.width = o.windowWidth > 0 ? o.windowWidth : kSidebarWidth + std::clamp(cam.width, 512, 1280);
@@ -716,7 +479,7 @@ int runViewer(LoadedScene scene, ViewerController::Overrides overrides, const Vi
       controller.start();
     }
     if (o.bench) {
-      rc = runBench(*p, controller, app);
+      rc = runViewerBench(*p, controller, app);
     } else {
       if (o.frames > 0)
         app.runFrames(o.frames, o.waitForTarget);
@@ -734,6 +497,7 @@ int runViewer(LoadedScene scene, ViewerController::Overrides overrides, const Vi
         std::printf("wrote %s (%s, %u spp)\n", o.screenshot.c_str(), p->name(), controller.progress().spp);
       }
     }
+    if (o.onSnapshot) o.onSnapshot(controller, true);
     controller.engine().cancel();
   }
   ImGui::DestroyContext();

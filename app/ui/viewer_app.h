@@ -1,8 +1,9 @@
 // The interactive viewer: a Platform (GLFW window or OSMesa buffer), the ViewerController (engine,
 // scene, live settings), the GL image display and the ImGui panels, and the frame loop that ties
-// them together. Also the offscreen screenshot mode and the --bench measurements.
+// them together. Also the offscreen screenshot mode; --bench runs app/ui/viewer_bench.h on it.
 #pragma once
 
+#include <functional>
 #include <string>
 
 #include "app/ui/viewer_controller.h"
@@ -18,6 +19,8 @@ struct ViewerOptions {
   int threads = 0;
   std::string compare;       // non-empty: start in compare mode with this strategy on the right
   bool printLayout = false;  // print "image-rect X Y W H ZOOM" (tests)
+  // After every snapshot poll (last = false) and once when the viewer closes (last = true).
+  std::function<void(const ViewerController&, bool last)> onSnapshot;
 };
 
 // Width of the panel column on the left, in pixels.

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <string>
 #include <utility>
@@ -51,7 +52,6 @@ class ViewerController {
 
   // ---- rendering -------------------------------------------------------------------------------
   void start();  // (re)starts accumulation with the live settings and limits
-  void restart() { start(); }
   void setPaused(bool paused);
   bool paused() const { return engine_.paused(); }
   RenderProgress progress() const { return engine_.progress(); }
@@ -66,6 +66,8 @@ class ViewerController {
   // published pass, or at once while the accumulation is paused or finished.
   void setProbePixel(int x, int y);
   const FilmSnapshot& snapshot() const { return snapshot_; }
+  // Called at the end of every pollSnapshot (e.g. to stream the image to tev: app/cli/view_command.cpp).
+  std::function<void(const ViewerController&)> onSnapshotPolled;
   // Restart counter value the current snapshot belongs to.
   uint64_t snapshotRestart() const { return snapshotRestart_; }
   // Count of changes of snapshot() / compareSnapshot() (each side is tone mapped only when it changed).
@@ -76,7 +78,7 @@ class ViewerController {
   // Notified whenever either engine publishes a snapshot or stops (the UI sleeps on it).
   const PublishSignal& publishSignal() const { return *signal_; }
 
-  // ---- compare mode (issue 6) -----------------------------------------------------------------
+  // ---- compare mode ----------------------------------------------------------------------------
   // A second Engine renders the same scene, camera and sampler with `compareIntegrator()`; the image
   // shows it right of the divider. While it is on, each engine gets half of the threads (at least
   // one), so both strategies get equal shares of time. Enabling or disabling restarts both sides;
@@ -86,6 +88,9 @@ class ViewerController {
   bool compareEnabled() const { return compare_; }
   const IntegratorDesc& compareIntegrator() const { return compareIntegrator_; }
   void setCompareIntegrator(const IntegratorDesc& d);
+  // What the right side renders: compareIntegrator(), or its fallback when the scene lacks what it
+  // needs (strategy table).
+  IntegratorDesc renderedCompareIntegrator() const;
   RenderProgress compareProgress() const { return compareEngine_.progress(); }
   const FilmSnapshot& compareSnapshot() const { return compareSnapshot_; }
   uint64_t compareRestartCount() const { return compareRestarts_; }
@@ -99,7 +104,6 @@ class ViewerController {
   void setSettings(const RenderSettings& s);
   const RenderLimits& limits() const { return limits_; }
   void setLimits(const RenderLimits& l);
-  bool useTimeBudget() const { return useTimeBudget_; }
 
   // ---- camera ----------------------------------------------------------------------------------
   void orbit(float dxPixels, float dyPixels);
@@ -159,8 +163,7 @@ class ViewerController {
   uint64_t snapshotRestart_ = 0;
   uint64_t snapshotSerial_ = 0, compareSnapshotSerial_ = 0;
   bool compare_ = false;
-  IntegratorDesc compareIntegrator_{IntegratorType::Direct, 1, DirectMeasure::SolidAngle,
-                                    HemisphereWarp::Cosine};
+  IntegratorDesc compareIntegrator_{Strategy::DirectSolidAngle, 1};
   Engine compareEngine_;
   FilmSnapshot compareSnapshot_;
   uint64_t compareRestarts_ = 0;

@@ -26,7 +26,6 @@ namespace penumbra::ui {
 
 namespace {
 
-constexpr float kPiF = 3.14159265358979323846f;
 const char* const kPanelNames[3] = {"histogram", "density", "difference"};
 
 ImTextureID texId(GLuint tex) {
@@ -50,7 +49,7 @@ void pushLine(std::vector<float>& v, glm::vec3 a, glm::vec3 b) {
 
 void pushCircle(std::vector<float>& v, int axis, float z, float radius, int segments) {
   auto at = [&](int i) {
-    float a = 2.f * kPiF * i / segments;
+    float a = 2.f * kPi * i / segments;
     glm::vec3 p(radius * std::cos(a), radius * std::sin(a), z);
     if (axis == 0) return glm::vec3(p.z, p.x, p.y);  // circle in the yz plane
     if (axis == 1) return glm::vec3(p.x, p.z, p.y);  // circle in the xz plane

@@ -11,8 +11,6 @@ namespace penumbra::ui {
 
 namespace {
 
-constexpr double kPiD = 3.14159265358979323846;
-
 struct Cancelled {};
 
 // Densities used as "mismatched" judges (all integrate to 1 over their own domain).

@@ -5,19 +5,14 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numbers>
+
+#include "core/math/vec.h"
 
 namespace penumbra {
 
-namespace {
-
-constexpr double kPi = std::numbers::pi;
-
-}  // namespace
-
 double sphereLightIrradianceFactor(const glm::dvec3& x, const glm::dvec3& n, const glm::dvec3& c, double r,
                                    bool twoSided) {
-  const double insideValue = twoSided ? kPi : 0.0;
+  const double insideValue = twoSided ? kPiD : 0.0;
   const glm::dvec3 v = c - x;
   const double d = glm::length(v);
   const double nLen = glm::length(n);
@@ -38,12 +33,12 @@ double sphereLightIrradianceFactor(const glm::dvec3& x, const glm::dvec3& n, con
 }
 
 double aoPlaneWithSphere(double cosTheta, double sinAlpha) {
-  return 1.0 - sphereLightIrradianceFactor(cosTheta, sinAlpha) / kPi;
+  return 1.0 - sphereLightIrradianceFactor(cosTheta, sinAlpha) / kPiD;
 }
 
 double aoPlaneWithSphere(const glm::dvec3& x, const glm::dvec3& n, const glm::dvec3& c, double r) {
   // Inside the occluder every ray is blocked: the two-sided value π gives AO = 0.
-  return 1.0 - sphereLightIrradianceFactor(x, n, c, r, /*twoSided=*/true) / kPi;
+  return 1.0 - sphereLightIrradianceFactor(x, n, c, r, /*twoSided=*/true) / kPiD;
 }
 
 double aoPlaneNearRestingSphere(double rho, double R) {

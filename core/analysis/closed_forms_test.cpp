@@ -5,12 +5,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <numbers>
+
+#include "core/math/vec.h"
 
 namespace penumbra {
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 TEST(ClosedForms, GeometricFrontEnd) {
   const glm::dvec3 c(0.3, -0.2, 2.0);
@@ -29,20 +28,20 @@ TEST(ClosedForms, GeometricFrontEnd) {
     }
   // Inside: one-sided 0, two-sided π.
   EXPECT_EQ(sphereLightIrradianceFactor(c + glm::dvec3(0.1, 0, 0), glm::dvec3(0, 0, 1), c, r), 0.0);
-  EXPECT_EQ(sphereLightIrradianceFactor(c + glm::dvec3(0.1, 0, 0), glm::dvec3(0, 0, 1), c, r, true), kPi);
+  EXPECT_EQ(sphereLightIrradianceFactor(c + glm::dvec3(0.1, 0, 0), glm::dvec3(0, 0, 1), c, r, true), kPiD);
   EXPECT_EQ(sphereLightIrradianceFactor(c, glm::dvec3(0, 0, 1), c, r), 0.0);
 }
 
 TEST(ClosedForms, SurfaceLimitFromOutside) {
   const glm::dvec3 c(1.0, 2.0, 3.0);
   for (double r : {1.0, 1e-3, 250.0})
-    for (double theta : {0.0, 0.4, kPi / 2, 2.0, 3.0}) {
+    for (double theta : {0.0, 0.4, kPiD / 2, 2.0, 3.0}) {
       // The deviation from the limit is O(cos α) ≈ √(2 eps), at most ≈ 2 cos α (attained at θ = π/2).
       // x just outside the sphere, in direction -u from c; n at angle θ from (c - x).
       const glm::dvec3 u = glm::normalize(glm::dvec3(0.2, -0.5, 0.8));
       const glm::dvec3 perp = glm::normalize(glm::cross(u, glm::dvec3(1, 0, 0)));
       const glm::dvec3 n = std::cos(theta) * u + std::sin(theta) * perp;
-      const double limit = 0.5 * kPi * (1 + std::cos(theta));
+      const double limit = 0.5 * kPiD * (1 + std::cos(theta));
       EXPECT_NEAR(sphereLightIrradianceFactor(c - r * u, n, c, r), limit, 1e-12);
       double prevErr = 1e300;
       for (double eps : {1e-6, 1e-8}) {
@@ -76,7 +75,7 @@ TEST(ClosedForms, AoPlaneWithSphereIsOneMinusIOverPi) {
   for (const glm::dvec3& c : {glm::dvec3(0, 0, 3), glm::dvec3(2, 0, 0.5), glm::dvec3(2, 0, -0.5)}) {
     const double r = 1.0, d = glm::length(c);
     const double ao = aoPlaneWithSphere(x, n, c, r);
-    EXPECT_NEAR(ao, 1 - sphereLightIrradianceFactor(c.z / d, r / d) / kPi, 1e-14);
+    EXPECT_NEAR(ao, 1 - sphereLightIrradianceFactor(c.z / d, r / d) / kPiD, 1e-14);
     EXPECT_NEAR(ao, aoPlaneWithSphere(c.z / d, r / d), 1e-14);
   }
   // Inside the occluder: fully occluded.
@@ -99,14 +98,14 @@ TEST(ClosedForms, RestingSphereMatchesGeneralPlaneSphere) {
 }
 
 TEST(ClosedForms, RestingConvexBody) {
-  for (double psi : {0.0, 0.5, kPi / 2, 2.5, 3.1})
+  for (double psi : {0.0, 0.5, kPiD / 2, 2.5, 3.1})
     EXPECT_NEAR(aoOnRestingConvexBody(psi), (1 + std::cos(psi)) / 2, 1e-15);
   // Near the contact point the cos² form keeps relative precision: (π - ψ)²/4.
   const double e = 1e-7;
-  EXPECT_NEAR(aoOnRestingConvexBody(kPi - e) / (e * e / 4), 1.0, 1e-6);
+  EXPECT_NEAR(aoOnRestingConvexBody(kPiD - e) / (e * e / 4), 1.0, 1e-6);
   // Top of a sphere resting on a plane: unoccluded. Equator: the plane blocks half the cosine lobe.
   EXPECT_DOUBLE_EQ(aoOnRestingConvexBody(0.0), 1.0);
-  EXPECT_NEAR(aoOnRestingConvexBody(kPi / 2), 0.5, 1e-15);
+  EXPECT_NEAR(aoOnRestingConvexBody(kPiD / 2), 0.5, 1e-15);
 }
 
 }  // namespace

@@ -47,7 +47,7 @@ TEST(ErrorMetrics, SubtractsReferenceNoise) {
       state = state * 6364136223846793005ull + 1442695040888963407ull;
       return (double(state >> 11) + 0.5) / 9007199254740992.0;
     };
-    return std::sqrt(-2 * std::log(u())) * std::cos(2 * M_PI * u());
+    return std::sqrt(-2 * std::log(u())) * std::cos(2 * kPiD * u());
   };
   for (std::size_t i = 0; i < ref.rgb.size(); ++i) ref.rgb[i] = float(truth.rgb[i] + s * gauss());
   ErrorReport r = computeErrors(truth, ref, se);

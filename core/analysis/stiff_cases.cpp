@@ -10,11 +10,11 @@
 
 #include "core/analysis/closed_forms.h"
 #include "core/analysis/ray_estimate.h"
-#include "core/integrators/ao_integrator.h"
-#include "core/integrators/direct_integrator.h"
 #include "core/math/error.h"
+#include "core/math/float_util.h"
 #include "core/render/engine.h"
 #include "core/render/film.h"
+#include "core/render/strategy_table.h"
 #include "core/sampling/sampler.h"
 #include "core/sampling/warp.h"
 #include "core/scene/scene_builder.h"
@@ -54,7 +54,6 @@ std::string defaultStiffSceneDir() {
 
 namespace {
 
-constexpr double kPiD = 3.14159265358979323846;
 const Vec3 kUp(0.f, 0.f, 1.f);
 const Vec3 kReceiver(0.31f, 0.17f, 0.f);  // the receiver point of the plane scenes (generate.py: X)
 
@@ -133,19 +132,28 @@ double directTruth(const Scene& scene, const Vec3& x, const Vec3& n = kUp) {
   return sum;
 }
 
-template <DirectStrategy S>
-Estimate direct(const Scene& scene, const Ray& ray, int n, uint64_t seed) {
-  return estimateRay(scene, DirectIntegrator<S>{1}, ray, n, seed);
+// One strategy's estimate along `ray`, one shading sample per camera sample (the strategy table's
+// instance of its integrator).
+Estimate estimate(Strategy s, const Scene& scene, const Ray& ray, int n, uint64_t seed) {
+  return strategyRow(s).estimateRay(scene, ray, 1, n, seed);
 }
 
-template <HemisphereWarp W>
-Estimate ao(const Scene& scene, const Ray& ray, int n, uint64_t seed) {
-  return estimateRay(scene, AoIntegrator<W>{1}, ray, n, seed);
+std::string nameOf(Strategy s) {
+  return std::string(strategyRow(s).shortName);
 }
 
-// Direct lighting of the receiver point by every strategy that is practical for the light.
-enum StrategyMask : unsigned { kSolid = 1, kArea = 2, kCosine = 4, kUniform = 8, kAll = 15 };
+// The strategies a case runs, as bits of Strategy.
+constexpr unsigned bit(Strategy s) {
+  return 1u << unsigned(s);
+}
+constexpr unsigned kSolid = bit(Strategy::DirectSolidAngle), kArea = bit(Strategy::DirectArea),
+                   kCosine = bit(Strategy::DirectCosineHemisphere),
+                   kUniform = bit(Strategy::DirectUniformHemisphere),
+                   kAll = kSolid | kArea | kCosine | kUniform;
 
+// Direct lighting of the receiver point by each strategy in `strategies`: light sampling first, then
+// hemisphere sampling (which needs no area light) with hemisphereFactor times the samples; the i-th
+// strategy of that order uses seed + i.
 CaseResult directCase(const CaseOptions& o, const std::string& file, unsigned strategies, int n,
                       const Vec3& x = kReceiver, float slope = 1e-4f, int hemisphereFactor = 4) {
   LoadedScene s = load(o, file);
@@ -162,21 +170,14 @@ CaseResult directCase(const CaseOptions& o, const std::string& file, unsigned st
   double truth = directTruth(scene, hit.p);
   bool first = true;
   n = count(o, n);
-  if (strategies & kSolid)
-    merge(acc, fromEstimate(direct<DirectStrategy::SolidAngle>(scene, ray, n, o.seed), truth), "solid-angle",
+  const Strategy order[] = {Strategy::DirectSolidAngle, Strategy::DirectArea,
+                            Strategy::DirectCosineHemisphere, Strategy::DirectUniformHemisphere};
+  for (unsigned i = 0; i < std::size(order); ++i) {
+    if (!(strategies & bit(order[i]))) continue;
+    int samples = strategyRow(order[i]).needs == SceneNeed::AreaLights ? n : hemisphereFactor * n;
+    merge(acc, fromEstimate(estimate(order[i], scene, ray, samples, o.seed + i), truth), nameOf(order[i]),
           first);
-  if (strategies & kArea)
-    merge(acc, fromEstimate(direct<DirectStrategy::Area>(scene, ray, n, o.seed + 1), truth), "area", first);
-  if (strategies & kCosine)
-    merge(acc,
-          fromEstimate(direct<DirectStrategy::CosineHemisphere>(scene, ray, hemisphereFactor * n, o.seed + 2),
-                       truth),
-          "cosine", first);
-  if (strategies & kUniform)
-    merge(acc,
-          fromEstimate(
-              direct<DirectStrategy::UniformHemisphere>(scene, ray, hemisphereFactor * n, o.seed + 3), truth),
-          "uniform", first);
+  }
   return acc;
 }
 
@@ -446,11 +447,12 @@ CaseResult inside(const CaseOptions& o) {
   CaseResult acc;
   bool first = true;
   int n = count(o, 4000);
-  merge(acc, fromEstimate(direct<DirectStrategy::SolidAngle>(*s.scene, ray, n, o.seed), 0.0), "solid-angle",
-        first);
-  merge(acc, fromEstimate(direct<DirectStrategy::Area>(*s.scene, ray, n, o.seed), 0.0), "area", first);
-  merge(acc, fromEstimate(direct<DirectStrategy::CosineHemisphere>(*s.scene, ray, n, o.seed), 0.0), "cosine",
-        first);
+  merge(acc, fromEstimate(estimate(Strategy::DirectSolidAngle, *s.scene, ray, n, o.seed), 0.0),
+        nameOf(Strategy::DirectSolidAngle), first);
+  merge(acc, fromEstimate(estimate(Strategy::DirectArea, *s.scene, ray, n, o.seed), 0.0),
+        nameOf(Strategy::DirectArea), first);
+  merge(acc, fromEstimate(estimate(Strategy::DirectCosineHemisphere, *s.scene, ray, n, o.seed), 0.0),
+        nameOf(Strategy::DirectCosineHemisphere), first);
   acc.relSlack = 0;
   double truth = sphereLightIrradianceFactor(glm::dvec3(kReceiver), glm::dvec3(kUp),
                                              glm::dvec3(light.sphere.center), light.sphere.radius);
@@ -534,7 +536,7 @@ CaseResult aoOnSphereNearContact(const CaseOptions& o) {
     Vec3 n(float(std::sin(psi)), 0.f, float(std::cos(psi)));
     Vec3 p = Vec3(0, 0, 1) + n;
     Ray ray = rayOnto(p, n, 1e-3f);
-    CaseResult sub = fromEstimate(ao<HemisphereWarp::Cosine>(*s.scene, ray, count(o, 60000), o.seed),
+    CaseResult sub = fromEstimate(estimate(Strategy::AoCosine, *s.scene, ray, count(o, 60000), o.seed),
                                   aoOnRestingConvexBody(psi));
     merge(acc, sub, "psi " + num(psiDeg), first);
   }
@@ -548,7 +550,7 @@ CaseResult aoOnPlaneNearContact(const CaseOptions& o) {
   bool first = true;
   for (float rho : {0.05f, 0.1f}) {
     Ray ray = rayOnto(Vec3(rho, 0, 0), kUp, 5e-4f);
-    CaseResult sub = fromEstimate(ao<HemisphereWarp::Cosine>(*s.scene, ray, count(o, 60000), o.seed),
+    CaseResult sub = fromEstimate(estimate(Strategy::AoCosine, *s.scene, ray, count(o, 60000), o.seed),
                                   aoPlaneNearRestingSphere(rho, 1.0));
     merge(acc, sub, "rho " + num(rho), first);
   }
@@ -611,13 +613,14 @@ CaseResult brightOccluded(const CaseOptions& o) {
   CaseResult acc;
   bool first = true;
   int n = count(o, 40000);
-  merge(acc, fromEstimate(direct<DirectStrategy::SolidAngle>(scene, ray, n, o.seed), truth), "solid-angle",
-        first);
-  merge(acc, fromEstimate(direct<DirectStrategy::Area>(scene, ray, n, o.seed + 1), truth), "area", first);
+  merge(acc, fromEstimate(estimate(Strategy::DirectSolidAngle, scene, ray, n, o.seed), truth),
+        nameOf(Strategy::DirectSolidAngle), first);
+  merge(acc, fromEstimate(estimate(Strategy::DirectArea, scene, ray, n, o.seed + 1), truth),
+        nameOf(Strategy::DirectArea), first);
   // Hemisphere sampling finds the visible ring with probability ~2e-4: 400k samples (~80 hits) even
   // in --quick, so the standard error is itself estimated well enough for a z-test.
-  merge(acc, fromEstimate(direct<DirectStrategy::CosineHemisphere>(scene, ray, 400000, o.seed + 2), truth),
-        "cosine", first);
+  merge(acc, fromEstimate(estimate(Strategy::DirectCosineHemisphere, scene, ray, 400000, o.seed + 2), truth),
+        nameOf(Strategy::DirectCosineHemisphere), first);
   return acc;
 }
 
@@ -723,73 +726,80 @@ void equalPowerTruths(const CaseOptions& o, const std::string& file, CaseResult&
 
 std::vector<StiffCase> makeCases() {
   std::vector<StiffCase> v;
-  auto add = [&](std::string name, int item, std::string description,
+  auto add = [&](std::string name, std::string category, std::string description,
                  std::function<CaseResult(const CaseOptions&)> f) {
-    v.push_back(StiffCase{std::move(name), item, std::move(description), std::move(f)});
+    v.push_back(StiffCase{std::move(name), std::move(category), std::move(description), std::move(f)});
   };
-  add("warp-extremes", 1, "every warp at u in {0, 0.5, 1-2^-24}^2; samplers never return 1.0", warpExtremes);
-  add("disk-corners-cosine-rim", 2, "concentric disk centre and corners; cosine hemisphere at the rim",
-      diskAndCosineRim);
+  add("warp-extremes", "warp-extremes", "every warp at u in {0, 0.5, 1-2^-24}^2; samplers never return 1.0",
+      warpExtremes);
+  add("disk-corners-cosine-rim", "warp-extremes",
+      "concentric disk centre and corners; cosine hemisphere at the rim", diskAndCosineRim);
   for (const char* tag : {"1e-4", "1e-6", "1e-8", "1e-12"})
-    add(std::string("cone-sin2-") + tag, 3, std::string("solid-angle sampling, sin^2 theta_max = ") + tag,
+    add(std::string("cone-sin2-") + tag, "narrow-cone",
+        std::string("solid-angle sampling, sin^2 theta_max = ") + tag,
         [tag](const CaseOptions& o) { return coneCase(o, tag); });
-  add("light-radius-0", 4, "radius-0 light: kept, no geometry, no sample, exactly 0", radiusZero);
-  add("light-sin2-underflow", 4, "r = 1e-25 at distance 1: finite, no infinite pdf", sin2Underflow);
-  add("light-on-surface", 5, "shading point exactly on the light's surface", onSurface);
-  add("light-outside-1e-6r", 5, "receiver 1e-6 r outside an overhead light (integrator)",
+  add("light-radius-0", "tiny-light", "radius-0 light: kept, no geometry, no sample, exactly 0", radiusZero);
+  add("light-sin2-underflow", "tiny-light", "r = 1e-25 at distance 1: finite, no infinite pdf",
+      sin2Underflow);
+  add("light-on-surface", "near-light", "shading point exactly on the light's surface", onSurface);
+  add("light-outside-1e-6r", "near-light", "receiver 1e-6 r outside an overhead light (integrator)",
       [](const CaseOptions& o) {
         return directCase(o, "light-touching.xml", kSolid | kCosine, 20000, kReceiver, 1e-5f, 1);
       });
-  add("light-outside-1e-8r", 5, "shading point 1e-8 r outside the light", outside1e8);
-  add("light-inside", 5, "receiver inside a one-sided light: exactly 0", inside);
-  add("light-below-horizon", 6, "light entirely below the horizon: exactly 0",
+  add("light-outside-1e-8r", "near-light", "shading point 1e-8 r outside the light", outside1e8);
+  add("light-inside", "near-light", "receiver inside a one-sided light: exactly 0", inside);
+  add("light-below-horizon", "horizon", "light entirely below the horizon: exactly 0",
       [](const CaseOptions& o) { return exactlyZeroCase(o, "light-below-horizon.xml", 4000); });
-  add("light-straddling", 6, "light straddling the horizon", [](const CaseOptions& o) {
+  add("light-straddling", "horizon", "light straddling the horizon", [](const CaseOptions& o) {
     return directCase(o, "light-straddling.xml", kSolid | kArea | kCosine, 20000);
   });
-  add("light-centre-on-horizon", 6, "light centre exactly on the horizon", [](const CaseOptions& o) {
+  add("light-centre-on-horizon", "horizon", "light centre exactly on the horizon", [](const CaseOptions& o) {
     return directCase(o, "light-centre-on-horizon.xml", kSolid | kArea | kCosine, 20000);
   });
-  add("light-grazing-89.9", 7, "light centre 89.9 degrees from the normal", [](const CaseOptions& o) {
+  add("light-grazing-89.9", "horizon", "light centre 89.9 degrees from the normal", [](const CaseOptions& o) {
     return directCase(o, "light-grazing.xml", kSolid | kArea | kCosine, 20000);
   });
-  add("equal-power-r1", 8, "equal power, r = 1 (all strategies)",
+  add("equal-power-r1", "equal-power", "equal power, r = 1 (all strategies)",
       [](const CaseOptions& o) { return directCase(o, "equal-power-r1.xml", kAll, 20000); });
-  add("equal-power-r1e-3", 8, "equal power, r = 1e-3 (light sampling; hemisphere finite)",
+  add("equal-power-r1e-3", "equal-power", "equal power, r = 1e-3 (light sampling; hemisphere finite)",
       [](const CaseOptions& o) {
         CaseResult r = directCase(o, "equal-power-r1e-3.xml", kSolid | kArea, 20000);
         equalPowerTruths(o, "equal-power-r1e-3.xml", r);
         return r;
       });
-  add("equal-power-r1e-6", 8, "equal power, r = 1e-6 (light sampling; hemisphere finite)",
+  add("equal-power-r1e-6", "equal-power", "equal power, r = 1e-6 (light sampling; hemisphere finite)",
       [](const CaseOptions& o) {
         CaseResult r = directCase(o, "equal-power-r1e-6.xml", kSolid | kArea, 20000);
         LoadedScene s = load(o, "equal-power-r1e-6.xml");
         bool first = false;
         Ray ray = shallowRayOnto(kReceiver);
-        merge(r, finiteOnly(direct<DirectStrategy::CosineHemisphere>(*s.scene, ray, count(o, 20000), o.seed)),
-              "cosine", first);
         merge(r,
-              finiteOnly(direct<DirectStrategy::UniformHemisphere>(*s.scene, ray, count(o, 20000), o.seed)),
-              "uniform", first);
+              finiteOnly(estimate(Strategy::DirectCosineHemisphere, *s.scene, ray, count(o, 20000), o.seed)),
+              nameOf(Strategy::DirectCosineHemisphere), first);
+        merge(r,
+              finiteOnly(estimate(Strategy::DirectUniformHemisphere, *s.scene, ray, count(o, 20000), o.seed)),
+              nameOf(Strategy::DirectUniformHemisphere), first);
         equalPowerTruths(o, "equal-power-r1e-3.xml", r);
         return r;
       });
-  add("scale-ao", 9, "AO image at scales 1e-4 and 1e4 vs 1",
+  add("scale-ao", "scale", "AO image at scales 1e-4 and 1e4 vs 1",
       [](const CaseOptions& o) { return scaleCase(o, "ao"); });
-  add("scale-direct", 9, "direct image at scales 1e-4 and 1e4 vs 1",
+  add("scale-direct", "scale", "direct image at scales 1e-4 and 1e4 vs 1",
       [](const CaseOptions& o) { return scaleCase(o, "direct"); });
-  add("ao-sphere-near-contact", 10, "AO on a resting sphere near its contact point", aoOnSphereNearContact);
-  add("ao-plane-near-contact", 10, "AO on the plane next to the contact point", aoOnPlaneNearContact);
-  add("area-far-side", 11, "area sampling: far-side samples add exactly 0, unbiased", areaFarSide);
-  add("radiance-1e6-occluded", 12, "radiance 1e6 with 98% of the light occluded", brightOccluded);
-  add("radiance-0", 12, "radiance 0: exactly 0",
+  add("ao-sphere-near-contact", "contact", "AO on a resting sphere near its contact point",
+      aoOnSphereNearContact);
+  add("ao-plane-near-contact", "contact", "AO on the plane next to the contact point", aoOnPlaneNearContact);
+  add("area-far-side", "far-side", "area sampling: far-side samples add exactly 0, unbiased", areaFarSide);
+  add("radiance-1e6-occluded", "radiance-extremes", "radiance 1e6 with 98% of the light occluded",
+      brightOccluded);
+  add("radiance-0", "radiance-extremes", "radiance 0: exactly 0",
       [](const CaseOptions& o) { return exactlyZeroCase(o, "radiance-0.xml", 4000); });
-  add("bad-values", 13, "nan, inf, 1e999, sampleCount 0/-4/2^32/3.5 rejected; -0 read as 0", badValues);
-  add("degenerate-mesh", 14, "zero-area and repeated-vertex triangles, a mesh without normals",
-      degenerateMesh);
-  add("camera-fov-0-180", 14, "camera fov 0 and 180 rejected", cameraFov);
-  add("film-1e6-samples", 15, "10^6 samples in one pixel without drift", accumulation);
+  add("bad-values", "bad-input", "nan, inf, 1e999, sampleCount 0/-4/2^32/3.5 rejected; -0 read as 0",
+      badValues);
+  add("degenerate-mesh", "degenerate-geometry",
+      "zero-area and repeated-vertex triangles, a mesh without normals", degenerateMesh);
+  add("camera-fov-0-180", "bad-input", "camera fov 0 and 180 rejected", cameraFov);
+  add("film-1e6-samples", "accumulation", "10^6 samples in one pixel without drift", accumulation);
   return v;
 }
 

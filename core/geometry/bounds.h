@@ -24,7 +24,6 @@ struct Bounds {
   Vec3 center() const { return empty() ? Vec3(0.f) : 0.5f * (min + max); }
   // Length of the diagonal: an upper bound for any segment inside the box (AO ray length).
   float diagonal() const { return glm::length(extent()); }
-  float maxExtent() const { return maxComponent(extent()); }
   // Largest absolute coordinate: the magnitude of the numbers the scene is made of.
   float maxAbs() const { return empty() ? 0.f : maxComponent(glm::max(absVec(min), absVec(max))); }
 };

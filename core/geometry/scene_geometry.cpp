@@ -36,36 +36,12 @@ inline void setupRay(const Ray& ray, float tMax, RTCRay& r) {
 
 }  // namespace
 
-SceneGeometry::~SceneGeometry() {
-  release();
+void SceneGeometry::ReleaseEmbreeDevice::operator()(void* device) const {
+  rtcReleaseDevice(static_cast<RTCDevice>(device));
 }
 
-SceneGeometry::SceneGeometry(SceneGeometry&& other) noexcept {
-  *this = std::move(other);
-}
-
-SceneGeometry& SceneGeometry::operator=(SceneGeometry&& other) noexcept {
-  if (this != &other) {
-    release();
-    spheres_ = std::move(other.spheres_);
-    sphereIds_ = std::move(other.sphereIds_);
-    meshes_ = std::move(other.meshes_);
-    meshIds_ = std::move(other.meshIds_);
-    quads_ = std::move(other.quads_);
-    flat_ = std::move(other.flat_);
-    triangleCount_ = std::exchange(other.triangleCount_, 0);
-    bounds_ = std::exchange(other.bounds_, Bounds{});
-    device_ = std::exchange(other.device_, nullptr);
-    scene_ = std::exchange(other.scene_, nullptr);
-  }
-  return *this;
-}
-
-void SceneGeometry::release() {
-  if (scene_) rtcReleaseScene(static_cast<RTCScene>(scene_));
-  if (device_) rtcReleaseDevice(static_cast<RTCDevice>(device_));
-  scene_ = nullptr;
-  device_ = nullptr;
+void SceneGeometry::ReleaseEmbreeScene::operator()(void* scene) const {
+  rtcReleaseScene(static_cast<RTCScene>(scene));
 }
 
 uint32_t SceneGeometry::addSphere(const Sphere& sphere, uint32_t objectId) {
@@ -93,7 +69,8 @@ void SceneGeometry::addMesh(const TriangleMesh& mesh, uint32_t objectId) {
 }
 
 void SceneGeometry::build(AccelMode mode) {
-  release();
+  scene_.reset();
+  device_.reset();
   quads_.clear();
   flat_.clear();
   const bool useEmbree =
@@ -115,10 +92,10 @@ void SceneGeometry::build(AccelMode mode) {
 
   RTCDevice device = rtcNewDevice(nullptr);
   if (!device) throw Error("Embree: cannot create a device");
-  device_ = device;
+  device_.reset(device);
   RTCScene scene = rtcNewScene(device);
   checkEmbree(device, "rtcNewScene");
-  scene_ = scene;
+  scene_.reset(scene);
   rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_HIGH);
   // Watertight like the flat loop (no cracks between triangles sharing an edge); costs ~15-20%.
   rtcSetSceneFlags(scene, RTC_SCENE_FLAG_ROBUST);
@@ -149,7 +126,7 @@ bool SceneGeometry::nearestEmbreeTriangle(const Ray& r, TriangleCandidate& c) co
   setupRay(r, r.tMax, rh.ray);
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-  rtcIntersect1(static_cast<RTCScene>(scene_), &context, &rh);
+  rtcIntersect1(static_cast<RTCScene>(scene_.get()), &context, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
   c.mesh = rh.hit.geomID;
   c.prim = rh.hit.primID;
@@ -244,7 +221,7 @@ bool SceneGeometry::occluded(const Ray& ray, int32_t skipSphere) const {
     rtcInitIntersectContext(&context);
     RTCRay r;
     setupRay(ray, ray.tMax, r);
-    rtcOccluded1(static_cast<RTCScene>(scene_), &context, &r);
+    rtcOccluded1(static_cast<RTCScene>(scene_.get()), &context, &r);
     return r.tfar < 0.f;  // Embree sets tfar = -inf on a hit
   }
   if (flat_.empty()) return false;

@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "core/geometry/bounds.h"
@@ -35,11 +36,8 @@ inline constexpr size_t kBruteForceMaxTriangles = 8;
 class SceneGeometry {
  public:
   SceneGeometry() = default;
-  ~SceneGeometry();
-  SceneGeometry(const SceneGeometry&) = delete;
-  SceneGeometry& operator=(const SceneGeometry&) = delete;
-  SceneGeometry(SceneGeometry&& other) noexcept;
-  SceneGeometry& operator=(SceneGeometry&& other) noexcept;
+  SceneGeometry(SceneGeometry&&) noexcept = default;
+  SceneGeometry& operator=(SceneGeometry&&) noexcept = default;
 
   // Returns the sphere's index. objectId is reported back in SurfaceHit::objectId.
   uint32_t addSphere(const Sphere& sphere, uint32_t objectId);
@@ -79,7 +77,13 @@ class SceneGeometry {
   };
   [[gnu::noinline]] bool nearestEmbreeTriangle(const Ray& r, TriangleCandidate& c) const;
   [[gnu::noinline]] bool nearestFlatTriangle(const Ray& r, TriangleCandidate& c) const;
-  void release();
+  // Owners of Embree's reference-counted handles, opaque here so that this header needs no Embree.
+  struct ReleaseEmbreeDevice {
+    void operator()(void* device) const;  // rtcReleaseDevice
+  };
+  struct ReleaseEmbreeScene {
+    void operator()(void* scene) const;  // rtcReleaseScene
+  };
 
   std::vector<Sphere> spheres_;
   std::vector<uint32_t> sphereIds_;
@@ -89,8 +93,8 @@ class SceneGeometry {
   std::vector<FlatTriangle> flat_;    // brute-force path only: triangles not in a parallelogram
   size_t triangleCount_ = 0;
   Bounds bounds_;
-  void* device_ = nullptr;  // RTCDevice, created only when a BVH is needed
-  void* scene_ = nullptr;   // RTCScene
+  std::unique_ptr<void, ReleaseEmbreeDevice> device_;  // RTCDevice, created only when a BVH is needed
+  std::unique_ptr<void, ReleaseEmbreeScene> scene_;    // RTCScene (released first: declared last)
 };
 
 }  // namespace penumbra

@@ -1,6 +1,6 @@
-// Ambient occlusion (seed hw2): AO(x) = (1/pi) * integral over the hemisphere of V(x, w) cos(theta) dw,
+// Ambient occlusion: AO(x) = (1/pi) * integral over the hemisphere of V(x, w) cos(theta) dw,
 // estimated with `samples` directions from the uniform (pdf 1/2pi) or cosine (pdf cos/pi) warp.
-// Visibility rays stop at the scene's extent; albedo is not applied (as in the seed's framework).
+// Visibility rays stop at the scene's extent; albedo is not applied (as in the assignment's framework).
 #pragma once
 
 #include "core/integrators/integrator_desc.h"
@@ -10,8 +10,10 @@
 
 namespace penumbra {
 
-template <HemisphereWarp kWarp>
+// kStrategy: AoUniform or AoCosine.
+template <Strategy kStrategy>
 struct AoIntegrator {
+  static_assert(kStrategy == Strategy::AoUniform || kStrategy == Strategy::AoCosine);
   int samples = 1;
 
   Color3 Li(const Scene& scene, const Ray& ray, Sampler& sampler) const {
@@ -21,13 +23,13 @@ struct AoIntegrator {
     float sum = 0.f;
     for (int i = 0; i < samples; ++i) {
       Vec2 u = sampler.next2D();
-      Vec3 local = kWarp == HemisphereWarp::Cosine ? Warp::squareToCosineHemisphere(u)
+      Vec3 local = kStrategy == Strategy::AoCosine ? Warp::squareToCosineHemisphere(u)
                                                    : Warp::squareToUniformHemisphere(u);
       Vec3 w = sp.frame.toWorld(local);
       if (glm::dot(w, sp.ng) <= 0.f) continue;  // below the true surface: blocked by it
       if (scene.geometry.occluded(sp.spawnRay(w, scene.rayLengthBound))) continue;
       // V cos / (pi pdf): 1 for cosine sampling, 2 cos for uniform sampling.
-      sum += kWarp == HemisphereWarp::Cosine ? 1.f : 2.f * local.z;
+      sum += kStrategy == Strategy::AoCosine ? 1.f : 2.f * local.z;
     }
     return Color3(sum * (1.f / float(samples)));
   }

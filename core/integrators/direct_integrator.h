@@ -1,4 +1,4 @@
-// Direct illumination (seed hw2) from all emitters onto diffuse surfaces:
+// Direct illumination from all emitters onto diffuse surfaces:
 //   Lr(x) = albedo/pi * [ sum over delta lights of E_i  +  integral of Le(x, w) cos(theta) dw ].
 // Point and directional lights are evaluated deterministically. The area-light integral uses the
 // strategy chosen at compile time (one instantiation per measure, so no per-sample branching):
@@ -7,12 +7,13 @@
 //   solid angle: a uniform direction in the cone each light sphere subtends;
 //   projected solid angle: a direction in that cone with density cos θ / Ω⊥ above the horizon, whose
 //   estimate Le Ω⊥ has no variance where the light is unoccluded.
-// `simple` (seed hw1) is the same integrator with delta lights only.
+// `simple` is the same integrator with delta lights only.
 #pragma once
 
 #include <cmath>
 
 #include "core/integrators/direct_lighting.h"
+#include "core/integrators/integrator_desc.h"
 #include "core/integrators/light_technique.h"
 #include "core/integrators/shading_point.h"
 #include "core/sampling/sampler.h"
@@ -20,17 +21,12 @@
 
 namespace penumbra {
 
-enum class DirectStrategy : uint8_t {
-  DeltaOnly,
-  UniformHemisphere,
-  CosineHemisphere,
-  Area,
-  SolidAngle,
-  ProjectedSolidAngle
-};
-
-template <DirectStrategy kStrategy>
+// kStrategy: Simple (delta lights only) or one of the Direct* strategies.
+template <Strategy kStrategy>
 struct DirectIntegrator {
+  static_assert(kStrategy == Strategy::Simple || kStrategy == Strategy::DirectUniformHemisphere ||
+                kStrategy == Strategy::DirectCosineHemisphere || kStrategy == Strategy::DirectArea ||
+                kStrategy == Strategy::DirectSolidAngle || kStrategy == Strategy::DirectProjectedSolidAngle);
   int samples = 1;
 
   Color3 Li(const Scene& scene, const Ray& ray, Sampler& sampler) const {
@@ -42,12 +38,12 @@ struct DirectIntegrator {
     if (isBlack(material.albedo)) return L;
 
     constexpr bool kSamplesHemisphere =
-        kStrategy == DirectStrategy::UniformHemisphere || kStrategy == DirectStrategy::CosineHemisphere;
+        kStrategy == Strategy::DirectUniformHemisphere || kStrategy == Strategy::DirectCosineHemisphere;
     ShadingPoint sp(scene, ray, hit, kSamplesHemisphere);
     Color3 E = deltaIrradiance(scene, sp);
     if constexpr (kSamplesHemisphere) {
       if (scene.hasAreaLights()) E += hemisphereIrradiance(scene, sp, sampler);
-    } else if constexpr (kStrategy != DirectStrategy::DeltaOnly) {
+    } else if constexpr (kStrategy != Strategy::Simple) {
       E += lightSamplingIrradiance(scene, sp, sampler);
     }
     return L + material.albedo * kInvPi * E;
@@ -60,7 +56,7 @@ struct DirectIntegrator {
       Vec2 u = sampler.next2D();
       Vec3 local;
       float cosOverPdf;  // cos θ / pdf, in closed form: π (cosine warp), 2π cos θ (uniform warp)
-      if constexpr (kStrategy == DirectStrategy::CosineHemisphere) {
+      if constexpr (kStrategy == Strategy::DirectCosineHemisphere) {
         local = Warp::squareToCosineHemisphere(u);
         if (!(local.z > 0.f)) continue;
         cosOverPdf = kPi;
@@ -79,8 +75,8 @@ struct DirectIntegrator {
     return E * (1.f / float(samples));  // the reciprocal is off the critical path
   }
 
-  static constexpr LightMeasure kLightMeasure = kStrategy == DirectStrategy::Area ? LightMeasure::Area
-                                                : kStrategy == DirectStrategy::SolidAngle
+  static constexpr LightMeasure kLightMeasure = kStrategy == Strategy::DirectArea ? LightMeasure::Area
+                                                : kStrategy == Strategy::DirectSolidAngle
                                                     ? LightMeasure::SolidAngle
                                                     : LightMeasure::ProjectedSolidAngle;
 
@@ -97,7 +93,7 @@ struct DirectIntegrator {
         float cosTheta = glm::dot(sp.ns, s.wi);
         if (!leavesSurface(sp, s.wi, cosTheta)) continue;
         // Every traced sample faces x (far-side area samples have Le = 0): the light cannot block it.
-        if (scene.geometry.occluded(sp.spawnRayTowards(s.wi, s.dist, lightScale), light.geometryIndex))
+        if (scene.geometry.occluded(sp.spawnShadowRayAlong(s.wi, s.dist, lightScale), light.geometryIndex))
           continue;
         E += s.Le * technique.cosOverPdf(s, cosTheta);
       }

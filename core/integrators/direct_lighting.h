@@ -19,7 +19,8 @@ inline Color3 deltaIrradiance(const Scene& scene, const ShadingPoint& sp) {
     DeltaLightSample s = light.sample(sp.hit.p);
     float cosTheta = glm::dot(sp.ns, s.wi);
     if (isBlack(s.Li) || !leavesSurface(sp, s.wi, cosTheta)) continue;
-    if (scene.geometry.occluded(sp.spawnRayTo(light.position, maxAbsComponent(light.position)))) continue;
+    if (scene.geometry.occluded(sp.spawnShadowRayToPoint(light.position, maxAbsComponent(light.position))))
+      continue;
     E += s.Li * cosTheta;
   }
   for (const DirectionalLight& light : scene.directionalLights) {

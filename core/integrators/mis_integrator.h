@@ -79,7 +79,7 @@ struct MisIntegrator {
         if (!(s.pdf > 0.f) || isBlack(s.Le)) continue;
         float cosTheta = glm::dot(sp.ns, s.wi);
         if (!leavesSurface(sp, s.wi, cosTheta)) continue;
-        if (scene.geometry.occluded(sp.spawnRayTowards(s.wi, s.dist, lightScale), light.geometryIndex))
+        if (scene.geometry.occluded(sp.spawnShadowRayAlong(s.wi, s.dist, lightScale), light.geometryIndex))
           continue;
         const float weight = misWeight<kHeuristic>(nL * s.pdf, nB * bsdfPdf(cosTheta));
         E += s.Le * (technique.cosOverPdf(s, cosTheta) * weight);

@@ -6,7 +6,7 @@
 #include <cstdlib>
 
 #include "core/integrators/direct_integrator.h"
-#include "core/integrators/integrator_test_support.h"
+#include "core/integrators/test_scene_fixture.h"
 
 namespace penumbra {
 namespace {
@@ -50,13 +50,13 @@ void expectSameSamples(const Scene& scene, const A& a, const B& b, const char* w
   EXPECT_GT(nonZero, 40) << what;  // cosine sampling reaches these lights in 3-5 % of its samples
 }
 
-template <LightMeasure kMeasure, DirectStrategy kPlain, MisHeuristic kHeuristic>
+template <LightMeasure kMeasure, Strategy kPlain, MisHeuristic kHeuristic>
 void expectReductions(const Scene& scene, SamplerKind kind) {
   for (int count : {1, 3}) {
     expectSameSamples(scene, MisIntegrator<kMeasure, kHeuristic>{count, 0}, DirectIntegrator<kPlain>{count},
                       "no hemisphere samples: light sampling", kind);
     expectSameSamples(scene, MisIntegrator<kMeasure, kHeuristic>{0, count},
-                      DirectIntegrator<DirectStrategy::CosineHemisphere>{count}, "no light samples: cosine",
+                      DirectIntegrator<Strategy::DirectCosineHemisphere>{count}, "no light samples: cosine",
                       kind);
   }
 }
@@ -65,12 +65,12 @@ TEST(MisIntegrator, AZeroCountReducesExactlyToTheOtherTechnique) {
   for (int i = 0; i < kSceneCount; ++i) {
     auto scene = sceneNamed(i);
     for (SamplerKind kind : {SamplerKind::Independent, SamplerKind::Stratified}) {
-      expectReductions<LightMeasure::Area, DirectStrategy::Area, MisHeuristic::Balance>(*scene, kind);
-      expectReductions<LightMeasure::SolidAngle, DirectStrategy::SolidAngle, MisHeuristic::Power>(*scene,
+      expectReductions<LightMeasure::Area, Strategy::DirectArea, MisHeuristic::Balance>(*scene, kind);
+      expectReductions<LightMeasure::SolidAngle, Strategy::DirectSolidAngle, MisHeuristic::Power>(*scene,
                                                                                                   kind);
-      expectReductions<LightMeasure::ProjectedSolidAngle, DirectStrategy::ProjectedSolidAngle,
+      expectReductions<LightMeasure::ProjectedSolidAngle, Strategy::DirectProjectedSolidAngle,
                        MisHeuristic::Balance>(*scene, kind);
-      expectReductions<LightMeasure::ProjectedSolidAngle, DirectStrategy::ProjectedSolidAngle,
+      expectReductions<LightMeasure::ProjectedSolidAngle, Strategy::DirectProjectedSolidAngle,
                        MisHeuristic::Power>(*scene, kind);
     }
   }

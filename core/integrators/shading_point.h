@@ -36,9 +36,10 @@ struct ShadingPoint {
     return r;
   }
 
-  // A shadow ray to point `target` (e.g. on a light), stopping short of it by the target's own
-  // offset so the light's surface does not occlude itself.
-  Ray spawnRayTo(const Vec3& target, float targetScale) const {
+  // A shadow ray to point `target` (e.g. a point light), its direction and length measured from the
+  // offset origin; it stops short of the target by the target's own offset so that the light's
+  // surface does not occlude itself.
+  Ray spawnShadowRayToPoint(const Vec3& target, float targetScale) const {
     Ray r;
     r.o = offsetRayOrigin(hit.p, ng, hit.offsetScale, target - hit.p);
     Vec3 d = target - r.o;
@@ -49,11 +50,11 @@ struct ShadingPoint {
     return r;
   }
 
-  // The same shadow ray when the unit direction w and distance `dist` from hit.p to the target are
-  // already known (light sampling computes them): no square root or division on the critical path.
+  // A shadow ray along unit direction w for distance `dist`, both already known from hit.p to the
+  // target (light sampling computes them): no square root or division on the critical path.
   // The origin moves by the offset, so the ray may pass the target by that much sideways; it stops
   // short by that much more.
-  Ray spawnRayTowards(const Vec3& w, float dist, float targetScale) const {
+  Ray spawnShadowRayAlong(const Vec3& w, float dist, float targetScale) const {
     Ray r;
     r.o = offsetRayOrigin(hit.p, ng, hit.offsetScale, w);
     r.d = w;

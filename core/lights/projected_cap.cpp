@@ -5,6 +5,7 @@
 
 #include "core/lights/sphere_cap.h"
 #include "core/math/frame.h"
+#include "core/math/vec.h"
 #include "core/sampling/warp.h"
 
 namespace penumbra {
@@ -15,7 +16,6 @@ constexpr double kMinProjectedSolidAngle = 0x1p-120;
 // Float directions carry ~2^-24 relative error per component (see SphereLight::pdfSolidAngle).
 constexpr double kDirectionSlack = 0x1p-22;
 constexpr double kQuarterPi = 0.78539816339744830962;
-constexpr double kPiD = 3.14159265358979323846;
 
 double sqrtNonNeg(double v) {
   return std::sqrt(std::max(v, 0.0));

@@ -2,13 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
+
+#include "core/math/vec.h"
 
 namespace penumbra {
 
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 double sqrtNonNeg(double v) {
   return std::sqrt(std::max(v, 0.0));
@@ -24,7 +23,7 @@ double straddlingStable(double cosTheta, double sinTheta, double sinAlpha, doubl
 }
 
 double surfaceLimit(double cosTheta) {
-  return 0.5 * kPi * (1.0 + std::clamp(cosTheta, -1.0, 1.0));
+  return 0.5 * kPiD * (1.0 + std::clamp(cosTheta, -1.0, 1.0));
 }
 
 }  // namespace
@@ -68,8 +67,8 @@ double sphereLightIrradianceFactor(double cosTheta, double sinTheta, double sinA
   sinAlpha = std::clamp(sinAlpha, 0.0, 1.0);
   if (sinAlpha == 0.0) return 0.0;
   if (sinAlpha >= 1.0 || cosAlpha <= 0.0) return surfaceLimit(cosTheta);
-  if (cosTheta >= sinAlpha) return kPi * sinAlpha * sinAlpha * cosTheta;  // fully above
-  if (cosTheta <= -sinAlpha) return 0.0;                                  // fully below
+  if (cosTheta >= sinAlpha) return kPiD * sinAlpha * sinAlpha * cosTheta;  // fully above
+  if (cosTheta <= -sinAlpha) return 0.0;                                   // fully below
   return std::max(0.0, straddlingStable(cosTheta, sinTheta, sinAlpha, cosAlpha));
 }
 

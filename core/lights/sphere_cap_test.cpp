@@ -6,20 +6,19 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <vector>
+
+#include "core/math/vec.h"
 
 namespace penumbra {
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 // Gauss-Legendre nodes/weights on [-1, 1] by Newton iteration on P_n.
 struct GaussLegendre {
   std::vector<double> x, w;
   explicit GaussLegendre(int n) : x(n), w(n) {
     for (int i = 0; i < n; ++i) {
-      double z = std::cos(kPi * (i + 0.75) / (n + 0.5)), dp = 0;
+      double z = std::cos(kPiD * (i + 0.75) / (n + 0.5)), dp = 0;
       for (int it = 0; it < 100; ++it) {
         double p0 = 1, p1 = z;
         for (int k = 2; k <= n; ++k) {
@@ -63,12 +62,12 @@ double quadratureI(double cosTheta, double sinAlpha) {
     auto f = [&](double phi) { return (1 - t) * cosTheta + sinBeta * sinTheta * std::cos(phi); };
     // f is decreasing in φ on [0, π]: find where it changes sign.
     double hi;
-    if (f(kPi) >= 0)
-      hi = kPi;
+    if (f(kPiD) >= 0)
+      hi = kPiD;
     else if (f(0) <= 0)
       return 0.0;
     else {
-      double a = 0, b = kPi;
+      double a = 0, b = kPiD;
       for (int i = 0; i < 200 && b - a > 1e-17; ++i) {
         double m = 0.5 * (a + b);
         (f(m) > 0 ? a : b) = m;
@@ -100,17 +99,17 @@ TEST(SphereCapClosedForm, SphereLightMatchesQuadrature) {
   for (double sa : {0.999, 0.9, 0.7, 0.5, 0.3, 0.1, 0.01, 1e-3}) {
     const double alpha = std::asin(sa);
     // Fully above, straddling (several offsets around the horizon), fully below, and θ = π/2.
-    for (double theta :
-         {0.0, 0.3, 1.0, kPi / 2 - 1.2 * alpha, kPi / 2 - 0.8 * alpha, kPi / 2 - 0.3 * alpha, kPi / 2,
-          kPi / 2 + 0.3 * alpha, kPi / 2 + 0.8 * alpha, kPi / 2 + 0.99 * alpha, kPi / 2 + 1.2 * alpha, 2.5})
-      if (theta >= 0 && theta <= kPi) cases.push_back({theta, sa});
+    for (double theta : {0.0, 0.3, 1.0, kPiD / 2 - 1.2 * alpha, kPiD / 2 - 0.8 * alpha,
+                         kPiD / 2 - 0.3 * alpha, kPiD / 2, kPiD / 2 + 0.3 * alpha, kPiD / 2 + 0.8 * alpha,
+                         kPiD / 2 + 0.99 * alpha, kPiD / 2 + 1.2 * alpha, 2.5})
+      if (theta >= 0 && theta <= kPiD) cases.push_back({theta, sa});
   }
   for (const Case& c : cases) {
-    const double cosTheta = c.theta == kPi / 2 ? 0.0 : std::cos(c.theta);
+    const double cosTheta = c.theta == kPiD / 2 ? 0.0 : std::cos(c.theta);
     const double I = sphereLightIrradianceFactor(cosTheta, c.sinAlpha);
     const double Q = quadratureI(cosTheta, c.sinAlpha);
     // Scale of I is π sin²α; demand agreement to 1e-9 of that scale.
-    const double scale = kPi * c.sinAlpha * c.sinAlpha;
+    const double scale = kPiD * c.sinAlpha * c.sinAlpha;
     EXPECT_NEAR(I, Q, 1e-9 * scale) << "theta=" << c.theta << " sinAlpha=" << c.sinAlpha;
     EXPECT_GE(I, 0.0);
   }
@@ -140,13 +139,13 @@ TEST(SphereCapClosedForm, AtanMinusIdentitySeriesMatchesDirect) {
 
 TEST(SphereCapClosedForm, RegimeBoundariesAreContinuous) {
   for (double sa : {0.9, 0.5, 0.1, 1e-3}) {
-    const double scale = kPi * sa * sa;
+    const double scale = kPiD * sa * sa;
     for (double sign : {1.0, -1.0}) {
       const double edge = sign * sa;
       const double inside = sphereLightIrradianceFactor(edge * (1 - 1e-12), sa);
       const double outside = sphereLightIrradianceFactor(edge * (1 + 1e-12), sa);
       EXPECT_NEAR(inside, outside, 1e-9 * scale) << "sinAlpha=" << sa << " sign=" << sign;
-      EXPECT_NEAR(inside, sign > 0 ? kPi * sa * sa * sa : 0.0, 1e-9 * scale);
+      EXPECT_NEAR(inside, sign > 0 ? kPiD * sa * sa * sa : 0.0, 1e-9 * scale);
     }
   }
 }

@@ -9,7 +9,6 @@
 namespace penumbra {
 namespace {
 
-constexpr double kTwoPiD = 6.28318530717958647692;
 // Below this 1 − cos θmax the cone pdf 1 / (2π (1 − cos θmax)) would not fit in a float.
 constexpr double kMinOneMinusCos = 0x1p-120;
 // Largest density returned as a float; an area pdf beyond it (a light so small that 4π r² underflows)
@@ -65,9 +64,7 @@ LightSample SphereLight::sampleArea(const Vec3& x, Vec2 u) const {
   // below do not wait for each other (this runs once per camera sample).
   const double dist = std::sqrt(dist2);
   const double invDist = 1.0 / dist;
-  const double pdf =
-      dist2 * dist /
-      (4.0 * 3.14159265358979323846 * double(sphere.radius) * sphere.radius * std::fabs(nDotToP));
+  const double pdf = dist2 * dist / (4.0 * kPiD * double(sphere.radius) * sphere.radius * std::fabs(nDotToP));
   if (!(pdf <= kMaxPdf)) return ls;  // beyond float: invalid, never an infinite pdf
   ls.wi = Vec3(toP * invDist);
   ls.dist = static_cast<float>(dist);
@@ -84,8 +81,7 @@ float SphereLight::pdfAreaAsSolidAngle(const Vec3& x, const Vec3& p, const Vec3&
   if (!(d2 > 0.0)) return 0.f;
   const double cosP = glm::dot(DVec3(n), toX) / std::sqrt(d2);
   if (cosP == 0.0) return 0.f;
-  const double pdf =
-      d2 / (4.0 * 3.14159265358979323846 * double(sphere.radius) * sphere.radius * std::abs(cosP));
+  const double pdf = d2 / (4.0 * kPiD * double(sphere.radius) * sphere.radius * std::abs(cosP));
   return pdf <= kMaxPdf ? static_cast<float>(pdf) : 0.f;
 }
 
@@ -121,7 +117,7 @@ LightSample SphereLight::sampleSolidAngle(const Vec3& x, Vec2 u) const {
   ls.n = Vec3(n);    // unit by construction (sin²α + cos²α = 1, orthonormal basis)
   ls.wi = Vec3(wi);  // unit by construction
   ls.dist = static_cast<float>(glm::length(p - DVec3(x)));
-  ls.pdf = static_cast<float>(1.0 / (kTwoPiD * cone.oneMinusCos));
+  ls.pdf = static_cast<float>(1.0 / ((2.0 * kPiD) * cone.oneMinusCos));
   ls.Le = radiance;
   return ls;
 }
@@ -137,7 +133,7 @@ float SphereLight::pdfSolidAngle(const Vec3& x, const Vec3& wi) const {
   const double sin2W = glm::dot(c, c) / glm::dot(w, w);
   const double sinMax = std::sqrt(cone.sin2Max) + kDirectionSlack;
   if (sin2W > sinMax * sinMax) return 0.f;
-  return static_cast<float>(1.0 / (kTwoPiD * cone.oneMinusCos));
+  return static_cast<float>(1.0 / ((2.0 * kPiD) * cone.oneMinusCos));
 }
 
 }  // namespace penumbra

@@ -1,4 +1,5 @@
-// Robust float helpers: square roots that never see a negative, 1 - cos from sin^2, ray origin offsets.
+// Robust float helpers: square roots that never see a negative, 1 - cos from sin^2, ray origin offsets,
+// the validity of a radiance sample.
 #pragma once
 
 #include <algorithm>
@@ -14,12 +15,6 @@ inline float safeSqrt(float x) {
 inline double safeSqrt(double x) {
   return std::sqrt(std::max(x, 0.0));
 }
-inline float safeAcos(float x) {
-  return std::acos(std::clamp(x, -1.f, 1.f));
-}
-inline float safeAsin(float x) {
-  return std::asin(std::clamp(x, -1.f, 1.f));
-}
 
 // 1 - sqrt(1 - s2) without cancellation for small s2 (= s2 / (1 + sqrt(1 - s2))).
 inline float oneMinusSqrtOneMinus(float s2) {
@@ -31,6 +26,12 @@ inline double oneMinusSqrtOneMinus(double s2) {
 
 inline bool isFinite(const Vec3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+// A radiance sample fit to accumulate: every channel non-negative and finite. NaN, Inf or a negative
+// value is a bug somewhere; callers count it and drop it.
+inline bool isValidRadiance(const Color3& L) {
+  return L.x >= 0.f && L.y >= 0.f && L.z >= 0.f && std::isfinite(L.x + L.y + L.z);
 }
 
 // Relative offset used to move ray origins off surfaces: 16 ulps of the magnitude of the numbers the

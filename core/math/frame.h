@@ -17,7 +17,6 @@ struct Frame {
     t = Vec3(b, sign + n.y * n.y * a, -n.y);
   }
 
-  Vec3 toLocal(const Vec3& v) const { return Vec3(glm::dot(v, s), glm::dot(v, t), glm::dot(v, n)); }
   Vec3 toWorld(const Vec3& v) const { return s * v.x + t * v.y + n * v.z; }
 };
 

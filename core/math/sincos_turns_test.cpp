@@ -20,7 +20,7 @@ TEST(SinCosTurns, WithinThreeUlpsOnEverySamplerValue) {
   for (uint32_t k = 0; k < (1u << 24); k += 7) {
     const float u = static_cast<float>(k) * 0x1p-24f;
     const SinCos sc = sinCosTurns(u);
-    const double angle = 6.283185307179586476925 * u;
+    const double angle = (2.0 * kPiD) * u;
     worstSin = std::max(worstSin, ulpError(sc.sin, std::sin(angle)));
     worstCos = std::max(worstCos, ulpError(sc.cos, std::cos(angle)));
     worstNorm = std::max(worstNorm, std::fabs(double(sc.sin) * sc.sin + double(sc.cos) * sc.cos - 1.0));
@@ -49,7 +49,7 @@ TEST(SinCosTurns, ExactAtQuarterTurnsAndSymmetric) {
 TEST(SinCosTurns, NegativeAndLargeArguments) {
   for (float t : {-3.3f, -0.6f, 1.7f, 12.125f, 1000.37f}) {
     const SinCos sc = sinCosTurns(t);
-    const double angle = 6.283185307179586476925 * double(t);
+    const double angle = (2.0 * kPiD) * double(t);
     EXPECT_NEAR(sc.sin, std::sin(angle), 4e-7) << t;
     EXPECT_NEAR(sc.cos, std::cos(angle), 4e-7) << t;
   }

@@ -15,6 +15,7 @@ using IVec2 = glm::ivec2;
 using DVec3 = glm::dvec3;
 
 inline constexpr float kPi = 3.14159265358979323846f;
+inline constexpr double kPiD = 3.14159265358979323846;  // double-precision paths (pdfs, closed forms)
 inline constexpr float kInvPi = 0.31830988618379067154f;
 inline constexpr float kInv2Pi = 0.15915494309189533577f;
 inline constexpr float kInv4Pi = 0.07957747154594766788f;

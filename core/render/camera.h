@@ -18,6 +18,8 @@ struct CameraDesc {
   int height = 720;
   float nearClip = 1e-4f;
   float farClip = 1e4f;
+
+  bool operator==(const CameraDesc&) const = default;
 };
 
 class PerspectiveCamera {

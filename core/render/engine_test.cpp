@@ -5,7 +5,8 @@
 #include <chrono>
 #include <thread>
 
-#include "core/scene/scene_builder.h"
+#include "core/geometry/procedural_mesh.h"
+#include "core/math/frame.h"
 
 namespace penumbra {
 namespace {
@@ -20,13 +21,39 @@ bool eventually(F done) {
   return done();
 }
 
-std::shared_ptr<RenderJob> smallJob(const char* integratorOverride = nullptr) {
-  std::vector<std::pair<std::string, std::string>> sets = {{"camera.width", "48"}, {"camera.height", "32"}};
-  if (integratorOverride) sets.emplace_back("integrator.measure", integratorOverride);
-  LoadedScene s = loadSceneFromString(defaultSceneXml(), "default", ".", sets);
+// A diffuse unit sphere on a ground plane (z = -1), lit by a small bright sphere light: soft shadows
+// and light sampling noise, so pixels differ in mean and in standard error.
+std::shared_ptr<const Scene> smallScene() {
+  auto scene = std::make_shared<Scene>();
+  SphereLight light;
+  light.sphere = Sphere{Vec3(1.f, -1.5f, 1.75f), 0.1f};
+  light.radiance = Color3(300.f);
+  SurfaceMaterial emitter;
+  emitter.sphereLight = 0;
+  light.geometryIndex = int32_t(scene->geometry.addSphere(light.sphere, 0));
+  scene->sphereLights.push_back(light);
+  scene->materials.push_back(emitter);
+  scene->geometry.addSphere(Sphere{Vec3(0.f), 1.f}, 1);
+  scene->materials.push_back(SurfaceMaterial{});
+  scene->geometry.addMesh(makeGridPlane(Vec3(-100, -100, -1), Vec3(200, 0, 0), Vec3(0, 200, 0), 1, 1), 2);
+  scene->materials.push_back(SurfaceMaterial{});
+  scene->geometry.build();
+  scene->rayLengthBound = scene->geometry.bounds().diagonal() * 1.01f;
+  return scene;
+}
+
+// 48 x 32 pixels of that scene, direct lighting with the default strategy.
+std::shared_ptr<RenderJob> smallJob() {
   auto job = std::make_shared<RenderJob>();
-  job->scene = s.scene;
-  job->settings = s.settings;
+  job->scene = smallScene();
+  CameraDesc& cam = job->settings.camera;
+  const Vec3 origin(4, 4, 0), dir = glm::normalize(Vec3(0.f) - origin);
+  const Vec3 left = glm::normalize(glm::cross(Vec3(0, 0, 1), dir));
+  cam.toWorld = cameraToWorld(origin, left, glm::cross(dir, left), dir);
+  cam.fovDegrees = 40.f;
+  cam.width = 48;
+  cam.height = 32;
+  job->settings.sampleCount = 64;
   job->settings.seed = 42;
   return job;
 }
@@ -197,6 +224,37 @@ TEST(Engine, SnapshotsArePublishedOnRequest) {
   EXPECT_EQ(snap.standardError.width, 48);
 }
 
+// A one-off request of the next pass is published once, with its standard error, at the end of the
+// pass after the running one (not at the next boundary, and no later pass with it), and equals the film.
+TEST(Engine, NextPassSnapshotIsPublishedOnceAfterThatPass) {
+  auto job = smallJob();
+  Engine engine;
+  engine.start(job, RenderLimits{100000, 0.0}, 2);
+  FilmSnapshot::Probe probe;
+  auto resting = [&] { return engine.probeAtRest(0, 0, probe); };  // a worker waits at a boundary
+  engine.setPaused(true);
+  ASSERT_TRUE(eventually(resting));
+  FilmSnapshot before;
+  engine.takeSnapshot(before);
+  const uint32_t spp = engine.progress().spp;
+  engine.requestNextPassSnapshot(true);  // during the pass after this boundary
+  engine.setPaused(false);
+  ASSERT_TRUE(eventually([&] { return engine.progress().spp >= spp + 6; }));
+  engine.setPaused(true);
+  ASSERT_TRUE(eventually(resting));
+  FilmSnapshot got;
+  ASSERT_TRUE(engine.takeSnapshot(got));
+  engine.cancel();
+  EXPECT_EQ(got.version, before.version + 1) << "not published exactly once";
+  EXPECT_EQ(got.spp, spp + 2);
+  ASSERT_EQ(got.standardError.width, 48);
+  Engine reference;
+  reference.start(job, RenderLimits{got.spp, 0.0}, 1);
+  reference.wait();
+  EXPECT_EQ(got.mean.rgb, reference.film().mean(got.spp).rgb);
+  EXPECT_EQ(got.standardError.rgb, reference.film().standardError(got.spp).rgb);
+}
+
 TEST(Engine, TimeLimitStopsTheRender) {
   auto job = smallJob();
   Engine engine;
@@ -252,18 +310,20 @@ namespace {
 void expectStreamedSnapshotsEqualTheFilm(bool take) {
   auto job = smallJob();
   Engine engine;
-  RenderLimits limits{40, 0.0};
+  // Passes of this tiny image take microseconds: enough of them that a poller descheduled on a busy
+  // machine still sees some, and the render is cancelled once it has seen a few.
+  RenderLimits limits{2000, 0.0};
   limits.preview = true;
   engine.start(job, limits, 2);
   std::vector<FilmSnapshot> seen;
   FilmSnapshot snap;
-  while (!engine.progress().finished) {
+  while (!engine.progress().finished && seen.size() < 8) {
     engine.requestSnapshot(true);
     bool got = take ? engine.takeSnapshot(snap) : engine.latestSnapshot(snap);
     if (got && snap.spp >= 2 && !snap.standardError.empty()) seen.push_back(snap);
     std::this_thread::yield();
   }
-  engine.wait();
+  engine.cancel();
   ASSERT_FALSE(seen.empty());
   Engine reference;
   for (size_t i = 0; i < seen.size(); i += std::max<size_t>(1, seen.size() / 5)) {

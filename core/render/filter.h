@@ -19,6 +19,8 @@ struct FilterDesc {
   float stddev = 0.5f;  // gaussian
   float B = 1.f / 3.f;  // mitchell
   float C = 1.f / 3.f;  // mitchell
+
+  bool operator==(const FilterDesc&) const = default;
 };
 
 const char* filterTypeName(FilterType type);

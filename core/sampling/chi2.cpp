@@ -13,7 +13,6 @@ namespace penumbra {
 
 namespace {
 
-constexpr double kPiD = 3.14159265358979323846;
 constexpr double kBinSlack = 1e-5;  // relative slack for samples rounded just past the domain edge
 constexpr int kRefineMinDepth = 6;  // forced depth when re-checking a "zero" cell that got samples
 

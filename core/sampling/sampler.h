@@ -11,11 +11,9 @@
 
 namespace penumbra {
 
+// One row per kind in core/sampling/sampler_table.h (names, labels, which settings apply).
 enum class SamplerKind : uint8_t { Independent, Stratified };
-
-const char* samplerKindName(SamplerKind kind);
-// Returns false for unknown names.
-bool parseSamplerKind(const std::string& name, SamplerKind& out);
+inline constexpr int kSamplerKindCount = 2;
 
 class Sampler {
  public:

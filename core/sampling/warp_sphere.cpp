@@ -138,7 +138,7 @@ float Warp::squareToBeckmannPdf(const Vec3& m, float alpha) {
   // Double precision: cos^3 of a grazing float direction does not underflow, so no 0/0.
   double z = m.z, a2 = static_cast<double>(alpha) * alpha;
   double tan2 = (static_cast<double>(m.x) * m.x + static_cast<double>(m.y) * m.y) / (z * z);
-  return static_cast<float>(std::exp(-tan2 / a2) / (3.14159265358979323846 * a2 * z * z * z));
+  return static_cast<float>(std::exp(-tan2 / a2) / (kPiD * a2 * z * z * z));
 }
 
 Vec2 Warp::beckmannToSquare(const Vec3& m, float alpha) {

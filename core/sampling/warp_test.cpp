@@ -232,7 +232,7 @@ TEST(Warp, NarrowConeFromSin2IsAccurate) {
   for (double s2 : {1e-12, 1e-6, 0.5, 1.0}) {
     auto fs2 = float(s2);
     double oneMinusCos = double(fs2) / (1.0 + std::sqrt(1.0 - double(fs2)));
-    double expected = 1.0 / (2.0 * 3.14159265358979323846 * oneMinusCos);
+    double expected = 1.0 / (2.0 * kPiD * oneMinusCos);
     for (float a : kExtremes)
       for (float b : kExtremes) {
         SCOPED_TRACE(testing::Message() << "sin2 " << s2 << " u = (" << a << ", " << b << ")");

@@ -1,0 +1,85 @@
+"""Type stubs of the penumbra module (python/*.cpp): what each function takes and returns."""
+from typing import Callable, Iterable, Optional, Sequence, Tuple, Union
+
+import numpy as np
+import numpy.typing as npt
+
+ArrayF32 = npt.NDArray[np.float32]
+ArrayLike = npt.ArrayLike
+
+class SceneError(ValueError):
+    file: Optional[str]
+    line: Optional[int]
+    message: str
+
+class Scene:
+    settings: dict[str, str]
+    strategy: str
+    sampler: str
+    sample_count: int
+    seed: int
+    width: int
+    height: int
+    path: str
+    warnings: list[str]
+    def set(self, key: str, value: Union[str, int, float, bool]) -> None: ...
+    def to_xml(self) -> str: ...
+    def render(self, spp: Optional[int] = None, time: Optional[float] = None, seed: int = 0,
+               threads: Optional[int] = None,
+               progress: Union[None, bool, Callable[[int, float], object]] = None) -> RenderResult: ...
+
+class RenderResult:
+    mean: ArrayF32  # H x W x 3
+    stderr: ArrayF32  # H x W x 3
+    spp: int
+    seconds: float
+    samples: int
+    bad_samples: int
+    threads: int
+    metadata: dict[str, str]
+    def save(self, path: str, image: Optional[ArrayLike] = None) -> None: ...
+
+class Chi2Result:
+    warp: str
+    param: Optional[float]
+    p_value: float
+    chi2: float
+    dof: int
+    alpha: float
+    accepted: bool
+    verdict: str  # "accept" or "REJECT"
+    message: str
+    pooled_cells: int
+    observed: npt.NDArray[np.float64]
+    expected: npt.NDArray[np.float64]
+
+def load_scene(path: str, overrides: Optional[dict[str, Union[str, int, float, bool]]] = None) -> Scene: ...
+def scene_from_string(xml: str, base_dir: str = "", name: str = "<string>",
+                      overrides: Optional[dict[str, Union[str, int, float, bool]]] = None) -> Scene: ...
+def strategies() -> list[dict[str, object]]: ...
+def samplers() -> list[dict[str, object]]: ...
+def warp_names() -> list[str]: ...
+def random_points(n: int, seed: int = 1) -> ArrayF32: ...
+def warp(name: str, u: ArrayLike, param: Optional[float] = None, out: Optional[ArrayF32] = None) -> ArrayF32: ...
+def pdf(name: str, v: ArrayLike, param: Optional[float] = None, out: Optional[ArrayF32] = None) -> ArrayF32: ...
+def chi2_test(name: str, samples: int = 1000000, seed: int = 1, res: int = 51, param: Optional[float] = None,
+              test_count: int = 1) -> Chi2Result: ...
+def sample_points(sampler: str, n: int, pixel: Tuple[int, int] = (0, 0), dims: Tuple[int, int] = (0, 1),
+                  seed: int = 0, sample_count: Optional[int] = None) -> ArrayF32: ...
+def converge(scene: Scene, strategies: Union[str, Sequence[str]] = "all",
+             samplers: Union[None, str, Sequence[str]] = None, time: Optional[float] = None,
+             spp: Optional[int] = None, reference: Union[None, str, ArrayLike, RenderResult] = None,
+             seed: int = 0, threads: Optional[int] = None) -> dict[object, dict[str, object]]: ...
+
+class closed_form:
+    @staticmethod
+    def sphere_light_irradiance_factor(cos_theta: ArrayLike, sin_alpha: ArrayLike) -> Union[float, np.ndarray]: ...
+    @staticmethod
+    def sphere_light_irradiance_factor_at(x: Sequence[float], n: Sequence[float], center: Sequence[float],
+                                          radius: float, two_sided: bool = False) -> float: ...
+    @staticmethod
+    def ao_plane_with_sphere(cos_theta: ArrayLike, sin_alpha: ArrayLike) -> Union[float, np.ndarray]: ...
+    @staticmethod
+    def ao_plane_near_resting_sphere(rho: ArrayLike, radius: ArrayLike) -> Union[float, np.ndarray]: ...
+    @staticmethod
+    def ao_on_resting_convex_body(psi: ArrayLike) -> Union[float, np.ndarray]: ...

@@ -1,0 +1,170 @@
+// Scenes: load from a file or a string with overrides, read and change settings, list the
+// strategies and samplers of the tables.
+#include <pybind11/stl.h>
+
+#include <filesystem>
+
+#include "core/render/strategy_table.h"
+#include "core/sampling/sampler_table.h"
+#include "core/scene/xml_parser.h"
+#include "python/bindings.h"
+
+namespace penumbra::python {
+
+namespace {
+
+// "True"/"False" for bools (the scene syntax), str() for everything else.
+std::string overrideValue(const py::handle& value, const std::string& key) {
+  if (py::isinstance<py::bool_>(value)) return value.cast<bool>() ? "true" : "false";
+  if (py::isinstance<py::int_>(value) || py::isinstance<py::float_>(value) || py::isinstance<py::str>(value))
+    return py::str(value).cast<std::string>();
+  throw py::type_error("value of '" + key + "': expected str, int, float or bool, got " +
+                       py::str(py::type::handle_of(value).attr("__name__")).cast<std::string>());
+}
+
+std::vector<std::pair<std::string, std::string>> overrideList(const py::object& overrides) {
+  std::vector<std::pair<std::string, std::string>> out;
+  if (overrides.is_none()) return out;
+  if (!py::isinstance<py::dict>(overrides))
+    throw py::type_error("overrides: expected a dict {'tag.property': value}");
+  for (auto [k, v] : overrides.cast<py::dict>()) {
+    if (!py::isinstance<py::str>(k)) throw py::type_error("overrides: keys must be str 'tag.property'");
+    std::string key = k.cast<std::string>();
+    out.emplace_back(key, overrideValue(v, key));
+  }
+  return out;
+}
+
+PyScene loadFile(const std::string& path, const py::object& overrides) {
+  auto list = overrideList(overrides);
+  py::gil_scoped_release release;
+  return PyScene{loadScene(path, list)};
+}
+
+PyScene loadString(const std::string& xml, const std::string& baseDir, const std::string& name,
+                   const py::object& overrides) {
+  auto list = overrideList(overrides);
+  std::string dir = baseDir.empty() ? std::filesystem::current_path().string() : baseDir;
+  py::gil_scoped_release release;
+  return PyScene{loadSceneFromString(xml, name, dir, list)};
+}
+
+// Scene.set: applies the override to the description, then rebuilds what it can change (only the
+// settings for camera, sampler, integrator and filter; the whole world otherwise).
+void setProperty(PyScene& s, const std::string& key, const py::handle& value) {
+  std::string text = overrideValue(value, key);
+  SceneNode desc = s.loaded.desc;
+  applyOverride(desc, key, text);
+  std::string tag = key.substr(0, key.find('.'));
+  if (tag == "camera" || tag == "sampler" || tag == "integrator" || tag == "rfilter") {
+    std::vector<std::string> warnings;
+    RenderSettings settings = buildSettings(desc, &warnings);
+    s.loaded.desc = std::move(desc);
+    s.loaded.settings = settings;
+    s.loaded.warnings.insert(s.loaded.warnings.end(), warnings.begin(), warnings.end());
+  } else {
+    std::string path = s.loaded.path;
+    LoadedScene rebuilt = buildScene(std::move(desc));
+    rebuilt.path = path;
+    s.loaded = std::move(rebuilt);
+  }
+}
+
+py::dict settingsDict(const PyScene& s) {
+  py::dict d;
+  for (auto& [k, v] : describeSettings(s.loaded.settings)) d[py::str(k)] = v;
+  return d;
+}
+
+}  // namespace
+
+void bindScene(py::module_& m) {
+  py::class_<PyScene>(m, "Scene",
+                      "A loaded scene: its description (editable with set()), the built geometry and "
+                      "lights, and the render settings it asks for. Create with load_scene() or "
+                      "scene_from_string().")
+      .def("set", &setProperty, py::arg("key"), py::arg("value"),
+           "Change a property as --set does: key 'tag.property' (e.g. 'sampler.sampleCount', "
+           "'integrator.measure', 'camera.fov'), value str/int/float/bool. Raises SceneError for an "
+           "unknown key or a bad value (the scene is left unchanged).")
+      .def_property_readonly("settings", &settingsDict,
+                             "The render settings as the image metadata spells them: integrator and its "
+                             "properties, sampler, sampleCount, seed, rfilter, resolution.")
+      .def_property_readonly(
+          "strategy", [](const PyScene& s) { return strategyLabel(s.loaded.settings.integrator); },
+          "The strategy label, e.g. 'direct/solid-angle'.")
+      .def_property_readonly(
+          "sampler",
+          [](const PyScene& s) { return std::string(samplerKindName(s.loaded.settings.samplerKind)); },
+          "The sampler's canonical name, e.g. 'independent'.")
+      .def_property_readonly(
+          "sample_count", [](const PyScene& s) { return s.loaded.settings.sampleCount; },
+          "The scene's samples per pixel (what render() uses without spp or time).")
+      .def_property_readonly(
+          "seed", [](const PyScene& s) { return s.loaded.settings.seed; }, "The scene's random seed.")
+      .def_property_readonly(
+          "width", [](const PyScene& s) { return s.loaded.settings.camera.width; }, "Image width in pixels.")
+      .def_property_readonly(
+          "height", [](const PyScene& s) { return s.loaded.settings.camera.height; },
+          "Image height in pixels.")
+      .def_property_readonly(
+          "path", [](const PyScene& s) { return s.loaded.path; }, "The file it came from ('' for a string).")
+      .def_property_readonly(
+          "warnings", [](const PyScene& s) { return s.loaded.warnings; },
+          "Warnings of loading (e.g. unused properties).")
+      .def(
+          "to_xml", [](const PyScene& s) { return writeSceneXml(s.loaded.desc); },
+          "The description, overrides and set() applied, as scene XML.")
+      .def("__repr__", [](const PyScene& s) {
+        return "<penumbra.Scene " + (s.loaded.path.empty() ? std::string("<string>") : s.loaded.path) + " " +
+               std::to_string(s.loaded.settings.camera.width) + "x" +
+               std::to_string(s.loaded.settings.camera.height) + " " +
+               strategyLabel(s.loaded.settings.integrator) + ">";
+      });
+
+  m.def("load_scene", &loadFile, py::arg("path"), py::arg("overrides") = py::none(),
+        "Load a scene file (Nori-style XML). overrides: {'tag.property': value} applied as --set "
+        "does, e.g. {'integrator.measure': 'area', 'sampler.sampleCount': 64}. Raises SceneError with "
+        ".file and .line.");
+  m.def("scene_from_string", &loadString, py::arg("xml"), py::arg("base_dir") = "",
+        py::arg("name") = "<string>", py::arg("overrides") = py::none(),
+        "Load a scene from XML text. base_dir resolves relative paths (OBJ files; default: the "
+        "current directory); name is the file name in error messages.");
+
+  m.def(
+      "strategies",
+      [] {
+        py::list out;
+        for (const StrategyRow& r : strategyTable()) {
+          py::dict d;
+          d["label"] = std::string(r.label);
+          d["short_name"] = std::string(r.shortName);
+          d["integrator"] = std::string(r.xmlType);
+          d["description"] = std::string(r.description);
+          d["reference"] = r.reference;
+          d["baseline"] = r.baseline;
+          out.append(d);
+        }
+        return out;
+      },
+      "Every sampling strategy of the strategy table, in table order: label, short_name, integrator "
+      "(the XML type), description, reference and baseline flags.");
+  m.def(
+      "samplers",
+      [] {
+        py::list out;
+        for (const SamplerRow& r : samplerTable()) {
+          py::dict d;
+          d["name"] = std::string(samplerKindName(r.kind));
+          d["label"] = std::string(r.label);
+          d["description"] = std::string(r.description);
+          d["uses_sample_count"] = r.usesSampleCount;
+          out.append(d);
+        }
+        return out;
+      },
+      "Every sampler of the sampler table, in table order: name, label, description, "
+      "uses_sample_count.");
+}
+
+}  // namespace penumbra::python

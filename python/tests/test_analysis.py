@@ -1,0 +1,73 @@
+"""Convergence measurements and closed forms."""
+import math
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+import penumbra
+from conftest import SOURCE_DIR, SPHERE_SCENE
+
+ANALYTIC = sorted((SOURCE_DIR / "scenes" / "analytic").glob("*.xml"))
+
+
+def test_converge_returns_the_csv_columns():
+    scene = penumbra.load_scene(str(SPHERE_SCENE), overrides={"camera.width": 48, "camera.height": 32})
+    ref = scene.render(spp=256, seed=99).mean
+    runs = penumbra.converge(scene, strategies=["area", "solid-angle"], spp=16, reference=ref)
+    assert list(runs) == ["area", "solid-angle"]
+    for m in runs.values():
+        for column in ("seconds", "cpu_seconds", "spp", "samples", "mse", "rmse", "rel_mse", "mse_stderr",
+                       "ref_variance", "mse_nolight", "rmse_nolight", "rel_mse_nolight", "mse_stderr_nolight"):
+            assert isinstance(m[column], np.ndarray) and len(m[column]) == len(m["spp"]) >= 2
+        assert m["spp"][-1] == 16 and np.all(np.diff(m["spp"]) > 0)
+        assert m["final_image"].shape == (32, 48, 3)
+    # Solid-angle sampling beats area sampling for this small light.
+    assert runs["solid-angle"]["mse_nolight"][-1] < runs["area"]["mse_nolight"][-1]
+
+
+def test_converge_with_samplers():
+    scene = penumbra.load_scene(str(SPHERE_SCENE), overrides={"camera.width": 24, "camera.height": 16})
+    ref = scene.render(spp=64, seed=99).mean
+    names = [s["name"] for s in penumbra.samplers()]
+    runs = penumbra.converge(scene, strategies="solid-angle", samplers=names, spp=4, reference=ref)
+    assert set(runs) == {("solid-angle", n) for n in names}
+    with pytest.raises(ValueError, match="samplers"):
+        penumbra.converge(scene, strategies="solid-angle", samplers=["nope"], spp=4, reference=ref)
+    with pytest.raises(ValueError, match="time or spp"):
+        penumbra.converge(scene, reference=ref)
+    with pytest.raises(ValueError, match="reference"):
+        penumbra.converge(scene, spp=1, reference=np.zeros((2, 2, 3), np.float32))
+
+
+@pytest.mark.skipif(not ANALYTIC, reason="no analytic scenes")
+def test_converge_against_closed_form_reference():
+    scene = penumbra.load_scene(str(ANALYTIC[0]))
+    runs = penumbra.converge(scene, strategies="solid-angle", spp=4, reference="closed-form")
+    assert runs["solid-angle"]["rmse"][-1] > 0
+
+
+def test_closed_forms():
+    cf = penumbra.closed_form
+    # Fully above the horizon: pi sin^2(alpha) cos(theta).
+    assert cf.sphere_light_irradiance_factor(1.0, 0.5) == pytest.approx(math.pi * 0.25)
+    assert cf.sphere_light_irradiance_factor(-1.0, 0.5) == 0.0
+    v = cf.sphere_light_irradiance_factor(np.array([1.0, 0.5]), 0.1)
+    assert v.shape == (2,) and v[1] == pytest.approx(math.pi * 0.01 * 0.5)
+    assert cf.sphere_light_irradiance_factor_at([0, 0, 0], [0, 0, 1], [0, 0, 2], 1.0) == pytest.approx(
+        math.pi * 0.25)
+    assert cf.ao_on_resting_convex_body(0.0) == 1.0
+    assert cf.ao_on_resting_convex_body(math.pi) == pytest.approx(0.0, abs=1e-15)
+    rho = np.array([0.0, 1.0, 10.0])
+    assert np.allclose(cf.ao_plane_near_resting_sphere(rho, 1.0), 1 - 1 / (rho ** 2 + 1) ** 1.5)
+    assert cf.ao_plane_with_sphere(1.0, 0.5) == pytest.approx(1 - 0.25)
+
+
+@pytest.mark.parametrize("script", ["compare_strategies.py", "warp_histogram.py"])
+def test_examples_write_pngs(tmp_path, script):
+    path = SOURCE_DIR / "python" / "examples" / script
+    subprocess.run([sys.executable, str(path), "--quick", "-o", str(tmp_path / "out.png")], check=True,
+                   env={**__import__("os").environ, "MPLBACKEND": "Agg"})
+    png = (tmp_path / "out.png").read_bytes()
+    assert png[:8] == b"\x89PNG\r\n\x1a\n" and len(png) > 10000

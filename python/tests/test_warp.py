@@ -1,0 +1,118 @@
+"""Warps, pdfs and chi-square tests against the CLI's values; the samplers' point sets."""
+import numpy as np
+import pytest
+
+import penumbra
+
+CASES = [("uniform-square", None), ("tent", None), ("uniform-disk", None), ("concentric-disk", None),
+         ("uniform-sphere", None), ("uniform-hemisphere", None), ("cosine-hemisphere", None),
+         ("uniform-cone", 0.9), ("beckmann", 0.2)]
+
+
+def _param_args(param):
+    return [] if param is None else ["--param", param]
+
+
+def _floats(text):
+    return np.array([[float(x) for x in line.split()] for line in text.splitlines() if line.strip()])
+
+
+def test_every_warp_name_is_covered():
+    assert sorted(penumbra.warp_names()) == sorted(name for name, _ in CASES)
+
+
+@pytest.mark.parametrize("name,param", CASES)
+def test_warp_and_pdf_match_cli(cli, name, param):
+    n, seed = 2000, 11
+    dumped = _floats(cli("warp", name, "--dump", n, "--seed", seed, *_param_args(param)).stdout)
+    ours = penumbra.warp(name, penumbra.random_points(n, seed), param=param)
+    assert ours.dtype == np.float32 and ours.shape[0] == n
+    text = "\n".join(" ".join(f"{x:.9g}" for x in row) for row in ours.astype(np.float64))
+    # %.9g round-trips float32: the same floats.
+    assert np.array_equal(ours, dumped[:, :ours.shape[1]].astype(np.float32)), text[:200]
+    if ours.shape[1] == 2:
+        assert not dumped[:, 2].any()
+    pdfs_cli = _floats(cli("warp", name, "--pdf", *_param_args(param), stdin=
+                           "\n".join(" ".join(f"{x:.9g}" for x in row) for row in dumped)).stdout)[:, 0]
+    ours_pdf = penumbra.pdf(name, dumped, param=param)
+    assert np.array_equal(ours_pdf, pdfs_cli.astype(np.float32))
+    assert np.all(ours_pdf >= 0) and np.all(np.isfinite(ours_pdf))
+
+
+def test_pdf_of_a_different_parameter_differs():
+    v = penumbra.warp("uniform-cone", penumbra.random_points(100, 3), param=0.9)
+    assert not np.array_equal(penumbra.pdf("uniform-cone", v, param=0.9), penumbra.pdf("uniform-cone", v, param=0.5))
+
+
+def _cli_chi2(cli, name, param, samples, seed, res, extra=()):
+    out = cli("warp", name, "--samples", samples, "--seed", seed, "--res", res, *_param_args(param), *extra,
+              check=False).stdout
+    fields = {line.split()[0]: line.split()[1] for line in out.splitlines() if line.strip()}
+    return float(fields["chi2"]), int(fields["dof"]), float(fields["p-value"]), fields["verdict"]
+
+
+@pytest.mark.parametrize("name,param", CASES)
+def test_chi2_matches_cli(cli, name, param):
+    samples, seed, res = 200000, 5, 21
+    chi2, dof, p, verdict = _cli_chi2(cli, name, param, samples, seed, res)
+    r = penumbra.chi2_test(name, samples=samples, seed=seed, res=res, param=param)
+    assert r.verdict == verdict == "accept"
+    assert r.dof == dof and round(r.chi2, 2) == chi2
+    assert f"{r.p_value:.4g}" == f"{p:.4g}"
+
+
+def test_chi2_rejects_what_the_cli_rejects(cli):
+    # Too few samples for the cells: the CLI and the module agree on the verdict and its numbers.
+    chi2, dof, p, verdict = _cli_chi2(cli, "tent", None, 100, 1, 200)
+    r = penumbra.chi2_test("tent", samples=100, seed=1, res=200)
+    assert r.verdict == verdict and r.dof == dof and round(r.chi2, 2) == chi2
+
+
+def test_warp_arguments_are_checked():
+    u = np.zeros((4, 2))
+    with pytest.raises(ValueError, match="name"):
+        penumbra.warp("nope", u)
+    with pytest.raises(ValueError, match="param"):
+        penumbra.warp("tent", u, param=0.3)
+    with pytest.raises(ValueError, match="param"):
+        penumbra.warp("uniform-cone", u, param=1.5)
+    with pytest.raises(ValueError, match="u"):
+        penumbra.warp("tent", np.zeros((4, 3)))
+    with pytest.raises(TypeError, match="u"):
+        penumbra.warp("tent", "not an array")
+    with pytest.raises(ValueError, match="v"):
+        penumbra.pdf("tent", np.zeros(4))
+    with pytest.raises(ValueError, match="samples"):
+        penumbra.chi2_test("tent", samples=1)
+
+
+def test_sample_points():
+    for row in penumbra.samplers():
+        pts = penumbra.sample_points(row["name"], 64, pixel=(3, 4), seed=2)
+        assert pts.shape == (64, 2) and pts.dtype == np.float32
+        assert np.all((pts >= 0) & (pts < 1))
+        assert np.array_equal(pts, penumbra.sample_points(row["name"], 64, pixel=(3, 4), seed=2))
+        assert not np.array_equal(pts, penumbra.sample_points(row["name"], 64, pixel=(3, 5), seed=2))
+        assert not np.array_equal(pts, penumbra.sample_points(row["name"], 64, pixel=(3, 4), dims=(2, 3), seed=2))
+    # 64 stratified points: one in each cell of the 8 x 8 grid.
+    pts = penumbra.sample_points("stratified", 64, pixel=(1, 1))
+    cells = {(int(x * 8), int(y * 8)) for x, y in pts}
+    assert len(cells) == 64
+    with pytest.raises(ValueError, match="sampler"):
+        penumbra.sample_points("nope", 4)
+    with pytest.raises(ValueError, match="dims"):
+        penumbra.sample_points("independent", 4, dims=(1, 2))
+
+
+def test_out_arrays_are_filled_and_checked():
+    u = penumbra.random_points(100, seed=4)
+    out = np.empty((100, 3), np.float32)
+    assert penumbra.warp("uniform-sphere", u, out=out) is out
+    assert np.array_equal(out, penumbra.warp("uniform-sphere", u))
+    pdf_out = np.empty(100, np.float32)
+    assert penumbra.pdf("uniform-sphere", out, out=pdf_out) is pdf_out
+    assert np.allclose(pdf_out, 1 / (4 * np.pi))
+    with pytest.raises(ValueError, match="out"):
+        penumbra.warp("uniform-sphere", u, out=np.empty((100, 2), np.float32))
+    with pytest.raises(TypeError, match="out"):
+        penumbra.warp("uniform-sphere", u, out=np.empty((100, 3), np.float64))
