@@ -56,9 +56,12 @@ TEST(ConvergeCli, ReportFilesExistAndParse) {
     }
     EXPECT_EQ(cols, 14) << line;
   }
-  EXPECT_GE(rows, 5 * 3);
-  EXPECT_EQ(strategies, (std::set<std::string>{"uniform-hemisphere", "cosine-hemisphere", "area",
-                                               "solid-angle", "projected-solid-angle"}));
+  EXPECT_GE(rows, 11 * 3);
+  EXPECT_EQ(strategies,
+            (std::set<std::string>{"uniform-hemisphere", "cosine-hemisphere", "area", "solid-angle",
+                                   "projected-solid-angle", "mis-solid-angle-power",
+                                   "mis-solid-angle-balance", "mis-area-power", "mis-area-balance",
+                                   "mis-projected-solid-angle-power", "mis-projected-solid-angle-balance"}));
   // PNGs decode and have a plausible size.
   for (const char* png : {"convergence.png", "equal-time.png"}) {
     Image img = readImage((dir / png).string());

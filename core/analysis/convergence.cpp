@@ -19,9 +19,20 @@ namespace {
 bool namesStrategy(const StrategyRow& row, const std::string& name) {
   std::string_view label = row.label;
   if (name == label || name == row.shortName || name == label.substr(label.find('/') + 1)) return true;
-  for (size_t i = row.select.size(); i-- > 0;)  // the most specific selecting property
-    if (!row.select[i].name.empty()) return row.select[i].value.accepts(name);
-  return false;
+  // The most specific selecting value, when no other row's most specific value is spelled alike
+  // of the same integrator type (every mis row ends in a heuristic: "power" names none of them).
+  auto mostSpecific = [](const StrategyRow& r) -> const Spellings* {
+    for (size_t i = r.select.size(); i-- > 0;)
+      if (!r.select[i].name.empty()) return &r.select[i].value;
+    return nullptr;
+  };
+  const Spellings* mine = mostSpecific(row);
+  if (!mine || !mine->accepts(name)) return false;
+  for (const StrategyRow& other : strategyTable()) {
+    const Spellings* theirs = &other != &row && other.xmlType == row.xmlType ? mostSpecific(other) : nullptr;
+    if (theirs && theirs->accepts(name)) return false;
+  }
+  return true;
 }
 
 // The integrator types with more than one strategy, in table order.

@@ -111,6 +111,10 @@ TEST(ParseStrategies, LabelsShortNamesAndSceneSpellingsNameTheirRow) {
   EXPECT_EQ(strategiesOf(parseStrategies(direct, "direct/area,solidAngle,uniform,cosine-hemisphere")),
             (std::vector<Strategy>{Strategy::DirectArea, Strategy::DirectSolidAngle,
                                    Strategy::DirectUniformHemisphere, Strategy::DirectCosineHemisphere}));
+  // A value several rows end in ("power": every mis light measure) names none; labels do.
+  EXPECT_THROW(parseStrategies(direct, "power"), Error);
+  EXPECT_EQ(strategiesOf(parseStrategies(direct, "mis/area/balance,mis-solid-angle-power")),
+            (std::vector<Strategy>{Strategy::DirectMisAreaBalance, Strategy::DirectMisSolidAnglePower}));
   EXPECT_EQ(strategiesOf(parseStrategies({Strategy::AoUniform, 1}, "cosine,ao-uniform")),
             (std::vector<Strategy>{Strategy::AoCosine, Strategy::AoUniform}));
 }
@@ -122,7 +126,9 @@ TEST(ParseStrategies, UnknownNamesFailWithWhatIsAccepted) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find(
                   "unknown strategy \"bogus\" (expected all, or a comma-separated list of: "
-                  "uniform-hemisphere, cosine-hemisphere, area, solid-angle, projected-solid-angle)"),
+                  "uniform-hemisphere, cosine-hemisphere, area, solid-angle, projected-solid-angle, "
+                  "mis-solid-angle-power, mis-solid-angle-balance, mis-area-power, mis-area-balance, "
+                  "mis-projected-solid-angle-power, mis-projected-solid-angle-balance)"),
               std::string::npos)
         << e.what();
   }

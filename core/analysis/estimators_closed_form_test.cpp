@@ -82,6 +82,12 @@ TEST_P(DirectClosedForm, EveryMeasureMatchesTheIrradianceClosedForm) {
     checkAgainstTruth("projected-solid-angle", psa, truth);
     EXPECT_LE(psa.standardError, 1e-6 * truth) << "projected-solid-angle";
     if (lc.areaToo) checkAgainstTruth("area", directAt(Strategy::DirectArea, s, x, n, seed), truth);
+    // Every MIS row (light measure x heuristic, one light and one cosine sample per camera sample).
+    for (const StrategyRow& row : strategyTable()) {
+      if (row.counts[0].name.empty()) continue;
+      if (!lc.areaToo && row.select[1].value.accepts("area")) continue;
+      checkAgainstTruth(std::string(row.label).c_str(), directAt(row.strategy, s, x, n, seed), truth);
+    }
     if (lc.hemisphereToo) {
       checkAgainstTruth("cosine-hemisphere", directAt(Strategy::DirectCosineHemisphere, s, x, 4 * n, seed),
                         truth);

@@ -14,16 +14,26 @@ enum class Strategy : uint8_t {
   DirectArea,                 // direct light by uniform points on each light sphere
   DirectSolidAngle,           // direct light by uniform directions in each light's cone
   DirectProjectedSolidAngle,  // direct light by directions in each light's cone with density ∝ cos θ
-  AoUniform,                  // ambient occlusion by uniform hemisphere directions
-  AoCosine,                   // ambient occlusion by cosine-weighted directions
-  Simple,                     // point and directional lights only
-  Normals,                    // the shading normal as a colour
+  DirectMisSolidAnglePower,   // MIS of solid-angle light sampling and cosine directions, power heuristic
+  DirectMisSolidAngleBalance,
+  DirectMisAreaPower,  // MIS of area light sampling and cosine directions
+  DirectMisAreaBalance,
+  DirectMisProjectedPower,  // MIS of projected-solid-angle light sampling and cosine directions
+  DirectMisProjectedBalance,
+  AoUniform,  // ambient occlusion by uniform hemisphere directions
+  AoCosine,   // ambient occlusion by cosine-weighted directions
+  Simple,     // point and directional lights only
+  Normals,    // the shading normal as a colour
 };
-inline constexpr int kStrategyCount = 9;
+inline constexpr int kStrategyCount = 15;
 
 struct IntegratorDesc {
   Strategy strategy = Strategy::DirectSolidAngle;
   int samples = 1;  // shading samples per camera sample (ao: shadingSamples, direct: nSamples)
+  // The MIS strategies' counts per camera sample: light-sampling directions per sphere light, and
+  // cosine-hemisphere directions shared by all lights (0 turns MIS into the other technique alone).
+  int lightSamples = 1;
+  int bsdfSamples = 1;
 
   bool operator==(const IntegratorDesc&) const = default;
 };
