@@ -36,8 +36,23 @@ void drawIntegratorPanel(ViewerController& c, PanelState&) {
              sceneNeedText(strategyRow(d.strategy).needs), std::string(strategyRow(rendered).label).c_str());
     d.strategy = rendered;
   }
-  const Spellings& samples = strategyRow(d.strategy).samplesProperty;
-  if (!samples.empty()) {
+  const StrategyRow& row = strategyRow(d.strategy);
+  const Spellings& samples = row.samplesProperty;
+  // The mis rows: their own counts and the heuristic instead of the shading samples.
+  const bool hasCounts = !row.counts[0].name.empty();
+  for (const CountProperty& count : row.counts) {
+    if (count.name.empty()) continue;
+    int n = d.*count.field;
+    if (ImGui::InputInt(std::string(count.name.canonical()).c_str(), &n, 1, 8,
+                        ImGuiInputTextFlags_EnterReturnsTrue) ||
+        ImGui::IsItemDeactivatedAfterEdit())
+      d.*count.field = std::clamp(n, 1, 1 << 16);
+  }
+  if (hasCounts)
+    for (const StrategyProperty& p : row.select)
+      if (p.name.canonical() == "heuristic")
+        ImGui::Text("heuristic: %s", std::string(p.value.canonical()).c_str());
+  if (!samples.empty() && !hasCounts) {
     int n = d.samples;
     if (ImGui::InputInt(std::string(samples.canonical()).c_str(), &n, 1, 8,
                         ImGuiInputTextFlags_EnterReturnsTrue) ||

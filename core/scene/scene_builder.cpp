@@ -118,7 +118,7 @@ void buildIntegrator(const SceneNode& node, RenderSettings& s) {
   constexpr int64_t kMaxShadingSamples = 1 << 16;
   d.samples =
       samples.empty() ? 1 : int(getCount(node, samples.list(), 1, kMaxShadingSamples, samples.canonical()));
-  for (size_t level = 0; level < 2; ++level) {
+  for (size_t level = 0; level < kMaxSelectors; ++level) {
     const Spellings& name = strategyRow(candidates.front()).select[level].name;
     if (name.empty()) break;
     std::string def;
@@ -140,6 +140,9 @@ void buildIntegrator(const SceneNode& node, RenderSettings& s) {
     }
   }
   d.strategy = candidates.front();
+  for (const CountProperty& c : strategyRow(d.strategy).counts)
+    if (!c.name.empty())
+      d.*c.field = int(getCount(node, c.name.list(), 1, kMaxShadingSamples, c.name.canonical()));
 }
 
 // ---- geometry and lights ------------------------------------------------------------------------
