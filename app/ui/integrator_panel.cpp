@@ -27,8 +27,8 @@ void drawIntegratorPanel(ViewerController& c, PanelState&) {
     }
     ImGui::EndCombo();
   }
-  // Fixed height: the fallback line and the samples field keep their rows whatever the strategy, so
-  // the sections below never move when it changes.
+  // Fixed height: the fallback line and the strategy's settings keep their rows whatever the
+  // strategy, so the sections below never move when it changes.
   Strategy rendered = applicableStrategy(d.strategy, areaLights);
   if (rendered == d.strategy) ImGui::TextUnformatted("");
   if (rendered != d.strategy) {
@@ -38,29 +38,37 @@ void drawIntegratorPanel(ViewerController& c, PanelState&) {
   }
   const StrategyRow& row = strategyRow(d.strategy);
   const Spellings& samples = row.samplesProperty;
-  // The mis rows: their own counts and the heuristic instead of the shading samples.
+  // The same number of rows for every strategy: the mis rows' counts and heuristic instead of the
+  // shading samples; blank rows below the others.
+  int settingRows = 0;
   const bool hasCounts = !row.counts[0].name.empty();
-  for (const CountProperty& count : row.counts) {
-    if (count.name.empty()) continue;
-    int n = d.*count.field;
-    if (ImGui::InputInt(std::string(count.name.canonical()).c_str(), &n, 1, 8,
-                        ImGuiInputTextFlags_EnterReturnsTrue) ||
-        ImGui::IsItemDeactivatedAfterEdit())
-      d.*count.field = std::clamp(n, 1, 1 << 16);
-  }
-  if (hasCounts)
+  if (hasCounts) {
+    for (const CountProperty& count : row.counts) {
+      if (count.name.empty()) continue;
+      int n = d.*count.field;
+      if (ImGui::InputInt(std::string(count.name.canonical()).c_str(), &n, 1, 8,
+                          ImGuiInputTextFlags_EnterReturnsTrue) ||
+          ImGui::IsItemDeactivatedAfterEdit())
+        d.*count.field = std::clamp(n, 1, 1 << 16);
+      ++settingRows;
+    }
     for (const StrategyProperty& p : row.select)
-      if (p.name.canonical() == "heuristic")
+      if (p.name.canonical() == "heuristic") {
         ImGui::Text("heuristic: %s", std::string(p.value.canonical()).c_str());
-  if (!samples.empty() && !hasCounts) {
+        ++settingRows;
+      }
+  } else if (!samples.empty()) {
     int n = d.samples;
     if (ImGui::InputInt(std::string(samples.canonical()).c_str(), &n, 1, 8,
                         ImGuiInputTextFlags_EnterReturnsTrue) ||
         ImGui::IsItemDeactivatedAfterEdit())
       d.samples = std::clamp(n, 1, 1 << 16);
+    ++settingRows;
   } else {
     ImGui::TextDisabled("(no shading samples)");
+    ++settingRows;
   }
+  for (; settingRows < int(kMaxCounts) + 1; ++settingRows) ImGui::TextUnformatted("");
   c.setSettings(s);  // restarts only if something changed
 
   // Compare mode: a second strategy right of a draggable divider, equal shares of time.
