@@ -1,9 +1,12 @@
-// Cost of one sphere-light sample, single thread. items_per_second is samples/s.
+// Cost of one sphere-light sample, single thread. items_per_second is samples/s. A projected-solid-
+// angle sample includes setting up its cap (ProjectedSphereCap::init), as the integrator does once per
+// shading point and light; a solid-angle sample likewise includes its cone.
 #include <benchmark/benchmark.h>
 
 #include <random>
 #include <vector>
 
+#include "core/lights/projected_cap.h"
 #include "core/lights/sphere_light.h"
 
 namespace penumbra {
@@ -11,16 +14,23 @@ namespace {
 
 constexpr int kCount = 1 << 12;
 
+// Shading points on the plane z = −1 (normal +z) of the hw2 sphere scene's size. Above: the scene's
+// light, well above every point's horizon. Straddling: a light whose cap straddles every point's
+// horizon (centre 0.05 above or below it at distance 3–5, sin α 0.1–0.17).
 struct Fixture {
   SphereLight light{Sphere{Vec3(1, -1.5f, 1.75f), 0.1f}, Color3(300)};
   std::vector<Vec3> points;
   std::vector<Vec2> u;
-  Fixture() {
+  explicit Fixture(bool straddling = false) {
     std::mt19937 rng(1);
     std::uniform_real_distribution<float> d(0.f, 0.999f);
     for (int i = 0; i < kCount; ++i) {
       points.push_back(Vec3(2 * d(rng) - 1, 2 * d(rng) - 1, -1.f));
       u.push_back(Vec2(d(rng), d(rng)));
+    }
+    if (straddling) {
+      light.sphere = Sphere{Vec3(4.f, 0.f, -0.95f), 0.5f};
+      for (size_t i = 1; i < points.size(); i += 2) points[i].z = -0.9f;  // half see the centre below
     }
   }
 };
@@ -35,6 +45,43 @@ void BM_SphereLight_SampleSolidAngle(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations());
 }
 BENCHMARK(BM_SphereLight_SampleSolidAngle);
+
+void BM_SphereLight_SampleProjectedSolidAngle(benchmark::State& state) {
+  Fixture f;
+  size_t i = 0;
+  for (auto _ : state) {
+    const size_t k = i++ & (kCount - 1);
+    ProjectedSphereCap cap;
+    cap.init(f.light, f.points[k], Vec3(0, 0, 1));
+    benchmark::DoNotOptimize(cap.sample(f.u[k]));
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_SphereLight_SampleProjectedSolidAngle);
+
+void BM_SphereLight_SampleSolidAngleStraddling(benchmark::State& state) {
+  Fixture f(true);
+  size_t i = 0;
+  for (auto _ : state) {
+    const size_t k = i++ & (kCount - 1);
+    benchmark::DoNotOptimize(f.light.sampleSolidAngle(f.points[k], f.u[k]));
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_SphereLight_SampleSolidAngleStraddling);
+
+void BM_SphereLight_SampleProjectedSolidAngleStraddling(benchmark::State& state) {
+  Fixture f(true);
+  size_t i = 0;
+  for (auto _ : state) {
+    const size_t k = i++ & (kCount - 1);
+    ProjectedSphereCap cap;
+    cap.init(f.light, f.points[k], Vec3(0, 0, 1));
+    benchmark::DoNotOptimize(cap.sample(f.u[k]));
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_SphereLight_SampleProjectedSolidAngleStraddling);
 
 void BM_SphereLight_SampleArea(benchmark::State& state) {
   Fixture f;

@@ -59,7 +59,7 @@ TEST(AssignmentScenes, LightSamplingMeasuresSampleEveryLight) {
     SceneNode root = parseSceneFile(f);
     EXPECT_LE(countSphereLights(root), 2u);
     if (countSphereLights(root) > 0) ++lit;
-    for (const char* measure : {"", "area", "solid-angle"}) {
+    for (const char* measure : {"", "area", "solid-angle", "projected-solid-angle"}) {
       SceneNode d = root;
       if (*measure) {
         applyOverride(d, "integrator.type", "direct");

@@ -52,8 +52,8 @@ void drawIntegratorPanel(ViewerController& c, PanelState&) {
 
   RenderSettings s = c.settings();
   IntegratorDesc& d = s.integrator;
-  // Fixed height: the fallback line and the samples field keep their rows whatever the strategy, so
-  // the sections below never move when it changes.
+  // Fixed height: the fallback line and the strategy's settings keep their rows whatever the
+  // strategy, so the sections below never move when it changes.
   Strategy rendered = applicableStrategy(d.strategy, areaLights);
   if (rendered == d.strategy) ImGui::TextUnformatted("");
   if (rendered != d.strategy) {
@@ -61,16 +61,39 @@ void drawIntegratorPanel(ViewerController& c, PanelState&) {
              sceneNeedText(strategyRow(d.strategy).needs), std::string(strategyRow(rendered).label).c_str());
     d.strategy = rendered;
   }
-  const Spellings& samples = strategyRow(d.strategy).samplesProperty;
-  if (!samples.empty()) {
+  const StrategyRow& row = strategyRow(d.strategy);
+  const Spellings& samples = row.samplesProperty;
+  // The same number of rows for every strategy: the mis rows' counts and heuristic instead of the
+  // shading samples; blank rows below the others.
+  int settingRows = 0;
+  const bool hasCounts = !row.counts[0].name.empty();
+  if (hasCounts) {
+    for (const CountProperty& count : row.counts) {
+      if (count.name.empty()) continue;
+      int n = d.*count.field;
+      if (ImGui::InputInt(std::string(count.name.canonical()).c_str(), &n, 1, 8,
+                          ImGuiInputTextFlags_EnterReturnsTrue) ||
+          ImGui::IsItemDeactivatedAfterEdit())
+        d.*count.field = std::clamp(n, 1, 1 << 16);
+      ++settingRows;
+    }
+    for (const StrategyProperty& p : row.select)
+      if (p.name.canonical() == "heuristic") {
+        ImGui::Text("heuristic: %s", std::string(p.value.canonical()).c_str());
+        ++settingRows;
+      }
+  } else if (!samples.empty()) {
     int n = d.samples;
     if (ImGui::InputInt(std::string(samples.canonical()).c_str(), &n, 1, 8,
                         ImGuiInputTextFlags_EnterReturnsTrue) ||
         ImGui::IsItemDeactivatedAfterEdit())
       d.samples = std::clamp(n, 1, 1 << 16);
+    ++settingRows;
   } else {
     ImGui::TextDisabled("(no shading samples)");
+    ++settingRows;
   }
+  for (; settingRows < int(kMaxCounts) + 1; ++settingRows) ImGui::TextUnformatted("");
   c.setSettings(s);  // restarts only if something changed
 
   // Compare mode: a second strategy right of a draggable divider, equal shares of time.

@@ -8,37 +8,18 @@
 
 #include <glm/glm.hpp>
 
+#include "core/lights/sphere_cap.h"  // I(θ, α) from angles, and its building blocks
+
 namespace penumbra {
 
-// I(θ, α) from cos θ and sin α ∈ [0, 1]. cos α is derived as √((1 - sin α)(1 + sin α)); prefer the
-// four-argument or geometric overloads when you have a better cos α (near the light's surface).
-//   cos θ ≥ sin α (fully above the horizon):  π sin²α cos θ
-//   cos θ ≤ -sin α (fully below):             0
-//   otherwise (straddling):                   sin²α (cos θ acos y + w) + (atan w - w),
-//        y = -cot α cot θ, q = √(1 - y²), w = tan α sin θ q, atan w - w by series for w < 0.1
-//   sin α = 1 (x on the surface):             (π/2)(1 + cos θ)
-double sphereLightIrradianceFactor(double cosTheta, double sinAlpha);
-// Same with all four trig values supplied (no re-derivation; sin²+cos² = 1 assumed).
-double sphereLightIrradianceFactor(double cosTheta, double sinTheta, double sinAlpha, double cosAlpha);
-
-// Geometric front end. n need not be normalised. d > r: the formulas above with
+// The closed form from geometry (sphereLightIrradianceFactor of core/lights/sphere_cap.h from angles).
+// n need not be normalised. d > r: I(θ, α) with
 // cos α = √(((d - r)/d)((d + r)/d)); |d - r| ≤ 16 ε (r + |x|∞ + |c|∞)
 // (rounding of the inputs): x on the surface, (π/2)(1 + cos θ);
 // d < r: inside, 0 for a one-sided (outward) emitter and π for a two-sided one.
 // If x is at the centre (d = 0) the result is the inside value.
 double sphereLightIrradianceFactor(const glm::dvec3& x, const glm::dvec3& n, const glm::dvec3& c, double r,
                                    bool twoSided = false);
-
-// The straddling formula evaluated literally, as written in the reference
-//   sin²α cos θ acos y - cos α sin α sin θ q + atan(tan α sin θ q)
-// (cancels to O(α³) for small α; exposed for tests comparing it with the stable form).
-double sphereLightStraddlingDirect(double cosTheta, double sinTheta, double sinAlpha, double cosAlpha);
-
-// Centre exactly on the horizon (θ = π/2): α - sin α cos α, by series for small α (no cancellation).
-double sphereLightHorizonFactor(double alpha);
-
-// atan(w) - w without cancellation (series for |w| < 0.1).
-double atanMinusIdentity(double w);
 
 // ---- Ambient occlusion, AO = (1/π) ∫ V cos dω with unbounded rays ----------------------------------
 

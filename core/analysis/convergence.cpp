@@ -13,21 +13,37 @@
 namespace penumbra {
 
 namespace {
-// Every name --strategies accepts for a row: its label with or without the integrator type, its
-// short name, and each spelling of its most specific selecting value in a scene file (solidAngle,
-// uniform).
-bool namesStrategy(const StrategyRow& row, const std::string& name) {
-  std::string_view label = row.label;
-  if (name == label || name == row.shortName || name == label.substr(label.find('/') + 1)) return true;
-  // The most specific selecting property's value, or a less specific one's when the more specific
-  // ones take their default (solidAngle names solid-angle with every light).
+// The selecting property by whose value `name` names `row` (-1: none): the most specific property's
+// value, or a less specific one's when the more specific ones take their default (solidAngle names
+// solid-angle with every light, mis names mis with solid angle and the power heuristic).
+int namingLevel(const StrategyRow& row, const std::string& name) {
   for (size_t i = row.select.size(); i-- > 0;) {
     const StrategyProperty& p = row.select[i];
     if (p.name.empty()) continue;
-    if (p.value.accepts(name)) return true;
-    if (!p.isDefault) return false;
+    if (p.value.accepts(name)) return int(i);
+    if (!p.isDefault) return -1;
   }
-  return false;
+  return -1;
+}
+
+// Every name --strategies accepts for a row: its label with or without the integrator type, its
+// short name, and each spelling of the selecting value namingLevel finds (solidAngle, uniform, mis).
+bool namesStrategy(const StrategyRow& row, const std::string& name) {
+  std::string_view label = row.label;
+  if (name == label || name == row.shortName || name == label.substr(label.find('/') + 1)) return true;
+  const int level = namingLevel(row, name);
+  if (level < 0) return false;
+  // A value other rows of the type share for the same property names none of them ("power": every
+  // light selection by power, every mis row with the power heuristic; "uniform" names the hemisphere
+  // warp only); one that different properties accept names the first row in table order
+  // (parseStrategies: "solidAngle" is measure solid-angle before mis's lightMeasure).
+  const std::string_view property = row.select[size_t(level)].name.canonical();
+  for (const StrategyRow& other : strategyTable()) {
+    if (&other == &row || other.xmlType != row.xmlType) continue;
+    const int l = namingLevel(other, name);
+    if (l >= 0 && other.select[size_t(l)].name.canonical() == property) return false;
+  }
+  return true;
 }
 
 // The integrator types with more than one strategy, in table order.

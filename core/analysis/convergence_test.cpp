@@ -114,19 +114,33 @@ TEST(ParseStrategies, LabelsShortNamesAndSceneSpellingsNameTheirRow) {
   EXPECT_EQ(strategiesOf(parseStrategies(direct, "solid-angle-bvh,area-power,direct/area-uniform")),
             (std::vector<Strategy>{Strategy::DirectSolidAngleBvh, Strategy::DirectAreaPower,
                                    Strategy::DirectAreaUniform}));
+  EXPECT_EQ(
+      strategiesOf(parseStrategies(direct, "projectedSolidAngle,projected-solid-angle-bvh,mis")),
+      (std::vector<Strategy>{Strategy::DirectProjectedSolidAngle, Strategy::DirectProjectedSolidAngleBvh,
+                             Strategy::DirectMisSolidAnglePower}));
+  // A value several rows share for the same property ("power": every light selection by power and
+  // every mis heuristic; "bvh": every measure's BVH selection) names none; labels do.
+  EXPECT_THROW(parseStrategies(direct, "power"), Error);
+  EXPECT_THROW(parseStrategies(direct, "bvh"), Error);
+  EXPECT_EQ(strategiesOf(parseStrategies(direct, "mis/area/balance,mis-solid-angle-power")),
+            (std::vector<Strategy>{Strategy::DirectMisAreaBalance, Strategy::DirectMisSolidAnglePower}));
   EXPECT_EQ(strategiesOf(parseStrategies({Strategy::AoUniform, 1}, "cosine,ao-uniform")),
             (std::vector<Strategy>{Strategy::AoCosine, Strategy::AoUniform}));
 }
 
 TEST(ParseStrategies, UnknownNamesFailWithWhatIsAccepted) {
   try {
-    parseStrategies({Strategy::DirectSolidAngle, 1}, "area,mis");
+    parseStrategies({Strategy::DirectSolidAngle, 1}, "area,bogus");
     FAIL() << "no error";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find(
-                  "unknown strategy \"mis\" (expected all, or a comma-separated list of: "
+                  "unknown strategy \"bogus\" (expected all, or a comma-separated list of: "
                   "uniform-hemisphere, cosine-hemisphere, area, area-uniform, area-power, area-bvh, "
-                  "solid-angle, solid-angle-uniform, solid-angle-power, solid-angle-bvh)"),
+                  "solid-angle, solid-angle-uniform, solid-angle-power, solid-angle-bvh, "
+                  "projected-solid-angle, projected-solid-angle-uniform, projected-solid-angle-power, "
+                  "projected-solid-angle-bvh, mis-solid-angle-power, mis-solid-angle-balance, "
+                  "mis-area-power, mis-area-balance, mis-projected-solid-angle-power, "
+                  "mis-projected-solid-angle-balance)"),
               std::string::npos)
         << e.what();
   }

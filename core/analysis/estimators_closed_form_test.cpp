@@ -1,4 +1,4 @@
-// Every estimator (the direct integrator's four strategies, AO with both warps) against the closed
+// Every estimator (every strategy of the direct integrator, AO with both warps) against the closed
 // forms of core/analysis/closed_forms.h, with a statistical bound: |estimate - truth| < 4 standard
 // errors of the estimate (plus a tiny absolute slack for float rounding when the truth is exactly
 // representable).
@@ -67,14 +67,29 @@ TEST_P(DirectClosedForm, EveryMeasureMatchesTheIrradianceClosedForm) {
   // x is off the plane's diagonal (the shared edge of its two triangles); lights are placed relative to it.
   const Vec3 x(0.31f, 0.17f, 0.f);
   LoadedScene s = planeAndLight(x + lc.c, lc.r, lc.Le);
-  // Lr = albedo/pi * Le * I(theta, alpha), albedo = 1.
+  // Lr = albedo/pi * Le * I(theta, alpha), albedo = 1, at the point and normal the integrator shades: the
+  // shallow camera ray meets the (float-rotated) plane up to 1e-4 away from x, which the zero-variance
+  // projected-solid-angle estimate resolves.
+  SurfaceHit hit;
+  ASSERT_TRUE(s.scene->geometry.intersect(shallowRayOnto(x), hit));
   double truth =
       lc.Le / kPiD *
-      sphereLightIrradianceFactor(glm::dvec3(x), glm::dvec3(0, 0, 1), glm::dvec3(x + lc.c), double(lc.r));
+      sphereLightIrradianceFactor(glm::dvec3(hit.p), glm::dvec3(hit.ns),
+                                  glm::dvec3(s.scene->sphereLights[0].sphere.center), double(lc.r));
   const int n = 40000;
   for (uint64_t seed : {1u, 2u}) {
     checkAgainstTruth("solid-angle", directAt(Strategy::DirectSolidAngle, s, x, n, seed), truth);
+    // Unoccluded: projected-solid-angle sampling's every sample is the closed form (zero variance).
+    const Estimate psa = directAt(Strategy::DirectProjectedSolidAngle, s, x, n, seed);
+    checkAgainstTruth("projected-solid-angle", psa, truth);
+    EXPECT_LE(psa.standardError, 1e-6 * truth) << "projected-solid-angle";
     if (lc.areaToo) checkAgainstTruth("area", directAt(Strategy::DirectArea, s, x, n, seed), truth);
+    // Every MIS row (light measure x heuristic, one light and one cosine sample per camera sample).
+    for (const StrategyRow& row : strategyTable()) {
+      if (row.counts[0].name.empty()) continue;
+      if (!lc.areaToo && row.select[1].value.accepts("area")) continue;
+      checkAgainstTruth(std::string(row.label).c_str(), directAt(row.strategy, s, x, n, seed), truth);
+    }
     if (lc.hemisphereToo) {
       checkAgainstTruth("cosine-hemisphere", directAt(Strategy::DirectCosineHemisphere, s, x, 4 * n, seed),
                         truth);
@@ -102,6 +117,7 @@ INSTANTIATE_TEST_SUITE_P(
 TEST(DirectClosedForm, LightBelowTheHorizonGivesExactlyZero) {
   LoadedScene s = planeAndLight(Vec3(0, 2, -1.5f), 1.f, 100.f);
   for (auto e : {directAt(Strategy::DirectSolidAngle, s, Vec3(0), 1000, 3),
+                 directAt(Strategy::DirectProjectedSolidAngle, s, Vec3(0), 1000, 3),
                  directAt(Strategy::DirectArea, s, Vec3(0), 1000, 3),
                  directAt(Strategy::DirectUniformHemisphere, s, Vec3(0), 1000, 3)}) {
     EXPECT_EQ(e.mean, 0.0);
@@ -146,20 +162,21 @@ SeveralLights severalLights() {
 TEST(DirectClosedForm, EveryLightSelectionMatchesTheSumOfTheLightsClosedForms) {
   const SeveralLights s = severalLights();
   ASSERT_EQ(s.scene.scene->sphereLights.size(), 6u);
-  const Strategy strategies[] = {Strategy::DirectArea,
-                                 Strategy::DirectAreaUniform,
-                                 Strategy::DirectAreaPower,
-                                 Strategy::DirectAreaBvh,
-                                 Strategy::DirectSolidAngle,
-                                 Strategy::DirectSolidAngleUniform,
-                                 Strategy::DirectSolidAnglePower,
-                                 Strategy::DirectSolidAngleBvh};
+  // Every light-sampling row that takes a light selection (each measure with all, uniform, power, bvh).
+  std::vector<Strategy> strategies;
+  for (const StrategyRow& row : strategyTable())
+    if (row.select[1].name.canonical() == "lightSelection") strategies.push_back(row.strategy);
+  ASSERT_EQ(strategies.size(), 12u);
   for (const Vec3 x : {Vec3(0.31f, 0.17f, 0.f), Vec3(-2.1f, 0.4f, 0.f), Vec3(-0.8f, -1.f, 0.f)}) {
+    // The truth at the point and normal the integrator shades (the shallow camera ray meets the plane
+    // up to 1e-4 from x), which the all-lights projected-solid-angle estimate resolves.
+    SurfaceHit hit;
+    ASSERT_TRUE(s.scene.scene->geometry.intersect(shallowRayOnto(x), hit));
     double truth = 0.0;
     for (size_t i = 0; i < s.lights.size(); ++i)
       truth += s.radiance[i] / M_PI *
-               sphereLightIrradianceFactor(glm::dvec3(x), glm::dvec3(0, 0, 1), glm::dvec3(s.lights[i].first),
-                                           double(s.lights[i].second));
+               sphereLightIrradianceFactor(glm::dvec3(hit.p), glm::dvec3(hit.ns),
+                                           glm::dvec3(s.lights[i].first), double(s.lights[i].second));
     for (Strategy strategy : strategies) {
       const std::string what = std::string(strategyRow(strategy).label) + " at " + std::to_string(x.x);
       const Estimate e = directAt(strategy, s.scene, x, 400000, 4);

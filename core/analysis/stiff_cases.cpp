@@ -147,9 +147,10 @@ constexpr unsigned bit(Strategy s) {
   return 1u << unsigned(s);
 }
 constexpr unsigned kSolid = bit(Strategy::DirectSolidAngle), kArea = bit(Strategy::DirectArea),
+                   kProjected = bit(Strategy::DirectProjectedSolidAngle),
                    kCosine = bit(Strategy::DirectCosineHemisphere),
                    kUniform = bit(Strategy::DirectUniformHemisphere),
-                   kAll = kSolid | kArea | kCosine | kUniform;
+                   kAll = kSolid | kArea | kProjected | kCosine | kUniform;
 
 // Direct lighting of the receiver point by each strategy in `strategies`: light sampling first, then
 // hemisphere sampling (which needs no area light) with hemisphereFactor times the samples; the i-th
@@ -171,7 +172,8 @@ CaseResult directCase(const CaseOptions& o, const std::string& file, unsigned st
   bool first = true;
   n = count(o, n);
   const Strategy order[] = {Strategy::DirectSolidAngle, Strategy::DirectArea,
-                            Strategy::DirectCosineHemisphere, Strategy::DirectUniformHemisphere};
+                            Strategy::DirectProjectedSolidAngle, Strategy::DirectCosineHemisphere,
+                            Strategy::DirectUniformHemisphere};
   for (unsigned i = 0; i < std::size(order); ++i) {
     if (!(strategies & bit(order[i]))) continue;
     int samples = strategyRow(order[i]).needs == SceneNeed::AreaLights ? n : hemisphereFactor * n;
@@ -744,32 +746,32 @@ std::vector<StiffCase> makeCases() {
   add("light-on-surface", "near-light", "shading point exactly on the light's surface", onSurface);
   add("light-outside-1e-6r", "near-light", "receiver 1e-6 r outside an overhead light (integrator)",
       [](const CaseOptions& o) {
-        return directCase(o, "light-touching.xml", kSolid | kCosine, 20000, kReceiver, 1e-5f, 1);
+        return directCase(o, "light-touching.xml", kSolid | kProjected | kCosine, 20000, kReceiver, 1e-5f, 1);
       });
   add("light-outside-1e-8r", "near-light", "shading point 1e-8 r outside the light", outside1e8);
   add("light-inside", "near-light", "receiver inside a one-sided light: exactly 0", inside);
   add("light-below-horizon", "horizon", "light entirely below the horizon: exactly 0",
       [](const CaseOptions& o) { return exactlyZeroCase(o, "light-below-horizon.xml", 4000); });
   add("light-straddling", "horizon", "light straddling the horizon", [](const CaseOptions& o) {
-    return directCase(o, "light-straddling.xml", kSolid | kArea | kCosine, 20000);
+    return directCase(o, "light-straddling.xml", kSolid | kProjected | kArea | kCosine, 20000);
   });
   add("light-centre-on-horizon", "horizon", "light centre exactly on the horizon", [](const CaseOptions& o) {
-    return directCase(o, "light-centre-on-horizon.xml", kSolid | kArea | kCosine, 20000);
+    return directCase(o, "light-centre-on-horizon.xml", kSolid | kProjected | kArea | kCosine, 20000);
   });
   add("light-grazing-89.9", "horizon", "light centre 89.9 degrees from the normal", [](const CaseOptions& o) {
-    return directCase(o, "light-grazing.xml", kSolid | kArea | kCosine, 20000);
+    return directCase(o, "light-grazing.xml", kSolid | kProjected | kArea | kCosine, 20000);
   });
   add("equal-power-r1", "equal-power", "equal power, r = 1 (all strategies)",
       [](const CaseOptions& o) { return directCase(o, "equal-power-r1.xml", kAll, 20000); });
   add("equal-power-r1e-3", "equal-power", "equal power, r = 1e-3 (light sampling; hemisphere finite)",
       [](const CaseOptions& o) {
-        CaseResult r = directCase(o, "equal-power-r1e-3.xml", kSolid | kArea, 20000);
+        CaseResult r = directCase(o, "equal-power-r1e-3.xml", kSolid | kProjected | kArea, 20000);
         equalPowerTruths(o, "equal-power-r1e-3.xml", r);
         return r;
       });
   add("equal-power-r1e-6", "equal-power", "equal power, r = 1e-6 (light sampling; hemisphere finite)",
       [](const CaseOptions& o) {
-        CaseResult r = directCase(o, "equal-power-r1e-6.xml", kSolid | kArea, 20000);
+        CaseResult r = directCase(o, "equal-power-r1e-6.xml", kSolid | kProjected | kArea, 20000);
         LoadedScene s = load(o, "equal-power-r1e-6.xml");
         bool first = false;
         Ray ray = shallowRayOnto(kReceiver);

@@ -4,15 +4,19 @@
 // strategy chosen at compile time (one instantiation per measure, so no per-sample branching):
 //   hemisphere (uniform or cosine warp): trace the sampled direction, add Le of an emitter it hits;
 //   area: a uniform point on each light sphere, pdf converted to solid angle (far side adds 0);
-//   solid angle: a uniform direction in the cone each light sphere subtends.
-// Area and solid angle sample every light per shading sample (light selection `all`), or one light
-// chosen per shading sample (uniform, by power, by the light BVH), its probability divided out.
+//   solid angle: a uniform direction in the cone each light sphere subtends;
+//   projected solid angle: a direction in that cone with density cos θ / Ω⊥ above the horizon, whose
+//   estimate Le Ω⊥ has no variance where the light is unoccluded.
+// The three light measures sample every light per shading sample (light selection `all`), or one
+// light chosen per shading sample (uniform, by power, by the light BVH), its probability divided out.
 // `simple` is the same integrator with delta lights only.
 #pragma once
 
 #include <cmath>
 
+#include "core/integrators/direct_lighting.h"
 #include "core/integrators/integrator_desc.h"
+#include "core/integrators/light_technique.h"
 #include "core/integrators/shading_point.h"
 #include "core/sampling/sampler.h"
 #include "core/sampling/warp.h"
@@ -24,7 +28,7 @@ template <Strategy kStrategy>
 struct DirectIntegrator {
   static_assert(kStrategy == Strategy::Simple || kStrategy == Strategy::DirectUniformHemisphere ||
                 kStrategy == Strategy::DirectCosineHemisphere || samplesLightArea(kStrategy) ||
-                samplesLightSolidAngle(kStrategy));
+                samplesLightSolidAngle(kStrategy) || samplesLightProjectedSolidAngle(kStrategy));
   static constexpr LightSelection kSelection = lightSelectionOf(kStrategy);
   int samples = 1;
 
@@ -48,39 +52,13 @@ struct DirectIntegrator {
       E += selectedLightIrradiance(scene, scene.powerSelection, sp, sampler);
     } else if constexpr (kSelection == LightSelection::Bvh) {
       E += selectedLightIrradiance(scene, scene.lightBvh, sp, sampler);
-    } else if constexpr (samplesLightArea(kStrategy) || samplesLightSolidAngle(kStrategy)) {
+    } else if constexpr (kStrategy != Strategy::Simple) {
       E += lightSamplingIrradiance(scene, sp, sampler);
     }
     return L + material.albedo * kInvPi * E;
   }
 
  private:
-  // A direction w (with cosine `cosTheta` to the shading normal) can carry light only if it also
-  // leaves the geometric surface on the lit side.
-  static bool leavesSurface(const ShadingPoint& sp, const Vec3& w, float cosTheta) {
-    return cosTheta > 0.f && glm::dot(w, sp.ng) > 0.f;
-  }
-
-  static Color3 deltaIrradiance(const Scene& scene, const ShadingPoint& sp) {
-    Color3 E(0.f);
-    for (const PointLight& light : scene.pointLights) {
-      DeltaLightSample s = light.sample(sp.hit.p);
-      float cosTheta = glm::dot(sp.ns, s.wi);
-      if (isBlack(s.Li) || !leavesSurface(sp, s.wi, cosTheta)) continue;
-      if (scene.geometry.occluded(sp.spawnShadowRayToPoint(light.position, maxAbsComponent(light.position))))
-        continue;
-      E += s.Li * cosTheta;
-    }
-    for (const DirectionalLight& light : scene.directionalLights) {
-      DeltaLightSample s = light.sample(sp.hit.p);
-      float cosTheta = glm::dot(sp.ns, s.wi);
-      if (isBlack(s.Li) || !leavesSurface(sp, s.wi, cosTheta)) continue;
-      if (scene.geometry.occluded(sp.spawnRay(s.wi, scene.rayLengthBound))) continue;
-      E += s.Li * cosTheta;
-    }
-    return E;
-  }
-
   Color3 hemisphereIrradiance(const Scene& scene, const ShadingPoint& sp, Sampler& sampler) const {
     Color3 E(0.f);
     for (int i = 0; i < samples; ++i) {
@@ -106,21 +84,27 @@ struct DirectIntegrator {
     return E * (1.f / float(samples));  // the reciprocal is off the critical path
   }
 
+  static constexpr LightMeasure kLightMeasure = samplesLightArea(kStrategy) ? LightMeasure::Area
+                                                : samplesLightSolidAngle(kStrategy)
+                                                    ? LightMeasure::SolidAngle
+                                                    : LightMeasure::ProjectedSolidAngle;
+
   Color3 lightSamplingIrradiance(const Scene& scene, const ShadingPoint& sp, Sampler& sampler) const {
     Color3 E(0.f);
     for (const SphereLight& light : scene.sphereLights) {
+      const LightTechnique<kLightMeasure> technique(light, sp);
       float lightScale = maxAbsComponent(light.sphere.center) + light.sphere.radius;
       for (int i = 0; i < samples; ++i) {
         Vec2 u = sampler.next2D();
-        LightSample s =
-            samplesLightArea(kStrategy) ? light.sampleArea(sp.hit.p, u) : light.sampleSolidAngle(sp.hit.p, u);
+        if (!technique.canSample()) continue;
+        LightSample s = technique.sample(u);
         if (!(s.pdf > 0.f) || isBlack(s.Le)) continue;
         float cosTheta = glm::dot(sp.ns, s.wi);
         if (!leavesSurface(sp, s.wi, cosTheta)) continue;
         // Every traced sample faces x (far-side area samples have Le = 0): the light cannot block it.
         if (scene.geometry.occluded(sp.spawnShadowRayAlong(s.wi, s.dist, lightScale), light.geometryIndex))
           continue;
-        E += s.Le * (cosTheta / s.pdf);
+        E += s.Le * technique.cosOverPdf(s, cosTheta);
       }
     }
     return E * (1.f / float(samples));
@@ -140,15 +124,21 @@ struct DirectIntegrator {
       const LightPick pick = selection.pick(sp.hit.p, sp.ns, double(uPick.x) + double(uPick.y) * 0x1p-24);
       if (!(pick.pmf > 0.0)) continue;
       const SphereLight& light = scene.sphereLights[pick.light];
-      LightSample s =
-          samplesLightArea(kStrategy) ? light.sampleArea(sp.hit.p, u) : light.sampleSolidAngle(sp.hit.p, u);
+      const LightTechnique<kLightMeasure> technique(light, sp);
+      if (!technique.canSample()) continue;
+      LightSample s = technique.sample(u);
       if (!(s.pdf > 0.f) || isBlack(s.Le)) continue;
       float cosTheta = glm::dot(sp.ns, s.wi);
       if (!leavesSurface(sp, s.wi, cosTheta)) continue;
       const float lightScale = maxAbsComponent(light.sphere.center) + light.sphere.radius;
       if (scene.geometry.occluded(sp.spawnShadowRayAlong(s.wi, s.dist, lightScale), light.geometryIndex))
         continue;
-      E += s.Le * static_cast<float>(double(cosTheta) / (double(s.pdf) * pick.pmf));
+      // Divided in double: pmfs of many lights are tiny. Projected solid angle keeps its closed-form
+      // cos θ / pdf = Ω⊥ (no variance from the division).
+      if constexpr (kLightMeasure == LightMeasure::ProjectedSolidAngle)
+        E += s.Le * static_cast<float>(double(technique.cosOverPdf(s, cosTheta)) / pick.pmf);
+      else
+        E += s.Le * static_cast<float>(double(cosTheta) / (double(s.pdf) * pick.pmf));
     }
     return E * (1.f / float(samples));
   }

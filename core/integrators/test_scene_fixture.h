@@ -2,10 +2,18 @@
 // world's parts. The receiver is the plane z = 0 facing +z, albedo 1 unless stated.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
 #include <memory>
+#include <vector>
 
 #include "core/geometry/procedural_mesh.h"
 #include "core/geometry/ray.h"
+#include "core/lights/sphere_cap.h"
+#include "core/math/vec.h"
+#include "core/sampling/sampler.h"
+#include "core/sampling/sampler_table.h"
 #include "core/world/scene.h"
 
 namespace penumbra::test {
@@ -48,6 +56,71 @@ inline Ray rayDownOnto(float x, float y) {
   r.o = Vec3(x, y, 1.f);
   r.d = Vec3(0.f, 0.f, -1.f);
   return r;
+}
+
+struct TestSphere {
+  Vec3 center;
+  float radius;
+  float radiance;  // 0: an occluder
+};
+
+// The plane z = 0 (albedo 1, half-size `half`) with the spheres (lights and occluders), finished.
+inline std::unique_ptr<Scene> planeScene(const std::vector<TestSphere>& spheres, float half = 10.f) {
+  auto scene = planeScene(half);
+  for (const TestSphere& s : spheres) addSphere(*scene, s.center, s.radius, Color3(s.radiance));
+  finish(*scene);
+  scene->rayLengthBound = std::max(scene->rayLengthBound, 1e-30f);
+  return scene;
+}
+
+// Reaches x on the plane at a shallow angle, from `reach` away along -x, so the camera ray passes under
+// lights near the plane.
+inline Ray shallowRayOnto(const Vec3& x, float reach = 1.f) {
+  Ray r;
+  r.o = x + reach * Vec3(-1.f, 0.f, 1e-4f);
+  r.d = glm::normalize(x - r.o);
+  return r;
+}
+
+// Lr = (albedo/π) Le I(θ, α) at the point x (normal +z) for one sphere light, from the float geometry.
+inline double closedFormRadiance(const Vec3& x, const Vec3& center, float radius, float radiance) {
+  const DVec3 v = DVec3(center) - DVec3(x);
+  const double d = glm::length(v), r = radius;
+  if (!(d > r)) return 0.0;
+  const double cosTheta = v.z / d, sinTheta = std::hypot(v.x, v.y) / d;
+  const double sinAlpha = r / d, cosAlpha = std::sqrt((d - r) * (d + r)) / d;
+  return double(radiance) / kPiD * sphereLightIrradianceFactor(cosTheta, sinTheta, sinAlpha, cosAlpha);
+}
+
+struct Estimate {
+  double mean = 0, standardError = 0;
+  double minValue = INFINITY, maxValue = -INFINITY;
+  uint64_t bad = 0;  // NaN / Inf / negative values (excluded)
+};
+
+// n independent (or stratified) camera samples of integrator.Li along one ray, red channel.
+template <class Integrator>
+Estimate estimateAlong(const Scene& scene, const Integrator& integrator, const Ray& ray, int n, uint64_t seed,
+                       SamplerKind kind = SamplerKind::Independent) {
+  Sampler sampler(kind, uint32_t(n), seed);
+  double sum = 0, sumSq = 0;
+  Estimate e;
+  for (int i = 0; i < n; ++i) {
+    sampler.startPixelSample(IVec2(7, 11), uint32_t(i));
+    const float L = integrator.Li(scene, ray, sampler).x;
+    if (!(L >= 0.f) || !std::isfinite(L)) {
+      ++e.bad;
+      continue;
+    }
+    sum += L;
+    sumSq += double(L) * L;
+    e.minValue = std::min(e.minValue, double(L));
+    e.maxValue = std::max(e.maxValue, double(L));
+  }
+  e.mean = sum / n;
+  const double var = std::max(0.0, sumSq / n - e.mean * e.mean) * n / (n - 1.0);
+  e.standardError = std::sqrt(var / n);
+  return e;
 }
 
 }  // namespace penumbra::test

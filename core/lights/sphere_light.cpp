@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "core/math/frame.h"
 #include "core/math/sincos_turns.h"
 #include "core/sampling/warp.h"
 
@@ -17,15 +18,6 @@ constexpr double kMaxPdf = 3.4028234663852886e38;
 // may round up to a few 2^-24 outside it. pdfSolidAngle accepts sin θ up to sin θmax + 2^-22, so it
 // never returns 0 for a direction sampleSolidAngle produced (matters for cones of sin²θmax ≲ 1e-8).
 constexpr double kDirectionSlack = 0x1p-22;
-
-// Orthonormal basis around a unit double vector (Duff et al. 2017).
-void basis(const DVec3& n, DVec3& s, DVec3& t) {
-  const double sign = std::copysign(1.0, n.z);
-  const double a = -1.0 / (sign + n.z);
-  const double b = n.x * n.y * a;
-  s = DVec3(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x);
-  t = DVec3(b, sign + n.y * n.y * a, -n.y);
-}
 
 // The cone subtended by the sphere at x; false if x is inside or the cone is degenerate.
 struct Cone {
@@ -115,7 +107,7 @@ LightSample SphereLight::sampleSolidAngle(const Vec3& x, Vec2 u) const {
   const double sinA = std::sqrt(std::max(0.0, 1.0 - cosA * cosA));
 
   DVec3 s, t;
-  basis(cone.wc, s, t);
+  orthonormalBasis(cone.wc, s, t);
   const DVec3 lateral = cosPhi * s + sinPhi * t;
   const DVec3 wi = sinT * lateral + cosT * cone.wc;
   const DVec3 n = sinA * lateral - cosA * cone.wc;  // faces x: n·(−wc) = cos α ≥ 0

@@ -20,6 +20,15 @@ struct Frame {
   Vec3 toWorld(const Vec3& v) const { return s * v.x + t * v.y + n * v.z; }
 };
 
+// The same basis around a unit double vector (light sampling builds its frames in double).
+inline void orthonormalBasis(const DVec3& n, DVec3& s, DVec3& t) {
+  const double sign = std::copysign(1.0, n.z);
+  const double a = -1.0 / (sign + n.z);
+  const double b = n.x * n.y * a;
+  s = DVec3(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x);
+  t = DVec3(b, sign + n.y * n.y * a, -n.y);
+}
+
 }  // namespace penumbra
 
 #include <glm/mat4x4.hpp>

@@ -34,11 +34,12 @@ TEST(LightSelectionRows, EveryMeasureOffersEachSelectionOnceAndSwitchesBack) {
       // Same measure, same integrator: only the selection changed.
       EXPECT_EQ(samplesLightArea(*t), samplesLightArea(s)) << row.label;
       EXPECT_EQ(samplesLightSolidAngle(*t), samplesLightSolidAngle(s)) << row.label;
+      EXPECT_EQ(samplesLightProjectedSolidAngle(*t), samplesLightProjectedSolidAngle(s)) << row.label;
       EXPECT_EQ(allLightsRow(*t), base) << row.label;
       EXPECT_EQ(withLightSelection(*t, lightSelectionOf(s)), s) << row.label;
     }
   }
-  EXPECT_EQ(measures, 2);  // area, solid angle
+  EXPECT_EQ(measures, 3);  // area, solid angle, projected solid angle (not mis: it samples every light)
 }
 
 TEST(LightSelectionRows, NamesAreTheXmlValues) {

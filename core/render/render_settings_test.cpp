@@ -29,6 +29,20 @@ TEST(DescribeSettings, WritesTheCanonicalSpellingOfTheStrategy) {
   auto area = described({Strategy::DirectArea, 1});
   EXPECT_EQ(area["measure"], "area");
   EXPECT_EQ(area.count("warp-type"), 0u);
+  auto psaBvh = described({Strategy::DirectProjectedSolidAngleBvh, 3});
+  EXPECT_EQ(psaBvh["measure"], "projected-solid-angle");
+  EXPECT_EQ(psaBvh["lightSelection"], "bvh");
+  EXPECT_EQ(psaBvh["nSamples"], "3");
+  IntegratorDesc misArea{Strategy::DirectMisAreaBalance, 1};
+  misArea.lightSamples = 3;
+  misArea.bsdfSamples = 2;
+  auto mis = described(misArea);
+  EXPECT_EQ(mis["measure"], "mis");
+  EXPECT_EQ(mis["lightMeasure"], "area");
+  EXPECT_EQ(mis["heuristic"], "balance");
+  EXPECT_EQ(mis["lightSamples"], "3");
+  EXPECT_EQ(mis["bsdfSamples"], "2");
+  EXPECT_EQ(mis.count("lightSelection"), 0u);  // MIS samples every light
   auto normals = described({Strategy::Normals, 1});
   EXPECT_EQ(normals["integrator"], "normals");
   EXPECT_EQ(normals.count("nSamples") + normals.count("shadingSamples"), 0u);

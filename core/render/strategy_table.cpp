@@ -4,6 +4,7 @@
 
 #include "core/integrators/ao_integrator.h"
 #include "core/integrators/direct_integrator.h"
+#include "core/integrators/mis_integrator.h"
 #include "core/integrators/normals_integrator.h"
 #include "core/render/ray_estimator.h"
 #include "core/render/row_loop.h"
@@ -30,6 +31,18 @@ RayEstimate alongRay(const Scene& scene, const Ray& ray, int samples, int n, uin
   return estimateRay(scene, makeIntegrator<Integrator>(samples), ray, n, seed);
 }
 
+// The MIS integrators take both counts from the description; the one-ray estimator's `samples` sets
+// both (tests and the stiff catalogue run one of each).
+template <LightMeasure kMeasure, MisHeuristic kHeuristic>
+RowRenderer misRows(const RenderJob& job, const IntegratorDesc& desc) {
+  return rowsFor(job, MisIntegrator<kMeasure, kHeuristic>{desc.lightSamples, desc.bsdfSamples});
+}
+
+template <LightMeasure kMeasure, MisHeuristic kHeuristic>
+RayEstimate misAlongRay(const Scene& scene, const Ray& ray, int samples, int n, uint64_t seed) {
+  return estimateRay(scene, MisIntegrator<kMeasure, kHeuristic>{samples, samples}, ray, n, seed);
+}
+
 // Spellings the assignment's scenes use for each setting.
 constexpr Spellings kDirectSamples{{"nSamples", "shadingSamples"}};
 constexpr Spellings kAoSamples{{"shadingSamples", "nSamples"}};
@@ -48,6 +61,46 @@ constexpr StrategyProperty whenOrAbsent(Spellings name, Spellings value) {
   return {name, value, true};
 }
 constexpr StrategyProperty kNone{};
+
+constexpr Spellings kLightMeasure{{"lightMeasure"}};
+constexpr Spellings kHeuristic{{"heuristic"}};
+constexpr Spellings kSolidAngleValue{{"solid-angle", "solidAngle"}};
+constexpr Spellings kAreaValue{{"area"}};
+constexpr Spellings kProjectedValue{{"projected-solid-angle", "projectedSolidAngle"}};
+constexpr std::array<CountProperty, kMaxCounts> kMisCounts = {{
+    {{{"lightSamples"}}, &IntegratorDesc::lightSamples},
+    {{{"bsdfSamples"}}, &IntegratorDesc::bsdfSamples},
+}};
+
+// measure = mis, lightMeasure (solid-angle when absent), heuristic (power when absent). No
+// lightSelection: MIS samples every light (core/integrators/mis_integrator.h says why).
+constexpr std::array<StrategyProperty, kMaxSelectors> misSelect(Spellings light, bool lightDefault,
+                                                                bool power) {
+  return {{when(kMeasure, {{"mis"}}),
+           {kLightMeasure, light, lightDefault},
+           {kHeuristic, power ? Spellings{{"power"}} : Spellings{{"balance"}}, power}}};
+}
+
+template <LightMeasure kMeasure, MisHeuristic kH>
+constexpr StrategyRow misRow(Strategy strategy, std::string_view label, std::string_view shortName,
+                             std::string_view description, Spellings light, bool lightDefault) {
+  return StrategyRow{
+      .strategy = strategy,
+      .label = label,
+      .shortName = shortName,
+      .description = description,
+      .xmlType = "direct",
+      .samplesProperty = kDirectSamples,
+      .select = misSelect(light, lightDefault, kH == MisHeuristic::Power),
+      .counts = kMisCounts,
+      .needs = SceneNeed::AreaLights,
+      .fallback = Strategy::DirectCosineHemisphere,
+      .reference = false,
+      .baseline = false,
+      .makeRows = misRows<kMeasure, kH>,
+      .estimateRay = misAlongRay<kMeasure, kH>,
+  };
+}
 
 // In enum order (checked below); the order is the one lists and reports show.
 constexpr std::array kRows = {
@@ -150,8 +203,8 @@ constexpr std::array kRows = {
         .strategy = Strategy::DirectSolidAngle,
         .label = "direct/solid-angle",
         .shortName = "solid-angle",
-        .description =
-            "Direct light: uniform directions in the cone each light sphere subtends (lowest variance).",
+        .description = "Direct light: uniform directions in the cone each light sphere subtends (the "
+                       "reference strategy).",
         .xmlType = "direct",
         .samplesProperty = kDirectSamples,
         .select = {{whenOrAbsent(kMeasure, {{"solid-angle", "solidAngle"}}),
@@ -211,6 +264,99 @@ constexpr std::array kRows = {
         .makeRows = rows<DirectIntegrator<Strategy::DirectSolidAngleBvh>>,
         .estimateRay = alongRay<DirectIntegrator<Strategy::DirectSolidAngleBvh>>,
     },
+    StrategyRow{
+        .strategy = Strategy::DirectProjectedSolidAngle,
+        .label = "direct/projected-solid-angle",
+        .shortName = "projected-solid-angle",
+        .description = "Direct light: directions in each light's cone with density proportional to cos theta "
+                       "(zero variance where the light is unoccluded).",
+        .xmlType = "direct",
+        .samplesProperty = kDirectSamples,
+        .select = {{when(kMeasure, kProjectedValue), whenOrAbsent(kLightSelection, kAllLights)}},
+        .needs = SceneNeed::AreaLights,
+        .fallback = Strategy::DirectCosineHemisphere,
+        .reference = false,
+        .baseline = false,
+        .makeRows = rows<DirectIntegrator<Strategy::DirectProjectedSolidAngle>>,
+        .estimateRay = alongRay<DirectIntegrator<Strategy::DirectProjectedSolidAngle>>,
+    },
+    StrategyRow{
+        .strategy = Strategy::DirectProjectedSolidAngleUniform,
+        .label = "direct/projected-solid-angle-uniform",
+        .shortName = "projected-solid-angle-uniform",
+        .description =
+            "Direct light: a direction in the cone of one light per sample with density proportional to "
+            "cos theta, the light chosen uniformly.",
+        .xmlType = "direct",
+        .samplesProperty = kDirectSamples,
+        .select = {{when(kMeasure, kProjectedValue), when(kLightSelection, {{"uniform"}})}},
+        .needs = SceneNeed::AreaLights,
+        .fallback = Strategy::DirectCosineHemisphere,
+        .reference = false,
+        .baseline = false,
+        .makeRows = rows<DirectIntegrator<Strategy::DirectProjectedSolidAngleUniform>>,
+        .estimateRay = alongRay<DirectIntegrator<Strategy::DirectProjectedSolidAngleUniform>>,
+    },
+    StrategyRow{
+        .strategy = Strategy::DirectProjectedSolidAnglePower,
+        .label = "direct/projected-solid-angle-power",
+        .shortName = "projected-solid-angle-power",
+        .description =
+            "Direct light: a direction in the cone of one light per sample with density proportional to "
+            "cos theta, the light chosen by emitted power (alias table).",
+        .xmlType = "direct",
+        .samplesProperty = kDirectSamples,
+        .select = {{when(kMeasure, kProjectedValue), when(kLightSelection, {{"power"}})}},
+        .needs = SceneNeed::AreaLights,
+        .fallback = Strategy::DirectCosineHemisphere,
+        .reference = false,
+        .baseline = false,
+        .makeRows = rows<DirectIntegrator<Strategy::DirectProjectedSolidAnglePower>>,
+        .estimateRay = alongRay<DirectIntegrator<Strategy::DirectProjectedSolidAnglePower>>,
+    },
+    StrategyRow{
+        .strategy = Strategy::DirectProjectedSolidAngleBvh,
+        .label = "direct/projected-solid-angle-bvh",
+        .shortName = "projected-solid-angle-bvh",
+        .description =
+            "Direct light: a direction in the cone of one light per sample with density proportional to "
+            "cos theta, the light chosen by the light BVH (power, distance and horizon).",
+        .xmlType = "direct",
+        .samplesProperty = kDirectSamples,
+        .select = {{when(kMeasure, kProjectedValue), when(kLightSelection, {{"bvh"}})}},
+        .needs = SceneNeed::AreaLights,
+        .fallback = Strategy::DirectCosineHemisphere,
+        .reference = false,
+        .baseline = false,
+        .makeRows = rows<DirectIntegrator<Strategy::DirectProjectedSolidAngleBvh>>,
+        .estimateRay = alongRay<DirectIntegrator<Strategy::DirectProjectedSolidAngleBvh>>,
+    },
+    misRow<LightMeasure::SolidAngle, MisHeuristic::Power>(
+        Strategy::DirectMisSolidAnglePower, "direct/mis/solid-angle/power", "mis-solid-angle-power",
+        "Direct light: MIS of solid-angle light sampling and cosine directions, power heuristic.",
+        kSolidAngleValue, true),
+    misRow<LightMeasure::SolidAngle, MisHeuristic::Balance>(
+        Strategy::DirectMisSolidAngleBalance, "direct/mis/solid-angle/balance", "mis-solid-angle-balance",
+        "Direct light: MIS of solid-angle light sampling and cosine directions, balance heuristic.",
+        kSolidAngleValue, true),
+    misRow<LightMeasure::Area, MisHeuristic::Power>(
+        Strategy::DirectMisAreaPower, "direct/mis/area/power", "mis-area-power",
+        "Direct light: MIS of area light sampling and cosine directions, power heuristic.", kAreaValue,
+        false),
+    misRow<LightMeasure::Area, MisHeuristic::Balance>(
+        Strategy::DirectMisAreaBalance, "direct/mis/area/balance", "mis-area-balance",
+        "Direct light: MIS of area light sampling and cosine directions, balance heuristic.", kAreaValue,
+        false),
+    misRow<LightMeasure::ProjectedSolidAngle, MisHeuristic::Power>(
+        Strategy::DirectMisProjectedPower, "direct/mis/projected-solid-angle/power",
+        "mis-projected-solid-angle-power",
+        "Direct light: MIS of projected-solid-angle light sampling and cosine directions, power heuristic.",
+        kProjectedValue, false),
+    misRow<LightMeasure::ProjectedSolidAngle, MisHeuristic::Balance>(
+        Strategy::DirectMisProjectedBalance, "direct/mis/projected-solid-angle/balance",
+        "mis-projected-solid-angle-balance",
+        "Direct light: MIS of projected-solid-angle light sampling and cosine directions, balance heuristic.",
+        kProjectedValue, false),
     StrategyRow{
         .strategy = Strategy::AoUniform,
         .label = "ao/uniform",
@@ -347,6 +493,8 @@ std::vector<CanonicalProperty> canonicalProperties(const IntegratorDesc& desc) {
   std::vector<CanonicalProperty> out;
   if (!r.samplesProperty.empty())
     out.push_back({r.samplesProperty.canonical(), std::to_string(desc.samples), true});
+  for (const CountProperty& c : r.counts)
+    if (!c.name.empty()) out.push_back({c.name.canonical(), std::to_string(desc.*c.field), true});
   for (const StrategyProperty& p : r.select)
     if (!p.name.empty()) out.push_back({p.name.canonical(), std::string(p.value.canonical()), false});
   return out;

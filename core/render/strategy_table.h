@@ -41,6 +41,17 @@ enum class SceneNeed : uint8_t { Nothing, AreaLights };
 // "needs area lights" (empty for Nothing), for the viewer.
 const char* sceneNeedText(SceneNeed need);
 
+// An integer property of <integrator> beyond the shading samples (the MIS counts), and the field of
+// IntegratorDesc it sets; at least 1, default 1 (the field's default).
+struct CountProperty {
+  Spellings name;  // empty: unused slot
+  int IntegratorDesc::*field = nullptr;
+};
+
+// Selecting properties per row, read in order, each refining the previous ones.
+inline constexpr size_t kMaxSelectors = 3;
+inline constexpr size_t kMaxCounts = 2;
+
 struct StrategyRow {
   Strategy strategy;
   std::string_view label;        // "direct/solid-angle": viewer, logs, reports
@@ -48,8 +59,12 @@ struct StrategyRow {
   std::string_view description;  // one sentence (viewer tooltip)
   std::string_view xmlType;      // <integrator type="...">
   Spellings samplesProperty;     // shading samples per camera sample; empty: the integrator has none
-  // Read in order; the second refines the first (direct: measure, then warp-type for hemisphere).
-  std::array<StrategyProperty, 2> select;
+  // Read in order; each refines the ones before (direct: measure, then warp-type for hemisphere,
+  // lightSelection for area, solid-angle and projected-solid-angle, or lightMeasure and heuristic
+  // for mis).
+  std::array<StrategyProperty, kMaxSelectors> select;
+  std::array<CountProperty, kMaxCounts> counts =
+      {};  // further integer settings (mis: lightSamples, bsdfSamples)
   SceneNeed needs;
   Strategy fallback;  // what renders instead in a scene without what `needs` names
   bool reference;     // the lowest-variance strategy of its integrator type: renders references

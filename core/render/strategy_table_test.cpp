@@ -37,32 +37,42 @@ TEST(StrategyTable, LabelsAndShortNamesAreUnique) {
 // and each selecting property alike, and the selecting values tell the rows apart, with exactly one
 // default wherever a property may be left out.
 TEST(StrategyTable, RowsOfOneTypeAreSelectedUnambiguously) {
+  // Rows that agree on the selecting values before `level` share that level's property name.
+  auto samePrefix = [](const StrategyRow& a, const StrategyRow& b, size_t level) {
+    for (size_t i = 0; i < level; ++i)
+      if (a.select[i].value.names != b.select[i].value.names) return false;
+    return true;
+  };
   for (const StrategyRow& a : strategyTable()) {
     for (const StrategyRow& b : strategyTable()) {
       if (a.xmlType != b.xmlType) continue;
       EXPECT_EQ(a.samplesProperty.names, b.samplesProperty.names) << a.label << " vs " << b.label;
-      EXPECT_EQ(a.select[0].name.names, b.select[0].name.names) << a.label << " vs " << b.label;
-      bool sameFirst = a.select[0].value.names == b.select[0].value.names;
-      if (sameFirst) {
-        EXPECT_EQ(a.select[1].name.names, b.select[1].name.names) << a.label << " vs " << b.label;
+      for (size_t level = 0; level < kMaxSelectors; ++level) {
+        if (!samePrefix(a, b, level)) break;
+        EXPECT_EQ(a.select[level].name.names, b.select[level].name.names)
+            << a.label << " vs " << b.label << ", level " << level;
+        // No spelling of one row's value may select another row at the first level they differ.
+        if (a.select[level].value.names != b.select[level].value.names) {
+          for (std::string_view v : a.select[level].value.list()) {
+            EXPECT_FALSE(b.select[level].value.accepts(v)) << v;
+          }
+        }
       }
       if (&a != &b) {
-        EXPECT_FALSE(sameFirst && a.select[1].value.names == b.select[1].value.names)
+        EXPECT_FALSE(samePrefix(a, b, kMaxSelectors))
             << a.label << " and " << b.label << " are selected by the same values";
-      }
-      // No spelling of one row's value may select another row.
-      if (!sameFirst) {
-        for (std::string_view v : a.select[0].value.list()) EXPECT_FALSE(b.select[0].value.accepts(v)) << v;
       }
     }
     // One default among the rows that share each level's context.
-    for (size_t level = 0; level < 2; ++level) {
+    for (size_t level = 0; level < kMaxSelectors; ++level) {
       if (a.select[level].name.empty()) continue;
-      int defaults = 0;
+      // Several rows may carry the default value (mis: solid-angle with either heuristic); one value is.
+      std::set<std::vector<std::string_view>> defaults;
       for (const StrategyRow& b : strategyTable())
-        if (b.xmlType == a.xmlType && (level == 0 || b.select[0].value.names == a.select[0].value.names))
-          defaults += b.select[level].isDefault;
-      EXPECT_EQ(defaults, 1) << a.label << ", level " << level;
+        if (b.xmlType == a.xmlType && samePrefix(a, b, level) && b.select[level].isDefault)
+          defaults.insert(std::vector<std::string_view>(b.select[level].value.list().begin(),
+                                                        b.select[level].value.list().end()));
+      EXPECT_EQ(defaults.size(), 1u) << a.label << ", level " << level;
     }
   }
 }

@@ -44,8 +44,16 @@ TEST(LightSelectionDefault, AbsentResolvesByTheSceneLightCount) {
   EXPECT_EQ(settingsFor(at, {{"integrator.measure", "area"}}).integrator.strategy, Strategy::DirectArea);
   EXPECT_EQ(settingsFor(above, {{"integrator.measure", "area"}}).integrator.strategy,
             Strategy::DirectAreaBvh);
+  EXPECT_EQ(settingsFor(at, {{"integrator.measure", "projected-solid-angle"}}).integrator.strategy,
+            Strategy::DirectProjectedSolidAngle);
+  EXPECT_EQ(settingsFor(above, {{"integrator.measure", "projected-solid-angle"}}).integrator.strategy,
+            Strategy::DirectProjectedSolidAngleBvh);
   EXPECT_EQ(settingsFor(above, {{"integrator.measure", "hemisphere"}}).integrator.strategy,
             Strategy::DirectCosineHemisphere);
+  // mis samples every light whatever the count: no light selection to resolve.
+  EXPECT_EQ(settingsFor(above, {{"integrator.measure", "mis"}}).integrator.strategy,
+            settingsFor(1, {{"integrator.measure", "mis"}}).integrator.strategy);
+  EXPECT_FALSE(takesLightSelection(settingsFor(above, {{"integrator.measure", "mis"}}).integrator.strategy));
   // No <integrator> at all: the default strategy, resolved likewise.
   SceneNode bare = parseSceneString(scalingSceneXml(above, 16, 1), "scaling.xml", ".");
   std::erase_if(bare.children, [](const SceneNode& c) { return c.tag == "integrator"; });
@@ -57,12 +65,14 @@ TEST(LightSelectionDefault, AbsentResolvesByTheSceneLightCount) {
 
 TEST(LightSelectionDefault, ANamedSelectionAlwaysWins) {
   for (int n : {1, int(kAllLightsUpTo) + 1, 64})
-    for (const char* measure : {"solid-angle", "area"})
+    for (const char* measure : {"solid-angle", "area", "projected-solid-angle"})
       for (const char* name : {"all", "uniform", "power", "bvh"}) {
         RenderSettings s =
             settingsFor(n, {{"integrator.measure", measure}, {"integrator.lightSelection", name}});
         EXPECT_EQ(lightSelectionName(lightSelectionOf(s.integrator.strategy)), name) << n << " " << measure;
         EXPECT_EQ(samplesLightArea(s.integrator.strategy), std::string(measure) == "area");
+        EXPECT_EQ(samplesLightProjectedSolidAngle(s.integrator.strategy),
+                  std::string(measure) == "projected-solid-angle");
       }
 }
 

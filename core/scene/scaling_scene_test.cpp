@@ -71,9 +71,10 @@ Image renderScaling(const char* accel, const char* measure, bool expectBvh) {
 }
 
 // The BVH calls the same sphere test as the flat loop, so both find the same hits with the same t:
-// the images are bit-identical, for nearest-hit (hemisphere) and shadow-ray (area, solid angle) use.
+// the images are bit-identical, for nearest-hit (hemisphere) and shadow-ray (area, solid angle,
+// projected solid angle) use.
 TEST(ScalingScene, SphereBvhAndBruteForceRenderBitIdenticalImages) {
-  for (const char* measure : {"solid-angle", "area", "hemisphere"}) {
+  for (const char* measure : {"solid-angle", "area", "projected-solid-angle", "hemisphere"}) {
     const Image brute = renderScaling("brute-force", measure, false);
     const Image bvh = renderScaling("bvh", measure, true);
     const Image automatic = renderScaling("auto", measure, true);  // 80 spheres: above the threshold

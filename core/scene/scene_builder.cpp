@@ -121,7 +121,7 @@ void buildIntegrator(const SceneNode& node, size_t sphereLights, RenderSettings&
   constexpr int64_t kMaxShadingSamples = 1 << 16;
   d.samples =
       samples.empty() ? 1 : int(getCount(node, samples.list(), 1, kMaxShadingSamples, samples.canonical()));
-  for (size_t level = 0; level < 2; ++level) {
+  for (size_t level = 0; level < kMaxSelectors; ++level) {
     const Spellings& name = strategyRow(candidates.front()).select[level].name;
     if (name.empty()) break;
     std::string def;
@@ -145,6 +145,9 @@ void buildIntegrator(const SceneNode& node, size_t sphereLights, RenderSettings&
   d.strategy = candidates.front();
   if (!node.props.find(lightSelectionProperty().list()))
     d.strategy = withLightSelection(d.strategy, defaultLightSelection(sphereLights)).value_or(d.strategy);
+  for (const CountProperty& c : strategyRow(d.strategy).counts)
+    if (!c.name.empty())
+      d.*c.field = int(getCount(node, c.name.list(), 1, kMaxShadingSamples, c.name.canonical()));
 }
 
 // ---- geometry and lights ------------------------------------------------------------------------

@@ -90,6 +90,7 @@ TEST(SceneBuilder, EverySpellingOfEveryStrategyLoadsItsRow) {
 TEST(SceneBuilder, CanonicalSpellingsRoundTrip) {
   for (const StrategyRow& row : strategyTable()) {
     IntegratorDesc d{row.strategy, row.samplesProperty.empty() ? 1 : 5};
+    if (!row.counts[0].name.empty()) d.lightSamples = 3, d.bsdfSamples = 2;  // the MIS counts
     std::string xml = "<integrator type=\"" + std::string(row.xmlType) + "\">";
     for (const CanonicalProperty& p : canonicalProperties(d))
       xml += std::string(p.isInteger ? "<integer" : "<string") + " name=\"" + std::string(p.name) +
@@ -99,11 +100,24 @@ TEST(SceneBuilder, CanonicalSpellingsRoundTrip) {
   }
 }
 
+TEST(SceneBuilder, MisCountsDefaultToOneAndMustBePositive) {
+  const IntegratorDesc d =
+      fromXml("<integrator type=\"direct\"><string name=\"measure\" value=\"mis\"/></integrator>")
+          .settings.integrator;
+  EXPECT_EQ(d.strategy, Strategy::DirectMisSolidAnglePower);
+  EXPECT_EQ(d.lightSamples, 1);
+  EXPECT_EQ(d.bsdfSamples, 1);
+  expectError(
+      "<integrator type=\"direct\"><string name=\"measure\" value=\"mis\"/>\n"
+      "<integer name=\"bsdfSamples\" value=\"0\"/></integrator>",
+      3, "bsdfSamples");
+}
+
 TEST(SceneBuilder, UnknownStrategiesAreRejectedWithWhatIsAccepted) {
   expectError("<integrator type=\"path\"/>", 2, "(expected one of: direct, ao, simple, normals)");
   expectError("<integrator type=\"direct\">\n<string name=\"measure\" value=\"solid\"/></integrator>", 3,
               "unknown measure \"solid\" of <integrator type=\"direct\"> (expected one of: hemisphere, area, "
-              "solid-angle, solidAngle)");
+              "solid-angle, solidAngle, projected-solid-angle, projectedSolidAngle, mis)");
   expectError("<integrator type=\"ao\">\n<string name=\"sampling\" value=\"area\"/></integrator>", 3,
               "(expected one of: uniform-hemisphere, uniform, cosine-hemisphere, cosine)");
   expectError(

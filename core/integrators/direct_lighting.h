@@ -1,0 +1,36 @@
+// What every direct-lighting estimator shares: which directions can carry light to a shading point,
+// and the deterministic contribution of point and directional lights.
+#pragma once
+
+#include "core/integrators/shading_point.h"
+
+namespace penumbra {
+
+// A direction w (with cosine `cosTheta` to the shading normal) can carry light only if it also
+// leaves the geometric surface on the lit side.
+inline bool leavesSurface(const ShadingPoint& sp, const Vec3& w, float cosTheta) {
+  return cosTheta > 0.f && glm::dot(w, sp.ng) > 0.f;
+}
+
+// Irradiance from the point and directional lights, each traced once (they are deltas: no sampling).
+inline Color3 deltaIrradiance(const Scene& scene, const ShadingPoint& sp) {
+  Color3 E(0.f);
+  for (const PointLight& light : scene.pointLights) {
+    DeltaLightSample s = light.sample(sp.hit.p);
+    float cosTheta = glm::dot(sp.ns, s.wi);
+    if (isBlack(s.Li) || !leavesSurface(sp, s.wi, cosTheta)) continue;
+    if (scene.geometry.occluded(sp.spawnShadowRayToPoint(light.position, maxAbsComponent(light.position))))
+      continue;
+    E += s.Li * cosTheta;
+  }
+  for (const DirectionalLight& light : scene.directionalLights) {
+    DeltaLightSample s = light.sample(sp.hit.p);
+    float cosTheta = glm::dot(sp.ns, s.wi);
+    if (isBlack(s.Li) || !leavesSurface(sp, s.wi, cosTheta)) continue;
+    if (scene.geometry.occluded(sp.spawnRay(s.wi, scene.rayLengthBound))) continue;
+    E += s.Li * cosTheta;
+  }
+  return E;
+}
+
+}  // namespace penumbra

@@ -1,0 +1,98 @@
+// Projected-solid-angle sampling of a sphere light: directions towards the light distributed in
+// proportion to cos θ over the part of its subtended cap above the shading point's horizon, with
+// density cos θ / Ω⊥ (Ω⊥ that part's projected solid angle, the closed form of sphere_cap.h).
+// For an unoccluded diffuse receiver every sample's estimate Le cos θ / pdf is Le Ω⊥: zero variance.
+//
+// Nusselt: a direction (x, y, z) of the hemisphere around the normal projects to the point (x, y) of
+// the unit disk, and cos θ dω = dx dy, so points uniform in the cap's projection, lifted by
+// z = √(1 − x² − y²), are cos-distributed. With x along the projection of the light's centre, a cap of
+// angular radius α whose centre is at angle θ from the normal projects to the ellipse of centre
+// (cos α sin θ, 0) and semi-axes sin α cos θ (along x) and sin α (along y). A cap straddling the
+// horizon projects to a region bounded by the ellipse's arc above the horizon and the unit circle:
+// the ellipse touches the circle at the tangent points x = cos α / sin θ, |y| = yTangent, and beyond
+// them (x > cos α / sin θ) the region is the whole disk if the centre is above the horizon, the part
+// of the disk outside the ellipse if it is below. Every slice y = const of the region is one interval.
+//
+// The map of the unit square onto the region is a bijection that keeps stratification (no rejection):
+//   above the horizon: the concentric disk map scaled onto the ellipse, in closed form;
+//   straddling: u.x sets y by inverting the region's area below height |y| (Newton's method with a
+//   bisection fallback, to 1e-12 of the half area (see kAreaTolerance), at most 40 steps),
+//   u.y places x uniformly on the slice at y (the parallel map of Ureña & Georgiev).
+// Plain data, built once per (shading point, light) and reused for every sample there.
+#pragma once
+
+#include "core/lights/light_sample.h"
+#include "core/lights/sphere_light.h"
+
+namespace penumbra {
+
+struct ProjectedSphereCap {
+  // Stop rule of the straddling map's inversion: |area below y − target| ≤ inversionTolerance =
+  // max(kAreaTolerance · halfArea, the rounding of the area's closed form, 8 ε yMax (k + |a| b)) — the
+  // sampled y's CDF is then off by at most 1e-12 (1e-8 for the thinnest lenses of a cap just below the
+  // horizon, whose area cancels), far below the noise of any number of samples a render takes — or
+  // the step or the bracket shrinks to a few ulps of yMax, or kMaxInversionSteps steps.
+  static constexpr double kAreaTolerance = 1e-12;
+  static constexpr int kMaxInversionSteps = 40;
+
+  // The light as seen from the shading point.
+  DVec3 origin{0.0};    // the shading point x
+  DVec3 toCenter{0.0};  // c − x
+  double radius = 0.0, distance = 0.0;
+  Color3 radiance{0.f};
+  // Frame: ez the shading normal, ex towards the projection of the light's centre, ey = ez × ex.
+  DVec3 ex{1.0, 0.0, 0.0}, ey{0.0, 1.0, 0.0}, ez{0.0, 0.0, 1.0};
+  double sinAlpha = 0.0, cosAlpha = 1.0;    // the cap's angular radius
+  double cosCentre = 1.0, sinCentre = 0.0;  // angle of the cap's centre from the normal
+  // The projected region: ellipse centre (xc, 0), semi-axis a along x (sin α cos θ, negative when the
+  // centre is below the horizon) and b = sin α along y; k = 1 − xc² (= sin²α + cos²α cos²θ, computed
+  // so: the lift z² = k − y² − δx (2 xc + δx) at x = xc + δx has no cancellation for small caps).
+  double xc = 0.0, a = 0.0, b = 0.0, k = 1.0;
+  bool straddling = false;
+  double yTangent = 0.0;          // |y| of the tangent points (straddling)
+  double yMax = 0.0;              // the region's largest |y| (straddling)
+  double gTangent = 0.0;          // G(yTangent / b) (see areaBelow)
+  double areaBelowTangent = 0.0;  // areaBelow(yTangent)
+  double halfArea = 0.0;  // areaBelow(yMax): the area of the region's y ≥ 0 half, as the map integrates it
+  double inversionTolerance = 0.0;
+  double startWidth = 0.0, endScale = 0.0, endPower = 1.5;  // the inversion's first guess
+  double projectedSolidAngle = 0.0;  // Ω⊥ by the closed form (the pdf's normalisation)
+  double invProjectedSolidAngle = 0.0;
+
+  // Sets up the cap of `light` seen from x with unit normal n. False (nothing to sample) when x is
+  // inside the light, the light is degenerate, nothing of it is above the horizon, or Ω⊥ < 2^-120
+  // (its pdf would not fit a float). x on the surface: the hemisphere towards the centre.
+  bool init(const SphereLight& light, const Vec3& x, const Vec3& n);
+
+  struct Direction {
+    DVec3 w;          // unit, world space
+    double cosTheta;  // dot(ez, w) ≥ 0
+  };
+  // The map of the unit square, in double (the χ² tests bin it in the cap's own frame).
+  Direction sampleDirection(Vec2 u) const;
+  // A sample for the estimator: direction, the point where it meets the light, pdf = cos θ / Ω⊥.
+  // Its estimate factor cos θ / pdf is projectedSolidAngle exactly.
+  LightSample sample(Vec2 u) const;
+  // Density of sampleDirection w.r.t. solid angle: cos θ / Ω⊥ inside the visible cap, 0 outside. w in
+  // double, need not be unit; exact cap test.
+  double pdfDirection(const DVec3& w) const;
+  // The same for a float direction (as the estimators hold them): the cap test allows sin γ up to
+  // sin α + 2^-22 (a float direction's rounding), as SphereLight::pdfSolidAngle does.
+  float pdf(const Vec3& w) const;
+
+  // The straddling map's parts (straddling only; 0 ≤ y ≤ yMax). areaBelow(y): the area of the
+  // region's part with 0 ≤ y' ≤ y, in closed form; sliceWidth(y): its derivative.
+  double areaBelow(double y) const;
+  double sliceWidth(double y) const;
+  struct Inversion {
+    double y;
+    int steps;
+  };
+  // y with areaBelow(y) = target ∈ [0, halfArea], to the stop rule above.
+  Inversion invertArea(double target) const;
+
+ private:
+  double circleGap(double y, double s1) const;
+};
+
+}  // namespace penumbra
