@@ -23,7 +23,7 @@ bool sceneNamesLightSelection(const SceneNode& scene) {
 std::string lightSelectionSummary(const SceneNode& scene, Strategy strategy) {
   if (!takesLightSelection(strategy)) return "";
   std::string out = "light selection " + std::string(lightSelectionName(lightSelectionOf(strategy)));
-  if (sceneNamesLightSelection(scene)) return out + " (set in the scene)";
+  if (sceneNamesLightSelection(scene)) return out + " (named by the scene or --set)";
   return out + " (the default for " + sphereLightsText(countSphereLights(scene)) + ": " +
          std::string(lightSelectionName(LightSelection::All)) + " up to " + std::to_string(kAllLightsUpTo) +
          ", " + std::string(lightSelectionName(kManyLightsSelection)) + " above)";

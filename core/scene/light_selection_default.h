@@ -28,9 +28,10 @@ std::string sphereLightsText(size_t count);
 // Whether the scene's <integrator> names its light selection.
 bool sceneNamesLightSelection(const SceneNode& scene);
 
-// What `render` and the viewer say about the light selection of `strategy` in `scene`: "" when the
-// strategy takes none, else e.g. "light selection bvh (the default for 64 sphere lights: all up to
-// 8, bvh above)" or "light selection power (set in the scene)".
+// What `render` prints (and writes into the image metadata) about the light selection of `strategy`
+// in `scene`: "" when the
+// strategy takes none, else e.g. "light selection bvh (the default for 300 sphere lights: all up to
+// 256, bvh above)" or "light selection power (named by the scene or --set)".
 std::string lightSelectionSummary(const SceneNode& scene, Strategy strategy);
 
 }  // namespace penumbra

@@ -86,7 +86,7 @@ TEST(LightSelectionDefault, SummarySaysWhetherTheSceneOrTheDefaultChose) {
             "light selection all (the default for 1 sphere light: all up to 256, bvh above)");
   applyOverride(many, "integrator.lightSelection", "power");
   EXPECT_EQ(lightSelectionSummary(many, buildSettings(many).integrator.strategy),
-            "light selection power (set in the scene)");
+            "light selection power (named by the scene or --set)");
   EXPECT_EQ(lightSelectionSummary(many, Strategy::DirectCosineHemisphere), "");
 }
 
