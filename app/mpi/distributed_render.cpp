@@ -1,18 +1,18 @@
 #include "app/mpi/distributed_render.h"
 
-#include <time.h>
 #include <unistd.h>
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
+#include <cstring>
 #include <limits>
 #include <thread>
 
 #include "app/cli/option_checks.h"
 #include "app/cli/scene_options.h"
+#include "app/mpi/interrupt_signals.h"
 #include "core/analysis/reference.h"
 #include "core/image/image_io.h"
 #include "core/math/error.h"
@@ -22,23 +22,6 @@
 namespace penumbra::mpi {
 
 namespace {
-
-std::atomic<int> gInterrupted{0};
-std::atomic<int64_t> gInterruptedAt{0};  // CLOCK_MONOTONIC nanoseconds of the first interrupt
-
-int64_t monotonicNanoseconds() {
-  timespec t;
-  clock_gettime(CLOCK_MONOTONIC, &t);  // async-signal-safe, unlike the <chrono> clocks formally
-  return int64_t(t.tv_sec) * 1000000000 + t.tv_nsec;
-}
-
-extern "C" void onInterrupt(int) {
-  if (!gInterrupted.exchange(1)) gInterruptedAt = monotonicNanoseconds();
-}
-
-double secondsSinceInterrupt() {
-  return double(monotonicNanoseconds() - gInterruptedAt.load()) * 1e-9;
-}
 
 struct Options {
   cli::SceneOptions scene;
@@ -152,10 +135,7 @@ int run(const Options& o, const Session& mpi) {
   const size_t sumCount = size_t(cam.width) * cam.height * 6;
   std::vector<double> total(rank == 0 ? sumCount : 0, 0.0);
 
-  gInterrupted = 0;
-  std::signal(SIGINT, onInterrupt);
-  std::signal(SIGTERM, onInterrupt);  // what mpirun sends every rank when it gets SIGINT
-  std::signal(SIGUSR1, onInterrupt);  // forwarded by mpirun to every rank without ending the job
+  const InterruptSignals signals;
 
   const bool tty = rank == 0 && isatty(STDERR_FILENO);
   double lastLogLine = -1e9;  // without a terminal: a progress line at most every 10 s
@@ -167,7 +147,7 @@ int run(const Options& o, const Session& mpi) {
   bool interrupted = false;
   for (uint64_t round = 0;; ++round) {
     // Rank 0 decides on time at block boundaries; any rank's interrupt stops everyone.
-    int stop = gInterrupted ? 2 : 0;  // 2: interrupted, 1: time is up
+    int stop = signals.interrupted() ? 2 : 0;  // 2: interrupted, 1: time is up
     if (rank == 0 && o.seconds > 0 && mpi.wallSeconds() - t0 >= o.seconds) stop = std::max(stop, 1);
     stop = mpi.maxOf(stop);
     if (stop == 2) interrupted = true;
@@ -189,7 +169,7 @@ int run(const Options& o, const Session& mpi) {
       throw Error("the engine could not continue the accumulation");
     }
     while (!engine.progress().finished) {
-      if (gInterrupted) engine.requestStop();  // ends after the running pass
+      if (signals.interrupted()) engine.requestStop();  // ends after the running pass
       if (tty)
         drawProgress(uint64_t(engine.progress().spp) * ranks, target, mpi.wallSeconds() - t0, o.seconds);
       std::this_thread::sleep_for(std::chrono::milliseconds(20));
@@ -198,7 +178,10 @@ int run(const Options& o, const Session& mpi) {
   }
   const double renderSeconds = mpi.wallSeconds() - t0;
   if (interrupted && rank == 0) {
-    std::fprintf(stderr, "%sinterrupted: writing the passes every rank has completed\n", tty ? "\n" : "");
+    const int sig = signals.signal();
+    std::fprintf(stderr, "%sinterrupted (%s%s): writing the passes every rank has completed\n",
+                 tty ? "\n" : "", sig ? strsignal(sig) : "on another rank",
+                 sig == SIGCONT ? ", mpirun is ending the job" : "");
     std::fflush(stderr);
   }
 
@@ -257,7 +240,10 @@ int run(const Options& o, const Session& mpi) {
       seconds > 0 ? double(spp) * cam.width * cam.height / seconds * 1e-6 : 0.0,
       (unsigned long long)counts[1], strategyLabel(s.integrator).c_str(), ranks, maxThreads,
       double(counts[2]) * 1e-6);
-  if (interrupted) std::printf(" (interrupted; written %.3f s after the signal)", secondsSinceInterrupt());
+  if (interrupted && signals.interrupted())
+    std::printf(" (interrupted; written %.3f s after the signal)", signals.secondsSinceInterrupt());
+  else if (interrupted)
+    std::printf(" (interrupted on another rank)");
   std::printf("\n");
   std::fflush(stdout);
   return interrupted ? kExitInterrupted : 0;
