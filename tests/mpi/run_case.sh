@@ -7,6 +7,7 @@
 #                without any block still takes part
 #   interrupt    SIGINT (Ctrl-C) and SIGUSR1 to mpirun mid-render: rank 0 writes the partial image of
 #                every rank's completed passes, equal to the single-process render of that spp
+#   stop_continue  Ctrl-Z and fg (SIGTSTP, SIGCONT to mpirun) do not end the render; a SIGCONT alone does
 #   killed_rank  a rank killed mid-render ends the job; the existing output is untouched
 #   reference    --reference writes a reference (metadata name the ranks) that `converge --reference` reads
 #   scene_error  one rank's scene fails to load: nothing renders, the existing output is untouched
@@ -33,6 +34,15 @@ mpi_wait() {
   kill "$(cat "$T/watchdog")" 2>/dev/null
 }
 meta() { "$COMPARE" --info "$1" | sed -n "s/^$2=//p"; }
+# Waits (up to 60 s) for rank 0's first progress line: every rank has completed a pass.
+wait_for_progress() {
+  for i in $(seq 1 600); do
+    grep -q "^progress:" "$T/err" && return 0
+    kill -0 $pid 2>/dev/null || break
+    sleep 0.1
+  done
+  cat "$T/err"; kill -KILL $pid; fail "no progress line from rank 0"
+}
 
 case $case_ in
 equality)
@@ -70,13 +80,7 @@ interrupt)
   for sig in INT USR1; do
     rm -f "$T/p.exr" "$T/p.stderr.exr"; : >"$T/err"
     mpi_bg 2 render "$SCENE" "${args[@]}" --spp 1000000 --threads 1 --block 1 -o "$T/p.exr" >"$T/out" 2>"$T/err"
-    # Signal once rank 0 has logged progress: every rank has completed a pass, however loaded the machine.
-    for i in $(seq 1 600); do
-      grep -q "^progress:" "$T/err" && break
-      kill -0 $pid 2>/dev/null || break
-      sleep 0.1
-    done
-    grep -q "^progress:" "$T/err" || { cat "$T/err"; kill -KILL $pid; fail "SIG$sig: no progress line from rank 0"; }
+    wait_for_progress  # every rank has completed a pass, however loaded the machine
     ranks=$(pgrep -P $pid)
     [ $(echo $ranks | wc -w) = 2 ] || { kill -KILL $pid; fail "SIG$sig: expected 2 rank processes, found '$ranks'"; }
     kill -$sig $pid
@@ -107,6 +111,40 @@ interrupt)
     if [ $sig = INT ]; then expected=1; else expected=3; fi
     [ $rc = $expected ] || fail "SIG$sig: exit code $rc, expected $expected"
   done ;;
+stop_continue)
+  # Ctrl-Z / fg (SIGTSTP, SIGCONT to mpirun, which stops and continues every rank): the render goes on.
+  args=(--set camera.width=96 --set camera.height=80 --threads 1)
+  : >"$T/err"
+  mpi_bg 2 render "$SCENE" "${args[@]}" --spp 3000 -o "$T/c.exr" >"$T/out" 2>"$T/err"
+  wait_for_progress
+  kill -TSTP $pid
+  for i in $(seq 1 300); do  # until both ranks are stopped
+    [ "$(ps -o stat= --ppid $pid | grep -c '^T')" = 2 ] && break; sleep 0.1
+  done
+  [ "$(ps -o stat= --ppid $pid | grep -c '^T')" = 2 ] || { kill -KILL $pid; fail "the ranks were not stopped"; }
+  sleep 2
+  kill -CONT $pid
+  mpi_wait
+  echo "stopped and continued: mpirun exit code $rc; $(cat "$T/out")"
+  [ $rc = 0 ] || { cat "$T/err"; fail "exit code $rc after a stop"; }
+  [ "$(meta "$T/c.exr" spp)" = 3000 ] || fail "spp $(meta "$T/c.exr" spp) after a stop, expected 3000"
+  [ -z "$(meta "$T/c.exr" interrupted)" ] || fail "a stop and continue interrupted the render"
+  # A SIGCONT that resumes no stop is mpirun's notice that it ends the job: the ranks stop and write.
+  # (Repeated if a rank's ticker was starved for over a second and took it for the end of a stop.)
+  : >"$T/err"
+  mpi_bg 2 render "$SCENE" "${args[@]}" --spp 1000000 --block 1 -o "$T/c.exr" >"$T/out" 2>"$T/err"
+  wait_for_progress
+  for i in 1 2 3 4 5; do
+    kill -CONT $pid 2>/dev/null
+    for j in $(seq 1 50); do grep -q "^interrupted" "$T/err" && break 2; sleep 0.1; done
+  done
+  mpi_wait
+  echo "SIGCONT: mpirun exit code $rc; $(cat "$T/out")"
+  grep -q "^interrupted (Continued" "$T/err" || { cat "$T/err"; fail "SIGCONT did not stop the render"; }
+  [ $rc = 3 ] || fail "SIGCONT: exit code $rc, expected 3"
+  [ "$(meta "$T/c.exr" interrupted)" = true ] || fail "SIGCONT: metadata lack interrupted=true"
+  passes=$(meta "$T/c.exr" rankPasses)
+  [ $((${passes%,*} + ${passes#*,})) = "$(meta "$T/c.exr" spp)" ] || fail "SIGCONT: rankPasses $passes" ;;
 killed_rank)
   echo "old image" >"$T/old.exr"; cp "$T/old.exr" "$T/k.exr"
   mpi_bg 3 render "$SCENE" --spp 1000000 --threads 1 -o "$T/k.exr" >"$T/out" 2>"$T/err"
