@@ -93,7 +93,7 @@ interrupt)
       fi
     done
     [ -f "$T/p.exr" ] || { cat "$T/err"; fail "SIG$sig: no partial image"; }
-    grep -q "^interrupted: writing" "$T/err" || { cat "$T/err"; fail "SIG$sig: rank 0 did not say it was interrupted"; }
+    grep -q "^interrupted (.*): writing the passes" "$T/err" || { cat "$T/err"; fail "SIG$sig: rank 0 did not say it was interrupted"; }
     [ "$(meta "$T/p.exr" interrupted)" = true ] || fail "SIG$sig: metadata lack interrupted=true"
     [ "$(meta "$T/p.exr" valid)" = 1 ] || fail "SIG$sig: invalid pixels"
     [ "$(meta "$T/p.stderr.exr" valid)" = 1 ] || fail "SIG$sig: invalid standard error"
