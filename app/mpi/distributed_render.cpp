@@ -3,15 +3,16 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
+#include <cstring>
 #include <limits>
 #include <thread>
 
 #include "app/cli/option_checks.h"
 #include "app/cli/scene_options.h"
+#include "app/mpi/interrupt_signals.h"
 #include "core/analysis/reference.h"
 #include "core/image/image_io.h"
 #include "core/math/error.h"
@@ -21,11 +22,6 @@
 namespace penumbra::mpi {
 
 namespace {
-
-std::atomic<int> gInterrupted{0};
-extern "C" void onInterrupt(int) {
-  gInterrupted = 1;
-}
 
 struct Options {
   cli::SceneOptions scene;
@@ -63,6 +59,31 @@ Loaded prepare(const Options& o) {
   }
   if (l.output.empty()) throw Error("render: -o/--output is required (optional only with --reference)");
   return l;
+}
+
+// Mean and standard error of the reduced film, the rows split over `threads` threads: after an
+// interrupt the grace before mpirun's SIGKILL is short, and a serial resolve of 1080p takes ~0.2 s.
+Reference resolveInParallel(const Film& film, uint32_t spp, int threads, std::string how) {
+  Reference ref;
+  ref.mean = Image(film.width(), film.height());
+  ref.standardError = Image(film.width(), film.height());
+  const int height = film.height(), n = std::clamp(threads, 1, std::max(1, height));
+  std::vector<std::thread> pool;
+  for (int t = 0; t < n; ++t)
+    pool.emplace_back([&, t] {
+      const int y0 = height * t / n, y1 = height * (t + 1) / n;
+      film.resolveMean(spp, ref.mean, y0, y1);
+      film.resolveStandardError(spp, ref.standardError, y0, y1);
+    });
+  for (std::thread& worker : pool) worker.join();
+  ref.source = std::move(how);
+  return ref;
+}
+
+std::string joined(const std::vector<uint64_t>& values) {
+  std::string out;
+  for (uint64_t v : values) out += (out.empty() ? "" : ",") + std::to_string(v);
+  return out;
 }
 
 void drawProgress(uint64_t spp, uint64_t target, double seconds, double limit) {
@@ -108,12 +129,16 @@ int run(const Options& o, const Session& mpi) {
                           ? o.threads
                           : std::max(1, int(std::thread::hardware_concurrency()) / mpi.ranksOnThisNode());
 
-  gInterrupted = 0;
-  std::signal(SIGINT, onInterrupt);
-  std::signal(SIGTERM, onInterrupt);  // what mpirun sends every rank when it gets SIGINT
-  std::signal(SIGUSR1, onInterrupt);  // forwarded by mpirun to every rank without ending the job
+  // Rank 0's receive buffer for the film sums, allocated (and its pages touched) now rather than when
+  // an interrupt leaves little time.
+  const CameraDesc& cam = s.camera;
+  const size_t sumCount = size_t(cam.width) * cam.height * 6;
+  std::vector<double> total(rank == 0 ? sumCount : 0, 0.0);
+
+  const InterruptSignals signals;
 
   const bool tty = rank == 0 && isatty(STDERR_FILENO);
+  double lastLogLine = -1e9;  // without a terminal: a progress line at most every 10 s
   Engine engine;
   bool started = false;
   mpi.barrier();  // start together: the time limit counts from here
@@ -122,11 +147,17 @@ int run(const Options& o, const Session& mpi) {
   bool interrupted = false;
   for (uint64_t round = 0;; ++round) {
     // Rank 0 decides on time at block boundaries; any rank's interrupt stops everyone.
-    int stop = gInterrupted ? 2 : 0;  // 2: interrupted, 1: time is up
+    int stop = signals.interrupted() ? 2 : 0;  // 2: interrupted, 1: time is up
     if (rank == 0 && o.seconds > 0 && mpi.wallSeconds() - t0 >= o.seconds) stop = std::max(stop, 1);
     stop = mpi.maxOf(stop);
     if (stop == 2) interrupted = true;
     if (stop || round >= rounds) break;
+    if (rank == 0 && !tty && round > 0 && mpi.wallSeconds() - lastLogLine >= 10) {
+      lastLogLine = mpi.wallSeconds();
+      std::fprintf(stderr, "progress: ~%llu spp, %.1f s\n",
+                   (unsigned long long)(uint64_t(engine.progress().spp) * ranks), lastLogLine - t0);
+      std::fflush(stderr);
+    }
     const uint32_t roundTarget = uint32_t(std::min<uint64_t>((round + 1) * block, myPasses));
     const uint32_t done = started ? engine.progress().spp : 0;
     if (roundTarget <= done) continue;  // no block of this rank in this round (the last one)
@@ -138,7 +169,7 @@ int run(const Options& o, const Session& mpi) {
       throw Error("the engine could not continue the accumulation");
     }
     while (!engine.progress().finished) {
-      if (gInterrupted) engine.requestStop();  // ends after the running pass
+      if (signals.interrupted()) engine.requestStop();  // ends after the running pass
       if (tty)
         drawProgress(uint64_t(engine.progress().spp) * ranks, target, mpi.wallSeconds() - t0, o.seconds);
       std::this_thread::sleep_for(std::chrono::milliseconds(20));
@@ -146,17 +177,27 @@ int run(const Options& o, const Session& mpi) {
     engine.wait();
   }
   const double renderSeconds = mpi.wallSeconds() - t0;
+  if (interrupted && rank == 0) {
+    const int sig = signals.signal();
+    std::fprintf(stderr, "%sinterrupted (%s%s): writing the passes every rank has completed\n",
+                 tty ? "\n" : "", sig ? strsignal(sig) : "on another rank",
+                 sig == SIGCONT ? ", mpirun is ending the job" : "");
+    std::fflush(stderr);
+  }
 
-  // The reduction: the film sums, and the counts (passes, bad samples, CPU microseconds).
-  const CameraDesc& cam = s.camera;
-  std::vector<double> sums =
-      started ? engine.film().sums() : std::vector<double>(size_t(cam.width) * cam.height * 6, 0.0);
+  // The reduction: the film sums (sent from the engine's film, received into rank 0's `total`,
+  // allocated before the render), and the counts (passes, bad samples, CPU microseconds) and every
+  // rank's passes (the sample indices it rendered: its schedule's passes [0, n)).
   const RenderProgress mine = started ? engine.progress() : RenderProgress{};
   std::vector<uint64_t> counts = {mine.spp, mine.badSamples, uint64_t((processCpuSeconds() - cpu0) * 1e6)};
+  std::vector<uint64_t> rankPasses(size_t(ranks), 0);
+  rankPasses[size_t(rank)] = mine.spp;
+  const std::vector<double> noSums = started ? std::vector<double>{} : std::vector<double>(sumCount, 0.0);
   mpi.barrier();  // the last round's stragglers: waited for asleep, and not counted as reduction time
   const double r0 = mpi.wallSeconds();
-  mpi.sumToRoot(sums);
+  mpi.sumToRoot(started ? engine.film().sums() : noSums, total);
   mpi.sumToRoot(counts);
+  mpi.sumToRoot(rankPasses);
   const double reduceSeconds = mpi.wallSeconds() - r0;
   const int maxThreads = mpi.maxOf(started ? engine.threadCount() : threads);
   if (rank != 0) return interrupted ? kExitInterrupted : 0;
@@ -168,7 +209,7 @@ int run(const Options& o, const Session& mpi) {
   const uint32_t spp = uint32_t(counts[0]);
   const double seconds = mpi.wallSeconds() - t0;
   Film film(cam.width, cam.height);
-  film.sums() = std::move(sums);
+  film.sums() = std::move(total);
   ImageMetadata meta;
   for (auto& [k, v] : describeSettings(s)) meta.add(k, v);
   meta.add("spp", std::to_string(spp));
@@ -178,6 +219,7 @@ int run(const Options& o, const Session& mpi) {
   meta.add("mpiRanks", std::to_string(ranks));
   meta.add("threadsPerRank", std::to_string(maxThreads));
   meta.add("sampleBlock", std::to_string(block));
+  meta.add("rankPasses", joined(rankPasses));
   meta.add("cpuSeconds", std::to_string(double(counts[2]) * 1e-6));
   meta.add("reduceSeconds", std::to_string(reduceSeconds));
   if (interrupted) meta.add("interrupted", "true");
@@ -186,16 +228,23 @@ int run(const Options& o, const Session& mpi) {
   if (o.reference) meta.add("sceneHash", sceneContentHash(l.scene.desc));
   if (spp == 0) throw Error("no pass was completed; nothing written");
   // writeReference: the mean (with "reference" = how it was made) and OUT.stderr.exr; both atomic.
-  Reference ref{film.mean(spp), film.standardError(spp), how};
-  writeReference(l.output, ref, meta);
+  const double w0 = mpi.wallSeconds();
+  const int resolveThreads = std::max({1, threads, int(std::thread::hardware_concurrency())});
+  writeReference(l.output, resolveInParallel(film, spp, resolveThreads, how), meta);
+  const double writeSeconds = mpi.wallSeconds() - w0;
 
   std::printf(
-      "%s: %dx%d, %u spp, %.3f s (reduction %.3f s), %.2f M samples/s, %llu NaN/Inf/negative, %s, "
-      "%d ranks x %d threads, %.2f CPU s%s\n",
-      l.output.c_str(), cam.width, cam.height, spp, seconds, reduceSeconds,
+      "%s: %dx%d, %u spp, %.3f s (reduction %.3f s, write %.3f s), %.2f M samples/s, %llu NaN/Inf/negative, "
+      "%s, %d ranks x %d threads, %.2f CPU s",
+      l.output.c_str(), cam.width, cam.height, spp, seconds, reduceSeconds, writeSeconds,
       seconds > 0 ? double(spp) * cam.width * cam.height / seconds * 1e-6 : 0.0,
       (unsigned long long)counts[1], strategyLabel(s.integrator).c_str(), ranks, maxThreads,
-      double(counts[2]) * 1e-6, interrupted ? " (interrupted)" : "");
+      double(counts[2]) * 1e-6);
+  if (interrupted && signals.interrupted())
+    std::printf(" (interrupted; written %.3f s after the signal)", signals.secondsSinceInterrupt());
+  else if (interrupted)
+    std::printf(" (interrupted on another rank)");
+  std::printf("\n");
   std::fflush(stdout);
   return interrupted ? kExitInterrupted : 0;
 }

@@ -47,15 +47,15 @@ int allreduce(int value, MPI_Op op) {
   return out;
 }
 
-template <class T>
-void reduceChunks(std::vector<T>& values, MPI_Datatype type, int rank) {
-  constexpr size_t kChunk = size_t(1) << 26;  // elements per MPI_Reduce: far below INT_MAX
+constexpr size_t kChunk = size_t(1) << 26;  // elements per MPI_Reduce: far below INT_MAX
+
+void reduceChunks(std::vector<uint64_t>& values, int rank) {
   for (size_t at = 0; at < values.size(); at += kChunk) {
     const int n = int(std::min(kChunk, values.size() - at));
     if (rank == 0)
-      MPI_Reduce(MPI_IN_PLACE, values.data() + at, n, type, MPI_SUM, 0, MPI_COMM_WORLD);
+      MPI_Reduce(MPI_IN_PLACE, values.data() + at, n, MPI_UINT64_T, MPI_SUM, 0, MPI_COMM_WORLD);
     else
-      MPI_Reduce(values.data() + at, nullptr, n, type, MPI_SUM, 0, MPI_COMM_WORLD);
+      MPI_Reduce(values.data() + at, nullptr, n, MPI_UINT64_T, MPI_SUM, 0, MPI_COMM_WORLD);
   }
 }
 
@@ -75,12 +75,17 @@ void Session::barrier() const {
   waitSleeping(request);
 }
 
-void Session::sumToRoot(std::vector<double>& values) const {
-  reduceChunks(values, MPI_DOUBLE, rank_);
+void Session::sumToRoot(const std::vector<double>& values, std::vector<double>& total) const {
+  if (rank_ == 0 && total.size() != values.size()) std::abort();  // a caller's bug, not an input error
+  for (size_t at = 0; at < values.size(); at += kChunk) {
+    const int n = int(std::min(kChunk, values.size() - at));
+    MPI_Reduce(values.data() + at, rank_ == 0 ? total.data() + at : nullptr, n, MPI_DOUBLE, MPI_SUM, 0,
+               MPI_COMM_WORLD);
+  }
 }
 
 void Session::sumToRoot(std::vector<uint64_t>& values) const {
-  reduceChunks(values, MPI_UINT64_T, rank_);
+  reduceChunks(values, rank_);
 }
 
 double Session::wallSeconds() const {

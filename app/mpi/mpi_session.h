@@ -24,8 +24,11 @@ class Session {
   int minOf(int value) const;
   void barrier() const;
   // Element-wise sums onto rank 0 (MPI_Reduce, in chunks below MPI's int count; blocking: call it
-  // after a barrier so that no rank waits in it); other ranks' `values` are left unchanged.
-  void sumToRoot(std::vector<double>& values) const;
+  // after a barrier so that no rank waits in it). The first form sends `values` as they are and
+  // writes the sums into rank 0's `total` (of the same size, allocated beforehand so that the
+  // reduction touches no new memory); other ranks' `total` is not used. The second sums in place on
+  // rank 0 and leaves other ranks' `values` unchanged.
+  void sumToRoot(const std::vector<double>& values, std::vector<double>& total) const;
   void sumToRoot(std::vector<uint64_t>& values) const;
   double wallSeconds() const;  // MPI_Wtime
   // Ends every rank of the job (MPI_Abort) with `code`.

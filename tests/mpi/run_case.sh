@@ -5,7 +5,9 @@
 #                within 1e-6 relative per pixel (spp 37 with blocks of 4: uneven over ranks and blocks)
 #   uneven       spp not divisible by the ranks or the block renders exactly that spp; a rank
 #                without any block still takes part
-#   interrupt    SIGINT to mpirun mid-render: rank 0 writes a valid partial image and says so
+#   interrupt    SIGINT (Ctrl-C) and SIGUSR1 to mpirun mid-render: rank 0 writes the partial image of
+#                every rank's completed passes, equal to the single-process render of that spp
+#   stop_continue  Ctrl-Z and fg (SIGTSTP, SIGCONT to mpirun) do not end the render; a SIGCONT alone does
 #   killed_rank  a rank killed mid-render ends the job; the existing output is untouched
 #   reference    --reference writes a reference (metadata name the ranks) that `converge --reference` reads
 #   scene_error  one rank's scene fails to load: nothing renders, the existing output is untouched
@@ -19,12 +21,12 @@ SMALL=(--set camera.width=48 --set camera.height=40 --set integrator.nSamples=2)
 T=$(mktemp -d); trap 'rm -rf "$T"' EXIT
 fail() { echo "FAIL: $*"; exit 1; }
 mpi() { local k=$1; shift; timeout -k 5 120 "$MPIRUN" --allow-run-as-root --oversubscribe -np "$k" "$PMPI" "$@"; }
-# mpirun in the background, its pid in $pid, killed by a watchdog after 120 s; mpi_wait waits for it
+# mpirun in the background, its pid in $pid, killed by a watchdog after 240 s; mpi_wait waits for it
 # (exit code in $rc) and ends the watchdog, so that nothing outlives the test.
 mpi_bg() {
   local k=$1; shift
   "$MPIRUN" --allow-run-as-root --oversubscribe -np "$k" "$PMPI" "$@" & pid=$!
-  (sleep 120 & echo $! >"$T/watchdog"; wait $! && kill -KILL $pid) >/dev/null 2>&1 &
+  (sleep 240 & echo $! >"$T/watchdog"; wait $! && kill -KILL $pid) >/dev/null 2>&1 &
 }
 mpi_wait() {
   wait $pid; rc=$?
@@ -32,6 +34,15 @@ mpi_wait() {
   kill "$(cat "$T/watchdog")" 2>/dev/null
 }
 meta() { "$COMPARE" --info "$1" | sed -n "s/^$2=//p"; }
+# Waits (up to 60 s) for rank 0's first progress line: every rank has completed a pass.
+wait_for_progress() {
+  for i in $(seq 1 600); do
+    grep -q "^progress:" "$T/err" && return 0
+    kill -0 $pid 2>/dev/null || break
+    sleep 0.1
+  done
+  cat "$T/err"; kill -KILL $pid; fail "no progress line from rank 0"
+}
 
 case $case_ in
 equality)
@@ -60,25 +71,80 @@ uneven)
   mpi 2 render "$SCENE" "${SMALL[@]}" --spp 5 --threads 1 --block 16 -o "$T/k2.pfm" >/dev/null || fail "mpirun 5 spp"
   "$COMPARE" "$T/one.pfm" "$T/k2.pfm" 1e-6 || fail "5 spp over 2 ranks" ;;
 interrupt)
-  # mpirun answers SIGINT by sending every rank SIGTERM, then SIGKILL this many seconds later
-  # (default 1): the ranks finish their pass, reduce and write within that grace.
-  export OMPI_MCA_odls_base_sigkill_timeout=5
-  for sig in INT USR1; do  # USR1: forwarded to every rank at once, and the job ends normally
-    rm -f "$T/p.exr" "$T/p.stderr.exr"
-    mpi_bg 2 render "$SCENE" --set camera.width=192 --set camera.height=160 --spp 1000000 --threads 1 --block 1 \
-      -o "$T/p.exr" >"$T/out" 2>"$T/err"
-    sleep 4
+  # Ctrl-C is SIGINT to mpirun: it sends every rank SIGCONT at once, SIGTERM
+  # odls_base_sigkill_timeout seconds later and SIGKILL as long again after that, then exits with 1
+  # (docs/mpi.md). The grace is made generous here so that no load can make the test fail on time.
+  # SIGUSR1 is forwarded to every rank at once and the job exits with 3.
+  export OMPI_MCA_odls_base_sigkill_timeout=10
+  args=(--set camera.width=96 --set camera.height=80 --seed 7)
+  for sig in INT USR1; do
+    rm -f "$T/p.exr" "$T/p.stderr.exr"; : >"$T/err"
+    mpi_bg 2 render "$SCENE" "${args[@]}" --spp 1000000 --threads 1 --block 1 -o "$T/p.exr" >"$T/out" 2>"$T/err"
+    wait_for_progress  # every rank has completed a pass, however loaded the machine
+    ranks=$(pgrep -P $pid)
+    [ $(echo $ranks | wc -w) = 2 ] || { kill -KILL $pid; fail "SIG$sig: expected 2 rank processes, found '$ranks'"; }
     kill -$sig $pid
     mpi_wait
     echo "SIG$sig: mpirun exit code $rc; $(cat "$T/out")"
+    for r in $ranks; do  # a zombie (not yet reaped by init) is not running
+      if [ -d /proc/$r ] && ! grep -q "^State:.*Z" /proc/$r/status 2>/dev/null &&
+         grep -q penumbra-mpi /proc/$r/cmdline 2>/dev/null; then
+        fail "SIG$sig: rank process $r outlived mpirun"
+      fi
+    done
     [ -f "$T/p.exr" ] || { cat "$T/err"; fail "SIG$sig: no partial image"; }
-    spp=$(meta "$T/p.exr" spp)
+    grep -q "^interrupted (.*): writing the passes" "$T/err" || { cat "$T/err"; fail "SIG$sig: rank 0 did not say it was interrupted"; }
     [ "$(meta "$T/p.exr" interrupted)" = true ] || fail "SIG$sig: metadata lack interrupted=true"
-    [ "$spp" -ge 1 ] && [ "$spp" -lt 1000000 ] || fail "SIG$sig: spp $spp"
     [ "$(meta "$T/p.exr" valid)" = 1 ] || fail "SIG$sig: invalid pixels"
     [ "$(meta "$T/p.stderr.exr" valid)" = 1 ] || fail "SIG$sig: invalid standard error"
-    [ $sig = INT ] || [ $rc = 3 ] || fail "SIGUSR1: exit code $rc, expected 3"
+    # spp = the passes of every rank; with blocks of one sample the ranks stop after the same round,
+    # so the samples are exactly the indices [0, spp) and equal the single-process render of spp.
+    spp=$(meta "$T/p.exr" spp) passes=$(meta "$T/p.exr" rankPasses)
+    a=${passes%,*} b=${passes#*,}
+    [ "$spp" -ge 2 ] && [ "$spp" -lt 1000000 ] || fail "SIG$sig: spp $spp"
+    [ $((a + b)) = "$spp" ] || fail "SIG$sig: rankPasses $passes do not sum to spp $spp"
+    [ "$a" = "$b" ] || fail "SIG$sig: rankPasses $passes: the ranks stopped after different rounds"
+    timeout 300 "$PENUMBRA" render "$SCENE" "${args[@]}" --spp "$spp" --threads 2 -o "$T/one.pfm" >/dev/null ||
+      fail "SIG$sig: single render of $spp spp"
+    echo -n "SIG$sig: $spp spp ($passes) against the single-process render: "
+    "$COMPARE" "$T/one.pfm" "$T/p.exr" 1e-6 || fail "SIG$sig: the partial image differs from $spp spp in one process"
+    if [ $sig = INT ]; then expected=1; else expected=3; fi
+    [ $rc = $expected ] || fail "SIG$sig: exit code $rc, expected $expected"
   done ;;
+stop_continue)
+  # Ctrl-Z / fg (SIGTSTP, SIGCONT to mpirun, which stops and continues every rank): the render goes on.
+  args=(--set camera.width=96 --set camera.height=80 --threads 1)
+  : >"$T/err"
+  mpi_bg 2 render "$SCENE" "${args[@]}" --spp 3000 -o "$T/c.exr" >"$T/out" 2>"$T/err"
+  wait_for_progress
+  kill -TSTP $pid
+  for i in $(seq 1 300); do  # until both ranks are stopped
+    [ "$(ps -o stat= --ppid $pid | grep -c '^T')" = 2 ] && break; sleep 0.1
+  done
+  [ "$(ps -o stat= --ppid $pid | grep -c '^T')" = 2 ] || { kill -KILL $pid; fail "the ranks were not stopped"; }
+  sleep 2
+  kill -CONT $pid
+  mpi_wait
+  echo "stopped and continued: mpirun exit code $rc; $(cat "$T/out")"
+  [ $rc = 0 ] || { cat "$T/err"; fail "exit code $rc after a stop"; }
+  [ "$(meta "$T/c.exr" spp)" = 3000 ] || fail "spp $(meta "$T/c.exr" spp) after a stop, expected 3000"
+  [ -z "$(meta "$T/c.exr" interrupted)" ] || fail "a stop and continue interrupted the render"
+  # A SIGCONT that resumes no stop is mpirun's notice that it ends the job: the ranks stop and write.
+  # (Repeated if a rank's ticker was starved for over a second and took it for the end of a stop.)
+  : >"$T/err"
+  mpi_bg 2 render "$SCENE" "${args[@]}" --spp 1000000 --block 1 -o "$T/c.exr" >"$T/out" 2>"$T/err"
+  wait_for_progress
+  for i in 1 2 3 4 5; do
+    kill -CONT $pid 2>/dev/null
+    for j in $(seq 1 50); do grep -q "^interrupted" "$T/err" && break 2; sleep 0.1; done
+  done
+  mpi_wait
+  echo "SIGCONT: mpirun exit code $rc; $(cat "$T/out")"
+  grep -q "^interrupted (Continued" "$T/err" || { cat "$T/err"; fail "SIGCONT did not stop the render"; }
+  [ $rc = 3 ] || fail "SIGCONT: exit code $rc, expected 3"
+  [ "$(meta "$T/c.exr" interrupted)" = true ] || fail "SIGCONT: metadata lack interrupted=true"
+  passes=$(meta "$T/c.exr" rankPasses)
+  [ $((${passes%,*} + ${passes#*,})) = "$(meta "$T/c.exr" spp)" ] || fail "SIGCONT: rankPasses $passes" ;;
 killed_rank)
   echo "old image" >"$T/old.exr"; cp "$T/old.exr" "$T/k.exr"
   mpi_bg 3 render "$SCENE" --spp 1000000 --threads 1 -o "$T/k.exr" >"$T/out" 2>"$T/err"
