@@ -55,8 +55,9 @@ struct ProjectedSphereCap {
   double areaBelowTangent = 0.0;  // areaBelow(yTangent)
   double halfArea = 0.0;  // areaBelow(yMax): the area of the region's y ≥ 0 half, as the map integrates it
   double inversionTolerance = 0.0;
-  double startWidth = 0.0, endScale = 0.0, endPower = 1.5;  // the inversion's first guess
-  double projectedSolidAngle = 0.0;  // Ω⊥ by the closed form (the pdf's normalisation)
+  double invB = 0.0;
+  double startWidth = 0.0, startCubic = 0.0;  // the inversion's first guess: sliceWidth(0), its cubic model
+  double projectedSolidAngle = 0.0;           // Ω⊥ by the closed form (the pdf's normalisation)
   double invProjectedSolidAngle = 0.0;
 
   // Sets up the cap of `light` seen from x with unit normal n. False (nothing to sample) when x is
@@ -82,6 +83,10 @@ struct ProjectedSphereCap {
 
   // The straddling map's parts (straddling only; 0 ≤ y ≤ yMax). areaBelow(y): the area of the
   // region's part with 0 ≤ y' ≤ y, in closed form; sliceWidth(y): its derivative.
+  struct Slice {
+    double area, width, slope;  // areaBelow(y), sliceWidth(y), d sliceWidth / dy
+  };
+  Slice slice(double y) const;
   double areaBelow(double y) const;
   double sliceWidth(double y) const;
   struct Inversion {
