@@ -26,20 +26,38 @@ double quarterDiskArea(double u, double s) {
   return 0.5 * (u * s + std::asin(u));
 }
 
-// Below this y, H(y) by its series (closed form above: it cancels to 3ε/y² ≤ 8e-14 of H there).
-constexpr double kCircleSeriesLimit = 0.0625;
+// Below this y, H(y) by a polynomial (closed form above: it cancels to 3ε/y² ≤ 5e-15 of H there).
+constexpr double kCircleSeriesLimit = 0.25;
 
 // H(y) = ∫₀ʸ t² / √(1 − t²) dt = (asin y − y √(1 − y²)) / 2 = G(y) − y √(1 − y²), given s = √(1 − y²):
 // the part of the unit circle's quarter area beyond the slice widths measured from x = √(1 − y²).
-// O(y³): below y = 1/16, where the closed form would cancel (a small cap straddling the horizon has
-// y ~ sin α), by its series y³ Σ c_k y^{2k} / (2k+3), c_k = (2k choose k) / 4^k, cut after k = 7 (the
-// next term is below 2^-64 of the sum), evaluated by Estrin's scheme (no divisions, short chain).
+// O(y³): below y = 1/4, where the closed form would cancel (a small cap straddling the horizon has
+// y ~ sin α), H(y) / y³ by its Chebyshev fit of degree 8 in y² (relative error 4e-18 on [0, 1/16] in
+// y², fitted to the series Σ c_k y^{2k} / (2k+3), c_k = (2k choose k) / 4^k, in 40 digits), by
+// Estrin's scheme (no divisions, a short dependency chain).
 double circleExcessArea(double y, double s) {
   if (y >= kCircleSeriesLimit) return 0.5 * (std::asin(y) - y * s);
   const double z = y * y, z2 = z * z, z4 = z2 * z2;
-  const double p01 = 1.0 / 3.0 + z * (1.0 / 10.0), p23 = 3.0 / 56.0 + z * (5.0 / 144.0);
-  const double p45 = 35.0 / 1408.0 + z * (63.0 / 3328.0), p67 = 231.0 / 15360.0 + z * (429.0 / 34816.0);
-  return y * z * ((p01 + z2 * p23) + z4 * (p45 + z2 * p67));
+  const double p01 = 0.333333333333333334592 + z * 0.0999999999999967391912;
+  const double p23 = 0.053571428572817479881 + z * 0.0347222219948132468751;
+  const double p45 = 0.0248579731595492062207 + z * 0.0189294351253255839617;
+  const double p67 = 0.0150619292492544180941 + z * 0.0119682154926360764567;
+  const double p8 = 0.0132162705503589562782;
+  return y * z * ((p01 + z2 * p23) + z4 * ((p45 + z2 * p67) + z4 * p8));
+}
+
+// sin and cos of |δ| ≤ 1/8 by their Taylor polynomials (truncated below 2^-55 of the value).
+struct SinCosD {
+  double sin, cos;
+};
+SinCosD sinCosSmall(double d) {
+  const double d2 = d * d;
+  const double s =
+      d * (1.0 + d2 * (-1.0 / 6.0 + d2 * (1.0 / 120.0 + d2 * (-1.0 / 5040.0 + d2 * (1.0 / 362880.0)))));
+  const double c =
+      1.0 +
+      d2 * (-0.5 + d2 * (1.0 / 24.0 + d2 * (-1.0 / 720.0 + d2 * (1.0 / 40320.0 + d2 * (-1.0 / 3628800.0)))));
+  return {s, c};
 }
 
 }  // namespace
@@ -97,7 +115,12 @@ bool ProjectedSphereCap::init(const SphereLight& light, const Vec3& x, const Vec
     yMax = a > 0.0 ? b : yTangent;
     const double u = std::min(1.0, yTangent * invB);
     const double s1 = sqrtNonNeg((1.0 - yTangent) * (1.0 + yTangent));
-    gTangent = quarterDiskArea(u, sqrtNonNeg((1.0 - u) * (1.0 + u)));
+    // The inversion runs in the ellipse's angle φ, y = b sin φ; it ends at the tangent (a < 0) or at
+    // the ellipse's top φ = π/2 (a > 0).
+    phiTangent = std::asin(u);
+    cosPhiTangent = sqrtNonNeg((1.0 - u) * (1.0 + u));
+    phiMax = a > 0.0 ? 0.5 * kPiD : phiTangent;
+    gTangent = 0.5 * (u * cosPhiTangent + phiTangent);
     areaBelowTangent = circleExcessArea(yTangent, s1) + yTangent * circleGap(yTangent, s1) + a * b * gTangent;
     // Centre above the horizon: the ellipse's part with |y| > yTangent lies inside the disk.
     halfArea = a > 0.0 ? areaBelowTangent + 2.0 * a * b * (kQuarterPi - gTangent) : areaBelowTangent;
@@ -148,14 +171,32 @@ double ProjectedSphereCap::areaBelow(double y) const {
   return slice(y).area;
 }
 
-// Halley's method on the monotone areaBelow (the slope of the width is at hand), kept inside a
-// shrinking bracket: a step that leaves it (flat slices near yMax) is replaced by bisection. A step
-// whose predicted residual (the Newton remainder |slope| δ² / 2, which the Halley step undercuts) is
-// below a quarter of the tolerance is taken without evaluating the area again.
+// The area below y = b sin φ and its first two derivatives in φ, from sin φ and cos φ (no inverse
+// trigonometry: the ellipse's part a b G(sin φ) is a b (φ + sin φ cos φ) / 2). With w the slice width,
+// dA/dφ = w b cos φ and d²A/dφ² = b (cos φ dw/dφ − sin φ w), dw/dφ = −b cos φ y / √(1 − y²) − a sin φ.
+ProjectedSphereCap::ArcSlice ProjectedSphereCap::arcSlice(double phi, double sinPhi, double cosPhi) const {
+  const double y = b * sinPhi;
+  const double ellipse = 0.5 * a * b * (phi + sinPhi * cosPhi);
+  if (y > yTangent) {
+    const double w = 2.0 * a * cosPhi;
+    return {areaBelowTangent + 2.0 * (ellipse - a * b * gTangent), w * b * cosPhi,
+            b * (-2.0 * a * sinPhi * cosPhi - sinPhi * w)};
+  }
+  const double s1 = sqrtNonNeg((1.0 - y) * (1.0 + y));
+  const double circle = circleGap(y, s1);
+  const double w = std::max(0.0, circle + a * cosPhi);
+  const double dw = -b * cosPhi * y / std::max(s1, 0x1p-1000) - a * sinPhi;
+  return {circleExcessArea(y, s1) + y * circle + ellipse, w * b * cosPhi, b * (cosPhi * dw - sinPhi * w)};
+}
+
+// Halley's method on the monotone area in φ, kept inside a shrinking bracket: a step that leaves it
+// (flat slices near yMax) is replaced by bisection. sin φ and cos φ follow the steps by rotation (a
+// short Taylor polynomial of the step). A step whose predicted residual (the Newton remainder
+// |A''| δ² / 2, which the Halley step undercuts) is below a quarter of the tolerance is taken without
+// evaluating the area again.
 ProjectedSphereCap::Inversion ProjectedSphereCap::invertArea(double target) const {
-  if (!(target > 0.0)) return {0.0, 0};
-  if (!(target < halfArea)) return {yMax, 0};
-  double lo = 0.0, hi = yMax;
+  if (!(target > 0.0)) return {0.0, 0, 1.0};
+  if (!(target < halfArea)) return {yMax, 0, a > 0.0 ? 0.0 : cosPhiTangent};
   // First guess: two Newton steps on the cubic model from its root's lower bound target / w₀ (the
   // model is concave, so they stay below its root).
   double y = target / startWidth;
@@ -163,29 +204,39 @@ ProjectedSphereCap::Inversion ProjectedSphereCap::invertArea(double target) cons
     const double y2 = y * y;
     y += (target - y * (startWidth - startCubic * y2)) / (startWidth - 3.0 * startCubic * y2);
   }
-  if (!(y > lo && y < hi)) y = 0.5 * (lo + hi);
-  const double ulps = 4 * 0x1p-52 * yMax;
+  if (!(y > 0.0 && y < yMax)) y = 0.5 * yMax;
+  double sinPhi = std::min(1.0, y * invB);
+  double cosPhi = sqrtNonNeg((1.0 - sinPhi) * (1.0 + sinPhi));
+  double phi = std::asin(sinPhi);
+  double lo = 0.0, hi = phiMax;
+  const double ulps = 4 * 0x1p-52 * phiMax;
   int step = 0;
   while (step < kMaxInversionSteps) {
     ++step;
-    const Slice s = slice(y);
+    const ArcSlice s = arcSlice(phi, sinPhi, cosPhi);
     const double f = s.area - target;
     if (std::fabs(f) <= inversionTolerance) break;
-    (f < 0.0 ? lo : hi) = y;
-    const double newton = -f / s.width;
-    const double denominator = 1.0 + 0.5 * newton * s.slope / s.width;
-    const double delta = denominator > 0.5 ? newton / denominator : newton;
-    const double next = y + delta;
-    if (!(next > lo && next < hi)) {
-      y = 0.5 * (lo + hi);
-      if (hi - lo <= ulps) break;
-      continue;
+    (f < 0.0 ? lo : hi) = phi;
+    const double newton = -f / s.dArea;
+    const double denominator = 1.0 + 0.5 * newton * s.d2Area / s.dArea;
+    double delta = denominator > 0.5 ? newton / denominator : newton;
+    bool bisected = false;
+    if (!(phi + delta > lo && phi + delta < hi)) {
+      delta = 0.5 * (lo + hi) - phi;
+      bisected = true;
     }
-    y = next;
-    if (std::fabs(delta) <= ulps || 0.5 * std::fabs(s.slope) * delta * delta <= 0.25 * inversionTolerance)
+    const SinCosD r =
+        std::fabs(delta) <= 0.125 ? sinCosSmall(delta) : SinCosD{std::sin(delta), std::cos(delta)};
+    const double nextSin = sinPhi * r.cos + cosPhi * r.sin;
+    cosPhi = std::max(0.0, cosPhi * r.cos - sinPhi * r.sin);
+    sinPhi = std::clamp(nextSin, 0.0, 1.0);
+    phi += delta;
+    if (bisected ? hi - lo <= ulps
+                 : std::fabs(delta) <= ulps ||
+                       0.5 * std::fabs(s.d2Area) * delta * delta <= 0.25 * inversionTolerance)
       break;
   }
-  return {y, step};
+  return {std::min(b * sinPhi, yMax), step, cosPhi};
 }
 
 ProjectedSphereCap::Direction ProjectedSphereCap::sampleDirection(Vec2 u) const {
@@ -198,9 +249,8 @@ ProjectedSphereCap::Direction ProjectedSphereCap::sampleDirection(Vec2 u) const 
   } else {
     // Ureña & Georgiev (EGSR 2018), parallel map: y from the inverted marginal area, x on its slice.
     const double v = 2.0 * double(u.x) - 1.0;
-    const double yAbs = invertArea(std::fabs(v) * halfArea).y;
-    const double t = std::min(1.0, yAbs * invB);
-    const double s2 = sqrtNonNeg((1.0 - t) * (1.0 + t));
+    const Inversion inv = invertArea(std::fabs(v) * halfArea);
+    const double yAbs = inv.y, s2 = inv.cosPhi;
     const double width =
         yAbs > yTangent ? 2.0 * a * s2
                         : std::max(0.0, circleGap(yAbs, sqrtNonNeg((1.0 - yAbs) * (1.0 + yAbs))) + a * s2);

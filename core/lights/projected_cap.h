@@ -56,6 +56,7 @@ struct ProjectedSphereCap {
   double halfArea = 0.0;  // areaBelow(yMax): the area of the region's y ≥ 0 half, as the map integrates it
   double inversionTolerance = 0.0;
   double invB = 0.0;
+  double phiTangent = 0.0, cosPhiTangent = 1.0, phiMax = 0.0;  // the ellipse's angle: y = b sin φ
   double startWidth = 0.0, startCubic = 0.0;  // the inversion's first guess: sliceWidth(0), its cubic model
   double projectedSolidAngle = 0.0;           // Ω⊥ by the closed form (the pdf's normalisation)
   double invProjectedSolidAngle = 0.0;
@@ -92,11 +93,16 @@ struct ProjectedSphereCap {
   struct Inversion {
     double y;
     int steps;
+    double cosPhi;  // √(1 − y²/b²)
   };
   // y with areaBelow(y) = target ∈ [0, halfArea], to the stop rule above.
   Inversion invertArea(double target) const;
 
  private:
+  struct ArcSlice {
+    double area, dArea, d2Area;  // areaBelow(b sin φ) and its derivatives in φ
+  };
+  ArcSlice arcSlice(double phi, double sinPhi, double cosPhi) const;
   double circleGap(double y, double s1) const;
 };
 
