@@ -91,8 +91,9 @@ bool ProjectedSphereCap::init(const SphereLight& light, const Vec3& x, const Vec
   cosCentre = glm::dot(toCenter, ez) * invD;
   if (cosCentre <= -sinAlpha) return false;  // entirely below the horizon
   sinCentre = sideLength * invD;
+  const double invSideLength = 1.0 / sideLength;  // d / sin θ
   if (sideLength > 0.0) {
-    ey = side * (1.0 / sideLength);
+    ey = side * invSideLength;
     ex = glm::cross(ey, ez);  // = (wc − cos θ ez) / sin θ
   } else {
     orthonormalBasis(ez, ex, ey);
@@ -107,10 +108,10 @@ bool ProjectedSphereCap::init(const SphereLight& light, const Vec3& x, const Vec
     // The ellipse's area π a b: the closed form's first case.
     projectedSolidAngle = kPiD * a * b;
   } else {
-    invB = 1.0 / b;
+    invB = d / r;
     // Tangent points: x = cos α / sin θ on the unit circle, y² = 1 − x² = (sin²α − cos²θ) / sin²θ.
     const double yt =
-        sinCentre > 0.0 ? sqrtNonNeg((sinAlpha - cosCentre) * (sinAlpha + cosCentre)) / sinCentre : b;
+        sinCentre > 0.0 ? sqrtNonNeg((sinAlpha - cosCentre) * (sinAlpha + cosCentre)) * d * invSideLength : b;
     yTangent = std::min(yt, b);
     yMax = a > 0.0 ? b : yTangent;
     const double u = std::min(1.0, yTangent * invB);
@@ -131,8 +132,10 @@ bool ProjectedSphereCap::init(const SphereLight& light, const Vec3& x, const Vec
     // The inversion's first guess inverts A(y) ≈ w₀ y − g y³ (A is odd in y: the slices are even), g
     // from A(yMax) = halfArea, kept where the model stays increasing on [0, yMax].
     startWidth = std::max(0.0, k / (1.0 + xc) + a);  // sliceWidth(0)
-    const double yMax2 = yMax * yMax;
-    startCubic = std::clamp((startWidth * yMax - halfArea) / (yMax2 * yMax), 0.0, startWidth / (3.0 * yMax2));
+    invStartWidth = 1.0 / startWidth;
+    const double invYMax3 = 1.0 / (yMax * yMax * yMax);
+    startCubic =
+        std::clamp((startWidth * yMax - halfArea) * invYMax3, 0.0, startWidth * yMax * invYMax3 / 3.0);
   }
   if (!(projectedSolidAngle >= kMinProjectedSolidAngle)) return false;
   invProjectedSolidAngle = 1.0 / projectedSolidAngle;
@@ -199,7 +202,7 @@ ProjectedSphereCap::Inversion ProjectedSphereCap::invertArea(double target) cons
   if (!(target < halfArea)) return {yMax, 0, a > 0.0 ? 0.0 : cosPhiTangent};
   // First guess: two Newton steps on the cubic model from its root's lower bound target / w₀ (the
   // model is concave, so they stay below its root).
-  double y = target / startWidth;
+  double y = target * invStartWidth;
   for (int i = 0; i < 2; ++i) {
     const double y2 = y * y;
     y += (target - y * (startWidth - startCubic * y2)) / (startWidth - 3.0 * startCubic * y2);

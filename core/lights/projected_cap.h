@@ -57,8 +57,9 @@ struct ProjectedSphereCap {
   double inversionTolerance = 0.0;
   double invB = 0.0;
   double phiTangent = 0.0, cosPhiTangent = 1.0, phiMax = 0.0;  // the ellipse's angle: y = b sin φ
-  double startWidth = 0.0, startCubic = 0.0;  // the inversion's first guess: sliceWidth(0), its cubic model
-  double projectedSolidAngle = 0.0;           // Ω⊥ by the closed form (the pdf's normalisation)
+  double startWidth = 0.0, invStartWidth = 0.0,
+         startCubic = 0.0;           // the inversion's first guess: sliceWidth(0), its cubic model
+  double projectedSolidAngle = 0.0;  // Ω⊥ by the closed form (the pdf's normalisation)
   double invProjectedSolidAngle = 0.0;
 
   // Sets up the cap of `light` seen from x with unit normal n. False (nothing to sample) when x is
