@@ -128,7 +128,7 @@ bool ProjectedSphereCap::init(const SphereLight& light, const Vec3& x, const Vec
     // Ω⊥ is the area the map covers, so the pdf is the density it samples; it equals the closed form of
     // sphere_cap.h to rounding (ProjectedSphereCap.MappedAreaEqualsTheClosedForm).
     projectedSolidAngle = 2.0 * halfArea;
-    inversionTolerance = std::max(kAreaTolerance * halfArea, 8 * 0x1p-52 * yMax * (k + std::fabs(a) * b));
+    inversionTolerance = std::max(kAreaTolerance * halfArea, 16 * 0x1p-52 * yMax * (k + std::fabs(a) * b));
     // The inversion's first guess inverts A(y) ≈ w₀ y − g y³ (A is odd in y: the slices are even), g
     // from A(yMax) = halfArea, kept where the model stays increasing on [0, yMax].
     startWidth = std::max(0.0, k / (1.0 + xc) + a);  // sliceWidth(0)
@@ -186,9 +186,12 @@ ProjectedSphereCap::ArcSlice ProjectedSphereCap::arcSlice(double phi, double sin
             b * (-2.0 * a * sinPhi * cosPhi - sinPhi * w)};
   }
   const double s1 = sqrtNonNeg((1.0 - y) * (1.0 + y));
-  const double circle = circleGap(y, s1);
+  // One division for both 1 / (√(1 − y²) + xc) (the circle's gap, as in circleGap) and 1 / √(1 − y²).
+  const double sum = s1 + xc;
+  const double inv = 1.0 / std::max(s1 * sum, 0x1p-1000);
+  const double circle = sum > 0.0 ? (k - y * y) * s1 * inv : 0.0;
   const double w = std::max(0.0, circle + a * cosPhi);
-  const double dw = -b * cosPhi * y / std::max(s1, 0x1p-1000) - a * sinPhi;
+  const double dw = -b * cosPhi * y * sum * inv - a * sinPhi;
   return {circleExcessArea(y, s1) + y * circle + ellipse, w * b * cosPhi, b * (cosPhi * dw - sinPhi * w)};
 }
 
@@ -220,9 +223,11 @@ ProjectedSphereCap::Inversion ProjectedSphereCap::invertArea(double target) cons
     const double f = s.area - target;
     if (std::fabs(f) <= inversionTolerance) break;
     (f < 0.0 ? lo : hi) = phi;
-    const double newton = -f / s.dArea;
-    const double denominator = 1.0 + 0.5 * newton * s.d2Area / s.dArea;
-    double delta = denominator > 0.5 ? newton / denominator : newton;
+    // Halley's step −2 f A' / (2 A'² − f A'') in one division; Newton's where the correction would more
+    // than double the step.
+    const double halleyDenominator = 2.0 * s.dArea * s.dArea - f * s.d2Area;
+    double delta =
+        halleyDenominator > s.dArea * s.dArea ? -2.0 * f * s.dArea / halleyDenominator : -f / s.dArea;
     bool bisected = false;
     if (!(phi + delta > lo && phi + delta < hi)) {
       delta = 0.5 * (lo + hi) - phi;
