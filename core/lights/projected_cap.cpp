@@ -70,6 +70,9 @@ double ProjectedSphereCap::circleGap(double y, double s1) const {
 }
 
 bool ProjectedSphereCap::init(const SphereLight& light, const Vec3& x, const Vec3& n) {
+  // What a caller may read after a false return: nothing to sample, Ω⊥ = 0.
+  projectedSolidAngle = invProjectedSolidAngle = 0.0;
+  straddling = false;
   const double r = light.sphere.radius;
   origin = DVec3(x);
   toCenter = DVec3(light.sphere.center) - origin;  // exact: float inputs

@@ -37,32 +37,35 @@ struct ProjectedSphereCap {
   static constexpr double kAreaTolerance = 1e-12;
   static constexpr int kMaxInversionSteps = 40;
 
+  // Plain data without default values (a cap is constructed per shading point and light, and filling
+  // it twice costs a third of a sample above the horizon): every field is set by init() when it returns
+  // true; after false, only projectedSolidAngle = invProjectedSolidAngle = 0 and straddling = false are.
   // The light as seen from the shading point.
-  DVec3 origin{0.0};    // the shading point x
-  DVec3 toCenter{0.0};  // c − x
-  double radius = 0.0, distance = 0.0;
-  Color3 radiance{0.f};
+  DVec3 origin;    // the shading point x
+  DVec3 toCenter;  // c − x
+  double radius, distance;
+  Color3 radiance;
   // Frame: ez the shading normal, ex towards the projection of the light's centre, ey = ez × ex.
-  DVec3 ex{1.0, 0.0, 0.0}, ey{0.0, 1.0, 0.0}, ez{0.0, 0.0, 1.0};
-  double sinAlpha = 0.0, cosAlpha = 1.0;    // the cap's angular radius
-  double cosCentre = 1.0, sinCentre = 0.0;  // angle of the cap's centre from the normal
+  DVec3 ex, ey, ez;
+  double sinAlpha, cosAlpha;    // the cap's angular radius
+  double cosCentre, sinCentre;  // angle of the cap's centre from the normal
   // The projected region: ellipse centre (xc, 0), semi-axis a along x (sin α cos θ, negative when the
   // centre is below the horizon) and b = sin α along y; k = 1 − xc² (= sin²α + cos²α cos²θ, computed
   // so: the lift z² = k − y² − δx (2 xc + δx) at x = xc + δx has no cancellation for small caps).
-  double xc = 0.0, a = 0.0, b = 0.0, k = 1.0;
-  bool straddling = false;
-  double yTangent = 0.0;          // |y| of the tangent points (straddling)
-  double yMax = 0.0;              // the region's largest |y| (straddling)
-  double gTangent = 0.0;          // G(yTangent / b) (see areaBelow)
-  double areaBelowTangent = 0.0;  // areaBelow(yTangent)
-  double halfArea = 0.0;  // areaBelow(yMax): the area of the region's y ≥ 0 half, as the map integrates it
-  double inversionTolerance = 0.0;
-  double invB = 0.0;
-  double phiTangent = 0.0, cosPhiTangent = 1.0, phiMax = 0.0;  // the ellipse's angle: y = b sin φ
-  double startWidth = 0.0, invStartWidth = 0.0,
-         startCubic = 0.0;           // the inversion's first guess: sliceWidth(0), its cubic model
-  double projectedSolidAngle = 0.0;  // Ω⊥ by the closed form (the pdf's normalisation)
-  double invProjectedSolidAngle = 0.0;
+  double xc, a, b, k;
+  bool straddling;
+  double yTangent;          // |y| of the tangent points (straddling)
+  double yMax;              // the region's largest |y| (straddling)
+  double gTangent;          // G(yTangent / b) (see areaBelow)
+  double areaBelowTangent;  // areaBelow(yTangent)
+  double halfArea;  // areaBelow(yMax): the area of the region's y ≥ 0 half, as the map integrates it
+  double inversionTolerance;
+  double invB;
+  double phiTangent, cosPhiTangent, phiMax;  // the ellipse's angle: y = b sin φ
+  double startWidth, invStartWidth,
+      startCubic;              // the inversion's first guess: sliceWidth(0), its cubic model
+  double projectedSolidAngle;  // Ω⊥ by the closed form (the pdf's normalisation)
+  double invProjectedSolidAngle;
 
   // Sets up the cap of `light` seen from x with unit normal n. False (nothing to sample) when x is
   // inside the light, the light is degenerate, nothing of it is above the horizon, or Ω⊥ < 2^-120
