@@ -37,9 +37,10 @@ struct ProjectedSphereCap {
   static constexpr double kAreaTolerance = 1e-12;
   static constexpr int kMaxInversionSteps = 40;
 
-  // Plain data without default values (a cap is constructed per shading point and light, and filling
-  // it twice costs a third of a sample above the horizon): every field is set by init() when it returns
-  // true; after false, only projectedSolidAngle = invProjectedSolidAngle = 0 and straddling = false are.
+  // Plain data without default values (a cap is constructed per shading point and light; default
+  // values would fill it twice): init() sets every field when it returns true (the straddling map's
+  // fields, yTangent to startCubic, only when straddling); after false only projectedSolidAngle =
+  // invProjectedSolidAngle = 0 and straddling = false.
   // The light as seen from the shading point.
   DVec3 origin;    // the shading point x
   DVec3 toCenter;  // c − x
@@ -63,8 +64,10 @@ struct ProjectedSphereCap {
   double invB;
   double phiTangent, cosPhiTangent, phiMax;  // the ellipse's angle: y = b sin φ
   double startWidth, invStartWidth,
-      startCubic;              // the inversion's first guess: sliceWidth(0), its cubic model
-  double projectedSolidAngle;  // Ω⊥ by the closed form (the pdf's normalisation)
+      startCubic;  // the inversion's first guess: sliceWidth(0), its cubic model
+  // Ω⊥, the pdf's normalisation: π a b above the horizon, the map's own area 2 halfArea straddling
+  // (both sphere_cap.h's closed form to rounding).
+  double projectedSolidAngle;
   double invProjectedSolidAngle;
 
   // Sets up the cap of `light` seen from x with unit normal n. False (nothing to sample) when x is
