@@ -131,7 +131,7 @@ bool ProjectedSphereCap::init(const SphereLight& light, const Vec3& x, const Vec
     // Ω⊥ is the area the map covers, so the pdf is the density it samples; it equals the closed form of
     // sphere_cap.h to rounding (ProjectedSphereCap.MappedAreaEqualsTheClosedForm).
     projectedSolidAngle = 2.0 * halfArea;
-    inversionTolerance = std::max(kAreaTolerance * halfArea, 32 * 0x1p-52 * yMax * (k + std::fabs(a) * b));
+    inversionTolerance = std::max(kAreaTolerance * halfArea, 16 * 0x1p-52 * yMax * (k + std::fabs(a) * b));
     // The inversion's first guess inverts A(y) ≈ w₀ y − g y³ (A is odd in y: the slices are even), g
     // from A(yMax) = halfArea, kept where the model stays increasing on [0, yMax].
     startWidth = std::max(0.0, k / (1.0 + xc) + a);  // sliceWidth(0)
@@ -184,9 +184,9 @@ ProjectedSphereCap::ArcSlice ProjectedSphereCap::arcSlice(double phi, double sin
   const double y = b * sinPhi;
   const double ellipse = 0.5 * a * b * (phi + sinPhi * cosPhi);
   if (y > yTangent) {
-    const double w = 2.0 * a * cosPhi, dw = -2.0 * a * sinPhi;  // d²w/dφ² = −w
+    const double w = 2.0 * a * cosPhi;
     return {areaBelowTangent + 2.0 * (ellipse - a * b * gTangent), w * b * cosPhi,
-            b * (cosPhi * dw - sinPhi * w), b * (-2.0 * cosPhi * w - 2.0 * sinPhi * dw)};
+            b * (-2.0 * a * sinPhi * cosPhi - sinPhi * w)};
   }
   const double s1 = sqrtNonNeg((1.0 - y) * (1.0 + y));
   // One division for both 1 / (√(1 − y²) + xc) (the circle's gap, as in circleGap) and 1 / √(1 − y²).
@@ -194,11 +194,8 @@ ProjectedSphereCap::ArcSlice ProjectedSphereCap::arcSlice(double phi, double sin
   const double inv = 1.0 / std::max(s1 * sum, 0x1p-1000);
   const double circle = sum > 0.0 ? (k - y * y) * s1 * inv : 0.0;
   const double w = std::max(0.0, circle + a * cosPhi);
-  const double invS1 = sum * inv, yOverS1 = y * invS1;
-  const double dw = -b * cosPhi * yOverS1 - a * sinPhi;
-  const double d2w = -b * b * cosPhi * cosPhi * invS1 * invS1 * invS1 + b * sinPhi * yOverS1 - a * cosPhi;
-  return {circleExcessArea(y, s1) + y * circle + ellipse, w * b * cosPhi, b * (cosPhi * dw - sinPhi * w),
-          b * (cosPhi * (d2w - w) - 2.0 * sinPhi * dw)};
+  const double dw = -b * cosPhi * y * sum * inv - a * sinPhi;
+  return {circleExcessArea(y, s1) + y * circle + ellipse, w * b * cosPhi, b * (cosPhi * dw - sinPhi * w)};
 }
 
 // Halley's method on the monotone area in φ, kept inside a shrinking bracket: a step that leaves it
@@ -222,9 +219,6 @@ ProjectedSphereCap::Inversion ProjectedSphereCap::invertArea(double target) cons
   double phi = std::asin(sinPhi);
   double lo = 0.0, hi = phiMax;
   const double ulps = 4 * 0x1p-52 * phiMax;
-  // Where the tolerance is the rounding floor (thin lenses), the area's rounding is as large as the
-  // residual a step leaves: every stop is an evaluated one.
-  const bool predictable = inversionTolerance <= kAreaTolerance * halfArea;
   int step = 0;
   while (step < kMaxInversionSteps) {
     ++step;
@@ -235,8 +229,8 @@ ProjectedSphereCap::Inversion ProjectedSphereCap::invertArea(double target) cons
     // Halley's step −2 f A' / (2 A'² − f A'') in one division; Newton's where the correction would more
     // than double the step.
     const double halleyDenominator = 2.0 * s.dArea * s.dArea - f * s.d2Area;
-    const bool halley = halleyDenominator > s.dArea * s.dArea;
-    double delta = halley ? -2.0 * f * s.dArea / halleyDenominator : -f / s.dArea;
+    double delta =
+        halleyDenominator > s.dArea * s.dArea ? -2.0 * f * s.dArea / halleyDenominator : -f / s.dArea;
     bool bisected = false;
     if (!(phi + delta > lo && phi + delta < hi)) {
       delta = 0.5 * (lo + hi) - phi;
@@ -248,17 +242,10 @@ ProjectedSphereCap::Inversion ProjectedSphereCap::invertArea(double target) cons
     cosPhi = std::max(0.0, cosPhi * r.cos - sinPhi * r.sin);
     sinPhi = std::clamp(nextSin, 0.0, 1.0);
     phi += delta;
-    if (bisected) {
-      if (hi - lo <= ulps) break;
-      continue;
-    }
-    // The step's predicted residual: Halley's leading error term (A''² / (4 A') − A''' / 6) δ³ for a
-    // step below 1e-2 rad (where the next term is two orders smaller), else the Newton remainder.
-    const double d2 = std::fabs(s.d2Area), d3 = std::fabs(s.d3Area), ad = std::fabs(delta);
-    const double predicted = halley && ad <= 1e-2
-                                 ? (0.25 * d2 * d2 / std::fabs(s.dArea) + d3 / 6.0) * ad * ad * ad
-                                 : 0.5 * d2 * ad * ad;
-    if (ad <= ulps || (predictable && predicted <= 0.25 * inversionTolerance)) break;
+    if (bisected ? hi - lo <= ulps
+                 : std::fabs(delta) <= ulps ||
+                       0.5 * std::fabs(s.d2Area) * delta * delta <= 0.25 * inversionTolerance)
+      break;
   }
   return {std::min(b * sinPhi, yMax), step, cosPhi};
 }
