@@ -131,7 +131,7 @@ bool ProjectedSphereCap::init(const SphereLight& light, const Vec3& x, const Vec
     // Ω⊥ is the area the map covers, so the pdf is the density it samples; it equals the closed form of
     // sphere_cap.h to rounding (ProjectedSphereCap.MappedAreaEqualsTheClosedForm).
     projectedSolidAngle = 2.0 * halfArea;
-    inversionTolerance = std::max(kAreaTolerance * halfArea, 16 * 0x1p-52 * yMax * (k + std::fabs(a) * b));
+    inversionTolerance = std::max(kAreaTolerance * halfArea, 32 * 0x1p-52 * yMax * (k + std::fabs(a) * b));
     // The inversion's first guess inverts A(y) ≈ w₀ y − g y³ (A is odd in y: the slices are even), g
     // from A(yMax) = halfArea, kept where the model stays increasing on [0, yMax].
     startWidth = std::max(0.0, k / (1.0 + xc) + a);  // sliceWidth(0)

@@ -29,11 +29,14 @@ namespace penumbra {
 
 struct ProjectedSphereCap {
   // Stop rule of the straddling map's inversion: |area below y − target| ≤ inversionTolerance =
-  // max(kAreaTolerance · halfArea, the rounding of the area's closed form, 16 ε yMax (k + |a| b)) — the
-  // sampled y's CDF is then off by at most 1e-12 (3e-8 for the thinnest lenses of a cap just below the
-  // horizon, whose area cancels), far below the noise of any number of samples a render takes — or
-  // a Halley step whose predicted residual (the Newton remainder |A''| δ² / 2) is below a quarter of
-  // it, or the step or the bracket shrinks to a few ulps, or kMaxInversionSteps steps.
+  // max(kAreaTolerance · halfArea, 32 ε yMax (k + |a| b), an estimate of the area's rounding) — the
+  // sampled y's CDF is then off by at most 1e-12, far below the noise of any number of samples a
+  // render takes. Only for the thin lenses of a cap just below the horizon, whose area cancels (as
+  // does Ω⊥'s closed form), is the rounding floor larger: 6e-8 of the half area at cos θ = −0.999 sin α
+  // (Ω⊥ ≈ 1e-8 sin²α), 2e-3 at −0.999995 sin α (Ω⊥ < 1e-13 sin²α). Stops also where a Halley step's
+  // predicted residual (the Newton remainder |A''| δ² / 2, which the Halley step undercuts) is below a
+  // quarter of the tolerance, where the step or the bracket shrinks to a few ulps, or after
+  // kMaxInversionSteps steps.
   static constexpr double kAreaTolerance = 1e-12;
   static constexpr int kMaxInversionSteps = 40;
 
