@@ -16,27 +16,34 @@ constexpr int kCount = 1 << 12;
 
 // Shading points on the plane z = −1 (normal +z) of the hw2 sphere scene's size. Above: the scene's
 // light, well above every point's horizon. Straddling: a light whose cap straddles every point's
-// horizon (centre 0.05 above or below it at distance 3–5, sin α 0.1–0.17).
+// horizon (centre 0.05 above or below it at distance 3–5, sin α 0.1–0.17). Tiny: the scene's light
+// shrunk to sin²α ≈ 1e-6 (0.6e-6–1.4e-6), above the horizon. Grazing: the straddling light with its
+// centre 0.007 above every point's horizon (0.08°–0.13°).
+enum class Setup { Above, Straddling, Tiny, Grazing };
+
 struct Fixture {
   SphereLight light{Sphere{Vec3(1, -1.5f, 1.75f), 0.1f}, Color3(300)};
   std::vector<Vec3> points;
   std::vector<Vec2> u;
-  explicit Fixture(bool straddling = false) {
+  explicit Fixture(Setup setup = Setup::Above) {
     std::mt19937 rng(1);
     std::uniform_real_distribution<float> d(0.f, 0.999f);
     for (int i = 0; i < kCount; ++i) {
       points.push_back(Vec3(2 * d(rng) - 1, 2 * d(rng) - 1, -1.f));
       u.push_back(Vec2(d(rng), d(rng)));
     }
-    if (straddling) {
+    if (setup == Setup::Straddling) {
       light.sphere = Sphere{Vec3(4.f, 0.f, -0.95f), 0.5f};
       for (size_t i = 1; i < points.size(); i += 2) points[i].z = -0.9f;  // half see the centre below
     }
+    if (setup == Setup::Tiny) light.sphere.radius = 0.0032f;
+    if (setup == Setup::Grazing) light.sphere = Sphere{Vec3(4.f, 0.f, -0.993f), 0.5f};
   }
 };
 
+template <Setup kSetup>
 void BM_SphereLight_SampleSolidAngle(benchmark::State& state) {
-  Fixture f;
+  Fixture f(kSetup);
   size_t i = 0;
   for (auto _ : state) {
     const size_t k = i++ & (kCount - 1);
@@ -44,10 +51,10 @@ void BM_SphereLight_SampleSolidAngle(benchmark::State& state) {
   }
   state.SetItemsProcessed(state.iterations());
 }
-BENCHMARK(BM_SphereLight_SampleSolidAngle);
 
+template <Setup kSetup>
 void BM_SphereLight_SampleProjectedSolidAngle(benchmark::State& state) {
-  Fixture f;
+  Fixture f(kSetup);
   size_t i = 0;
   for (auto _ : state) {
     const size_t k = i++ & (kCount - 1);
@@ -57,31 +64,21 @@ void BM_SphereLight_SampleProjectedSolidAngle(benchmark::State& state) {
   }
   state.SetItemsProcessed(state.iterations());
 }
-BENCHMARK(BM_SphereLight_SampleProjectedSolidAngle);
 
-void BM_SphereLight_SampleSolidAngleStraddling(benchmark::State& state) {
-  Fixture f(true);
-  size_t i = 0;
-  for (auto _ : state) {
-    const size_t k = i++ & (kCount - 1);
-    benchmark::DoNotOptimize(f.light.sampleSolidAngle(f.points[k], f.u[k]));
-  }
-  state.SetItemsProcessed(state.iterations());
-}
-BENCHMARK(BM_SphereLight_SampleSolidAngleStraddling);
-
-void BM_SphereLight_SampleProjectedSolidAngleStraddling(benchmark::State& state) {
-  Fixture f(true);
-  size_t i = 0;
-  for (auto _ : state) {
-    const size_t k = i++ & (kCount - 1);
-    ProjectedSphereCap cap;
-    cap.init(f.light, f.points[k], Vec3(0, 0, 1));
-    benchmark::DoNotOptimize(cap.sample(f.u[k]));
-  }
-  state.SetItemsProcessed(state.iterations());
-}
-BENCHMARK(BM_SphereLight_SampleProjectedSolidAngleStraddling);
+// Each projected-solid-angle benchmark right after its solid-angle yardstick (same fixture).
+BENCHMARK(BM_SphereLight_SampleSolidAngle<Setup::Above>)->Name("BM_SphereLight_SampleSolidAngle");
+BENCHMARK(BM_SphereLight_SampleProjectedSolidAngle<Setup::Above>)
+    ->Name("BM_SphereLight_SampleProjectedSolidAngle");
+BENCHMARK(BM_SphereLight_SampleSolidAngle<Setup::Straddling>)
+    ->Name("BM_SphereLight_SampleSolidAngleStraddling");
+BENCHMARK(BM_SphereLight_SampleProjectedSolidAngle<Setup::Straddling>)
+    ->Name("BM_SphereLight_SampleProjectedSolidAngleStraddling");
+BENCHMARK(BM_SphereLight_SampleSolidAngle<Setup::Tiny>)->Name("BM_SphereLight_SampleSolidAngleTiny");
+BENCHMARK(BM_SphereLight_SampleProjectedSolidAngle<Setup::Tiny>)
+    ->Name("BM_SphereLight_SampleProjectedSolidAngleTiny");
+BENCHMARK(BM_SphereLight_SampleSolidAngle<Setup::Grazing>)->Name("BM_SphereLight_SampleSolidAngleGrazing");
+BENCHMARK(BM_SphereLight_SampleProjectedSolidAngle<Setup::Grazing>)
+    ->Name("BM_SphereLight_SampleProjectedSolidAngleGrazing");
 
 void BM_SphereLight_SampleArea(benchmark::State& state) {
   Fixture f;

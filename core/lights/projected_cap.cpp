@@ -26,22 +26,38 @@ double quarterDiskArea(double u, double s) {
   return 0.5 * (u * s + std::asin(u));
 }
 
+// Below this y, H(y) by a polynomial (closed form above: it cancels to 3ε/y² ≤ 5e-15 of H there).
+constexpr double kCircleSeriesLimit = 0.25;
+
 // H(y) = ∫₀ʸ t² / √(1 − t²) dt = (asin y − y √(1 − y²)) / 2 = G(y) − y √(1 − y²), given s = √(1 − y²):
 // the part of the unit circle's quarter area beyond the slice widths measured from x = √(1 − y²).
-// O(y³): by its series Σ c_k y^{2k+3} / (2k+3), c_k = (2k choose k) / 4^k, below y = 1/4, where the
-// closed form would cancel (a small cap straddling the horizon has y ~ sin α).
+// O(y³): below y = 1/4, where the closed form would cancel (a small cap straddling the horizon has
+// y ~ sin α), H(y) / y³ by its Chebyshev fit of degree 8 in y² (relative error 4e-18 on [0, 1/16] in
+// y², fitted to the series Σ c_k y^{2k} / (2k+3), c_k = (2k choose k) / 4^k, in 40 digits), by
+// Estrin's scheme (no divisions, a short dependency chain).
 double circleExcessArea(double y, double s) {
-  if (y >= 0.25) return 0.5 * (std::asin(y) - y * s);
-  const double y2 = y * y;
-  double power = y * y2, c = 1.0, sum = 0.0;
-  for (int k = 0; k < 24; ++k) {
-    const double term = c * power / (2 * k + 3);
-    sum += term;
-    if (term <= 1e-17 * sum) break;
-    c *= (2.0 * k + 1.0) / (2.0 * k + 2.0);
-    power *= y2;
-  }
-  return sum;
+  if (y >= kCircleSeriesLimit) return 0.5 * (std::asin(y) - y * s);
+  const double z = y * y, z2 = z * z, z4 = z2 * z2;
+  const double p01 = 0.333333333333333334592 + z * 0.0999999999999967391912;
+  const double p23 = 0.053571428572817479881 + z * 0.0347222219948132468751;
+  const double p45 = 0.0248579731595492062207 + z * 0.0189294351253255839617;
+  const double p67 = 0.0150619292492544180941 + z * 0.0119682154926360764567;
+  const double p8 = 0.0132162705503589562782;
+  return y * z * ((p01 + z2 * p23) + z4 * ((p45 + z2 * p67) + z4 * p8));
+}
+
+// sin and cos of |δ| ≤ 1/8 by their Taylor polynomials (truncated below 2^-55 of the value).
+struct SinCosD {
+  double sin, cos;
+};
+SinCosD sinCosSmall(double d) {
+  const double d2 = d * d;
+  const double s =
+      d * (1.0 + d2 * (-1.0 / 6.0 + d2 * (1.0 / 120.0 + d2 * (-1.0 / 5040.0 + d2 * (1.0 / 362880.0)))));
+  const double c =
+      1.0 +
+      d2 * (-0.5 + d2 * (1.0 / 24.0 + d2 * (-1.0 / 720.0 + d2 * (1.0 / 40320.0 + d2 * (-1.0 / 3628800.0)))));
+  return {s, c};
 }
 
 }  // namespace
@@ -54,28 +70,33 @@ double ProjectedSphereCap::circleGap(double y, double s1) const {
 }
 
 bool ProjectedSphereCap::init(const SphereLight& light, const Vec3& x, const Vec3& n) {
+  // What a caller may read after a false return: nothing to sample, Ω⊥ = 0.
+  projectedSolidAngle = invProjectedSolidAngle = 0.0;
+  straddling = false;
   const double r = light.sphere.radius;
   origin = DVec3(x);
   toCenter = DVec3(light.sphere.center) - origin;  // exact: float inputs
-  const double d2 = glm::dot(toCenter, toCenter);
-  const double d = std::sqrt(d2);
+  ez = DVec3(n);  // unit to float precision: the frame's and Ω⊥'s error stays at float rounding
+  // The three square roots and then the two divisions do not wait for each other (this runs once per
+  // sample when an integrator takes one light sample per shading point). sin θ and the frame come from
+  // the cross product (accurate near θ = 0 and for narrow caps); d² − r² is as accurate as (d − r)(d + r)
+  // (d² is exact to one rounding, r² exact).
+  const DVec3 side = glm::cross(ez, toCenter);  // |side| = d sin θ
+  const double d2 = glm::dot(toCenter, toCenter), side2 = glm::dot(side, side);
+  const double d = std::sqrt(d2), sideLength = std::sqrt(side2), tangentLength = sqrtNonNeg(d2 - r * r);
   if (!(r > 0.0) || !(d >= r) || !std::isfinite(d)) return false;
   radius = r;
   distance = d;
   radiance = light.radiance;
-
-  ez = DVec3(n);  // unit to float precision: the frame's and Ω⊥'s error stays at float rounding
   const double invD = 1.0 / d;
-  const DVec3 wc = toCenter * invD;
   sinAlpha = r * invD;
-  cosAlpha = std::sqrt((d - r) * (d + r)) * invD;
-  cosCentre = glm::dot(wc, ez);
+  cosAlpha = tangentLength * invD;
+  cosCentre = glm::dot(toCenter, ez) * invD;
   if (cosCentre <= -sinAlpha) return false;  // entirely below the horizon
-  // sin θ and the frame from the cross product: accurate near θ = 0 and for narrow caps.
-  const DVec3 side = glm::cross(ez, wc);
-  sinCentre = std::sqrt(glm::dot(side, side));
-  if (sinCentre > 0.0) {
-    ey = side * (1.0 / sinCentre);
+  sinCentre = sideLength * invD;
+  const double invSideLength = 1.0 / sideLength;  // d / sin θ
+  if (sideLength > 0.0) {
+    ey = side * invSideLength;
     ex = glm::cross(ey, ez);  // = (wc − cos θ ez) / sin θ
   } else {
     orthonormalBasis(ez, ex, ey);
@@ -86,31 +107,41 @@ bool ProjectedSphereCap::init(const SphereLight& light, const Vec3& x, const Vec
   b = sinAlpha;
   k = sinAlpha * sinAlpha + cosAlpha * cosAlpha * cosCentre * cosCentre;
   straddling = cosCentre < sinAlpha;
-  // The closed form; above the horizon it is the ellipse's area π a b (its first case, inlined).
-  projectedSolidAngle =
-      straddling ? sphereLightIrradianceFactor(cosCentre, sinCentre, sinAlpha, cosAlpha) : kPiD * a * b;
-  if (!(projectedSolidAngle >= kMinProjectedSolidAngle)) return false;
-  invProjectedSolidAngle = 1.0 / projectedSolidAngle;
-  if (straddling) {
+  if (!straddling) {
+    // The ellipse's area π a b: the closed form's first case.
+    projectedSolidAngle = kPiD * a * b;
+  } else {
+    invB = d / r;
     // Tangent points: x = cos α / sin θ on the unit circle, y² = 1 − x² = (sin²α − cos²θ) / sin²θ.
     const double yt =
-        sinCentre > 0.0 ? sqrtNonNeg((sinAlpha - cosCentre) * (sinAlpha + cosCentre)) / sinCentre : b;
+        sinCentre > 0.0 ? sqrtNonNeg((sinAlpha - cosCentre) * (sinAlpha + cosCentre)) * d * invSideLength : b;
     yTangent = std::min(yt, b);
     yMax = a > 0.0 ? b : yTangent;
-    const double u = yTangent / b;
-    gTangent = quarterDiskArea(u, sqrtNonNeg((1.0 - u) * (1.0 + u)));
-    areaBelowTangent = areaBelow(yTangent);
+    const double u = std::min(1.0, yTangent * invB);
+    const double s1 = sqrtNonNeg((1.0 - yTangent) * (1.0 + yTangent));
+    // The inversion runs in the ellipse's angle φ, y = b sin φ; it ends at the tangent (a < 0) or at
+    // the ellipse's top φ = π/2 (a > 0).
+    phiTangent = std::asin(u);
+    cosPhiTangent = sqrtNonNeg((1.0 - u) * (1.0 + u));
+    phiMax = a > 0.0 ? 0.5 * kPiD : phiTangent;
+    gTangent = 0.5 * (u * cosPhiTangent + phiTangent);
+    areaBelowTangent = circleExcessArea(yTangent, s1) + yTangent * circleGap(yTangent, s1) + a * b * gTangent;
     // Centre above the horizon: the ellipse's part with |y| > yTangent lies inside the disk.
     halfArea = a > 0.0 ? areaBelowTangent + 2.0 * a * b * (kQuarterPi - gTangent) : areaBelowTangent;
-    inversionTolerance = std::max(kAreaTolerance * halfArea, 8 * 0x1p-52 * yMax * (k + std::fabs(a) * b));
-    // The inversion's first guess: the area left above y behaves like c (yMax − y)^p near yMax (p = 3/2
-    // at an ellipse's top, 2 at a circle's chord, 3 where the ellipse touches the circle); fit c and p
-    // from two heights near the end.
-    const double r1 = halfArea - areaBelow(0.9 * yMax), r2 = halfArea - areaBelow(0.99 * yMax);
-    endPower = (r1 > 0.0 && r2 > 0.0) ? std::clamp(std::log(r1 / r2) / std::log(10.0), 1.0, 4.0) : 1.5;
-    endScale = r1 > 0.0 ? r1 / std::pow(0.1 * yMax, endPower) : 0.0;
-    startWidth = sliceWidth(0.0);
+    // Ω⊥ is the area the map covers, so the pdf is the density it samples; it equals the closed form of
+    // sphere_cap.h to rounding (ProjectedSphereCap.MappedAreaEqualsTheClosedForm).
+    projectedSolidAngle = 2.0 * halfArea;
+    inversionTolerance = std::max(kAreaTolerance * halfArea, 32 * 0x1p-52 * yMax * (k + std::fabs(a) * b));
+    // The inversion's first guess inverts A(y) ≈ w₀ y − g y³ (A is odd in y: the slices are even), g
+    // from A(yMax) = halfArea, kept where the model stays increasing on [0, yMax].
+    startWidth = std::max(0.0, k / (1.0 + xc) + a);  // sliceWidth(0)
+    invStartWidth = 1.0 / startWidth;
+    const double invYMax3 = 1.0 / (yMax * yMax * yMax);
+    startCubic =
+        std::clamp((startWidth * yMax - halfArea) * invYMax3, 0.0, startWidth * yMax * invYMax3 / 3.0);
   }
+  if (!(projectedSolidAngle >= kMinProjectedSolidAngle)) return false;
+  invProjectedSolidAngle = 1.0 / projectedSolidAngle;
   return true;
 }
 
@@ -119,61 +150,104 @@ bool ProjectedSphereCap::init(const SphereLight& light, const Vec3& x, const Vec
 //                    a > 0, its outer one for a < 0) to √(1 − y²) − xc (the unit circle);
 //   |y| > yTangent:  (a > 0 only) the ellipse's chord, δx ∈ ±a √(1 − y²/b²).
 // √(1 − y²) − xc is evaluated as (k − y²) / (√(1 − y²) + xc), so no width cancels for small caps.
+// The area below y, ∫₀ʸ width: with ∫₀ʸ (√(1 − t²) − xc) dt = H(y) + y (√(1 − y²) − xc) and
+// ∫₀ʸ √(1 − t²/b²) dt = b G(y/b), it is H(y) + y (k − y²)/(√(1 − y²) + xc) + a b G(y/b) below the
+// tangent height. slope: d width / dy (for the inversion's stop rule), −y/√(1 − y²) − a (y/b²)/√(1 − y²/b²).
+ProjectedSphereCap::Slice ProjectedSphereCap::slice(double y) const {
+  const double u = std::min(1.0, y * invB);
+  const double s2 = sqrtNonNeg((1.0 - u) * (1.0 + u));
+  if (y > yTangent) {
+    return {areaBelowTangent + 2.0 * a * b * (quarterDiskArea(u, s2) - gTangent), 2.0 * a * s2,
+            -2.0 * a * u / std::max(b * s2, 0x1p-1000)};
+  }
+  const double s1 = sqrtNonNeg((1.0 - y) * (1.0 + y));
+  const double circle = circleGap(y, s1);
+  return {circleExcessArea(y, s1) + y * circle + a * b * quarterDiskArea(u, s2),
+          std::max(0.0, circle + a * s2), -y / std::max(s1, 0x1p-1000) - a * u / std::max(b * s2, 0x1p-1000)};
+}
+
 double ProjectedSphereCap::sliceWidth(double y) const {
-  const double s1 = sqrtNonNeg((1.0 - y) * (1.0 + y));
-  const double u = std::min(1.0, y / b);
+  const double u = std::min(1.0, y * invB);
   const double s2 = sqrtNonNeg((1.0 - u) * (1.0 + u));
-  if (y <= yTangent) return std::max(0.0, circleGap(y, s1) + a * s2);
-  return 2.0 * a * s2;
+  if (y > yTangent) return 2.0 * a * s2;
+  return std::max(0.0, circleGap(y, sqrtNonNeg((1.0 - y) * (1.0 + y))) + a * s2);
 }
 
-// ∫₀ʸ sliceWidth: with ∫₀ʸ (√(1 − t²) − xc) dt = H(y) + y (√(1 − t²) − xc) and ∫₀ʸ √(1 − t²/b²) dt
-// = b G(y/b), the area below the tangent height is H(y) + y (k − y²)/(√(1 − y²) + xc) + a b G(y/b).
 double ProjectedSphereCap::areaBelow(double y) const {
-  const double u = std::min(1.0, y / b);
-  const double s2 = sqrtNonNeg((1.0 - u) * (1.0 + u));
-  if (y > yTangent) return areaBelowTangent + 2.0 * a * b * (quarterDiskArea(u, s2) - gTangent);
-  const double s1 = sqrtNonNeg((1.0 - y) * (1.0 + y));
-  return circleExcessArea(y, s1) + y * circleGap(y, s1) + a * b * quarterDiskArea(u, s2);
+  return slice(y).area;
 }
 
-// Newton's method on the monotone areaBelow, kept inside a shrinking bracket: a step that leaves it
-// (flat slices near yMax, where the width vanishes) is replaced by bisection.
+// The area below y = b sin φ and its first two derivatives in φ, from sin φ and cos φ (no inverse
+// trigonometry: the ellipse's part a b G(sin φ) is a b (φ + sin φ cos φ) / 2). With w the slice width,
+// dA/dφ = w b cos φ and d²A/dφ² = b (cos φ dw/dφ − sin φ w), dw/dφ = −b cos φ y / √(1 − y²) − a sin φ.
+ProjectedSphereCap::ArcSlice ProjectedSphereCap::arcSlice(double phi, double sinPhi, double cosPhi) const {
+  const double y = b * sinPhi;
+  const double ellipse = 0.5 * a * b * (phi + sinPhi * cosPhi);
+  if (y > yTangent) {
+    const double w = 2.0 * a * cosPhi;
+    return {areaBelowTangent + 2.0 * (ellipse - a * b * gTangent), w * b * cosPhi,
+            b * (-2.0 * a * sinPhi * cosPhi - sinPhi * w)};
+  }
+  const double s1 = sqrtNonNeg((1.0 - y) * (1.0 + y));
+  // One division for both 1 / (√(1 − y²) + xc) (the circle's gap, as in circleGap) and 1 / √(1 − y²).
+  const double sum = s1 + xc;
+  const double inv = 1.0 / std::max(s1 * sum, 0x1p-1000);
+  const double circle = sum > 0.0 ? (k - y * y) * s1 * inv : 0.0;
+  const double w = std::max(0.0, circle + a * cosPhi);
+  const double dw = -b * cosPhi * y * sum * inv - a * sinPhi;
+  return {circleExcessArea(y, s1) + y * circle + ellipse, w * b * cosPhi, b * (cosPhi * dw - sinPhi * w)};
+}
+
+// Halley's method on the monotone area in φ, kept inside a shrinking bracket: a step that leaves it
+// (flat slices near yMax) is replaced by bisection. sin φ and cos φ follow the steps by rotation (a
+// short Taylor polynomial of the step). A step whose predicted residual (the Newton remainder
+// |A''| δ² / 2, which the Halley step undercuts) is below a quarter of the tolerance is taken without
+// evaluating the area again.
 ProjectedSphereCap::Inversion ProjectedSphereCap::invertArea(double target) const {
-  if (!(target > 0.0)) return {0.0, 0};
-  if (!(target < halfArea)) return {yMax, 0};
-  double lo = 0.0, hi = yMax;
-  // Below the linear guess, since the area is concave (slices narrow with |y|); the end's power law
-  // where that is further up.
-  double y = target / startWidth;
-  if (endScale > 0.0) y = std::max(y, yMax - std::pow((halfArea - target) / endScale, 1.0 / endPower));
-  if (!(y > lo && y < hi)) y = 0.5 * (lo + hi);
-  const double ulps = 4 * 0x1p-52 * yMax;
+  if (!(target > 0.0)) return {0.0, 0, 1.0};
+  if (!(target < halfArea)) return {yMax, 0, a > 0.0 ? 0.0 : cosPhiTangent};
+  // First guess: two Newton steps on the cubic model from its root's lower bound target / w₀ (the
+  // model is concave, so they stay below its root).
+  double y = target * invStartWidth;
+  for (int i = 0; i < 2; ++i) {
+    const double y2 = y * y;
+    y += (target - y * (startWidth - startCubic * y2)) / (startWidth - 3.0 * startCubic * y2);
+  }
+  if (!(y > 0.0 && y < yMax)) y = 0.5 * yMax;
+  double sinPhi = std::min(1.0, y * invB);
+  double cosPhi = sqrtNonNeg((1.0 - sinPhi) * (1.0 + sinPhi));
+  double phi = std::asin(sinPhi);
+  double lo = 0.0, hi = phiMax;
+  const double ulps = 4 * 0x1p-52 * phiMax;
   int step = 0;
   while (step < kMaxInversionSteps) {
     ++step;
-    // areaBelow(y) and sliceWidth(y), sharing their square roots.
-    const double s1 = sqrtNonNeg((1.0 - y) * (1.0 + y));
-    const double u = std::min(1.0, y / b);
-    const double s2 = sqrtNonNeg((1.0 - u) * (1.0 + u));
-    double area, width;
-    if (y > yTangent) {
-      area = areaBelowTangent + 2.0 * a * b * (quarterDiskArea(u, s2) - gTangent);
-      width = 2.0 * a * s2;
-    } else {
-      const double circle = circleGap(y, s1);
-      area = circleExcessArea(y, s1) + y * circle + a * b * quarterDiskArea(u, s2);
-      width = std::max(0.0, circle + a * s2);
-    }
-    const double f = area - target;
+    const ArcSlice s = arcSlice(phi, sinPhi, cosPhi);
+    const double f = s.area - target;
     if (std::fabs(f) <= inversionTolerance) break;
-    (f < 0.0 ? lo : hi) = y;
-    double next = y - f / width;
-    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
-    if (std::fabs(next - y) <= ulps || hi - lo <= ulps) break;
-    y = next;
+    (f < 0.0 ? lo : hi) = phi;
+    // Halley's step −2 f A' / (2 A'² − f A'') in one division; Newton's where the correction would more
+    // than double the step.
+    const double halleyDenominator = 2.0 * s.dArea * s.dArea - f * s.d2Area;
+    double delta =
+        halleyDenominator > s.dArea * s.dArea ? -2.0 * f * s.dArea / halleyDenominator : -f / s.dArea;
+    bool bisected = false;
+    if (!(phi + delta > lo && phi + delta < hi)) {
+      delta = 0.5 * (lo + hi) - phi;
+      bisected = true;
+    }
+    const SinCosD r =
+        std::fabs(delta) <= 0.125 ? sinCosSmall(delta) : SinCosD{std::sin(delta), std::cos(delta)};
+    const double nextSin = sinPhi * r.cos + cosPhi * r.sin;
+    cosPhi = std::max(0.0, cosPhi * r.cos - sinPhi * r.sin);
+    sinPhi = std::clamp(nextSin, 0.0, 1.0);
+    phi += delta;
+    if (bisected ? hi - lo <= ulps
+                 : std::fabs(delta) <= ulps ||
+                       0.5 * std::fabs(s.d2Area) * delta * delta <= 0.25 * inversionTolerance)
+      break;
   }
-  return {y, step};
+  return {std::min(b * sinPhi, yMax), step, cosPhi};
 }
 
 ProjectedSphereCap::Direction ProjectedSphereCap::sampleDirection(Vec2 u) const {
@@ -186,9 +260,12 @@ ProjectedSphereCap::Direction ProjectedSphereCap::sampleDirection(Vec2 u) const 
   } else {
     // Ureña & Georgiev (EGSR 2018), parallel map: y from the inverted marginal area, x on its slice.
     const double v = 2.0 * double(u.x) - 1.0;
-    const double yAbs = invertArea(std::fabs(v) * halfArea).y;
-    const double t = std::min(1.0, yAbs / b);
-    dx = -a * sqrtNonNeg((1.0 - t) * (1.0 + t)) + double(u.y) * sliceWidth(yAbs);
+    const Inversion inv = invertArea(std::fabs(v) * halfArea);
+    const double yAbs = inv.y, s2 = inv.cosPhi;
+    const double width =
+        yAbs > yTangent ? 2.0 * a * s2
+                        : std::max(0.0, circleGap(yAbs, sqrtNonNeg((1.0 - yAbs) * (1.0 + yAbs))) + a * s2);
+    dx = -a * s2 + double(u.y) * width;
     y = std::copysign(yAbs, v);
   }
   // Nusselt: lift (xc + δx, y) onto the hemisphere, z² = 1 − (xc + δx)² − y².

@@ -15,8 +15,9 @@
 //
 // The map of the unit square onto the region is a bijection that keeps stratification (no rejection):
 //   above the horizon: the concentric disk map scaled onto the ellipse, in closed form;
-//   straddling: u.x sets y by inverting the region's area below height |y| (Newton's method with a
-//   bisection fallback, to 1e-12 of the half area (see kAreaTolerance), at most 40 steps),
+//   straddling: u.x sets y by inverting the region's area below height |y| (Halley's method in the
+//   ellipse's angle φ, y = b sin φ, from a cubic model's root, with a bisection fallback, to 1e-12 of
+//   the half area (see kAreaTolerance), at most 40 steps, about 2 area evaluations on average),
 //   u.y places x uniformly on the slice at y (the parallel map of Ureña & Georgiev).
 // Plain data, built once per (shading point, light) and reused for every sample there.
 #pragma once
@@ -28,36 +29,49 @@ namespace penumbra {
 
 struct ProjectedSphereCap {
   // Stop rule of the straddling map's inversion: |area below y − target| ≤ inversionTolerance =
-  // max(kAreaTolerance · halfArea, the rounding of the area's closed form, 8 ε yMax (k + |a| b)) — the
-  // sampled y's CDF is then off by at most 1e-12 (1e-8 for the thinnest lenses of a cap just below the
-  // horizon, whose area cancels), far below the noise of any number of samples a render takes — or
-  // the step or the bracket shrinks to a few ulps of yMax, or kMaxInversionSteps steps.
+  // max(kAreaTolerance · halfArea, 32 ε yMax (k + |a| b), an estimate of the area's rounding) — the
+  // sampled y's CDF is then off by at most 1e-12, far below the noise of any number of samples a
+  // render takes. Only for the thin lenses of a cap just below the horizon, whose area cancels (as
+  // does Ω⊥'s closed form), is the rounding floor larger: 6e-8 of the half area at cos θ = −0.999 sin α
+  // (Ω⊥ ≈ 1e-8 sin²α), 2e-3 at −0.999995 sin α (Ω⊥ < 1e-13 sin²α). Stops also where a Halley step's
+  // predicted residual (the Newton remainder |A''| δ² / 2, which the Halley step undercuts) is below a
+  // quarter of the tolerance, where the step or the bracket shrinks to a few ulps, or after
+  // kMaxInversionSteps steps.
   static constexpr double kAreaTolerance = 1e-12;
   static constexpr int kMaxInversionSteps = 40;
 
+  // Plain data without default values (a cap is constructed per shading point and light; default
+  // values would fill it twice): init() sets every field when it returns true (the straddling map's
+  // fields, yTangent to startCubic, only when straddling); after false only projectedSolidAngle =
+  // invProjectedSolidAngle = 0 and straddling = false.
   // The light as seen from the shading point.
-  DVec3 origin{0.0};    // the shading point x
-  DVec3 toCenter{0.0};  // c − x
-  double radius = 0.0, distance = 0.0;
-  Color3 radiance{0.f};
+  DVec3 origin;    // the shading point x
+  DVec3 toCenter;  // c − x
+  double radius, distance;
+  Color3 radiance;
   // Frame: ez the shading normal, ex towards the projection of the light's centre, ey = ez × ex.
-  DVec3 ex{1.0, 0.0, 0.0}, ey{0.0, 1.0, 0.0}, ez{0.0, 0.0, 1.0};
-  double sinAlpha = 0.0, cosAlpha = 1.0;    // the cap's angular radius
-  double cosCentre = 1.0, sinCentre = 0.0;  // angle of the cap's centre from the normal
+  DVec3 ex, ey, ez;
+  double sinAlpha, cosAlpha;    // the cap's angular radius
+  double cosCentre, sinCentre;  // angle of the cap's centre from the normal
   // The projected region: ellipse centre (xc, 0), semi-axis a along x (sin α cos θ, negative when the
   // centre is below the horizon) and b = sin α along y; k = 1 − xc² (= sin²α + cos²α cos²θ, computed
   // so: the lift z² = k − y² − δx (2 xc + δx) at x = xc + δx has no cancellation for small caps).
-  double xc = 0.0, a = 0.0, b = 0.0, k = 1.0;
-  bool straddling = false;
-  double yTangent = 0.0;          // |y| of the tangent points (straddling)
-  double yMax = 0.0;              // the region's largest |y| (straddling)
-  double gTangent = 0.0;          // G(yTangent / b) (see areaBelow)
-  double areaBelowTangent = 0.0;  // areaBelow(yTangent)
-  double halfArea = 0.0;  // areaBelow(yMax): the area of the region's y ≥ 0 half, as the map integrates it
-  double inversionTolerance = 0.0;
-  double startWidth = 0.0, endScale = 0.0, endPower = 1.5;  // the inversion's first guess
-  double projectedSolidAngle = 0.0;  // Ω⊥ by the closed form (the pdf's normalisation)
-  double invProjectedSolidAngle = 0.0;
+  double xc, a, b, k;
+  bool straddling;
+  double yTangent;          // |y| of the tangent points (straddling)
+  double yMax;              // the region's largest |y| (straddling)
+  double gTangent;          // G(yTangent / b) (see areaBelow)
+  double areaBelowTangent;  // areaBelow(yTangent)
+  double halfArea;  // areaBelow(yMax): the area of the region's y ≥ 0 half, as the map integrates it
+  double inversionTolerance;
+  double invB;
+  double phiTangent, cosPhiTangent, phiMax;  // the ellipse's angle: y = b sin φ
+  double startWidth, invStartWidth,
+      startCubic;  // the inversion's first guess: sliceWidth(0), its cubic model
+  // Ω⊥, the pdf's normalisation: π a b above the horizon, the map's own area 2 halfArea straddling
+  // (both sphere_cap.h's closed form to rounding).
+  double projectedSolidAngle;
+  double invProjectedSolidAngle;
 
   // Sets up the cap of `light` seen from x with unit normal n. False (nothing to sample) when x is
   // inside the light, the light is degenerate, nothing of it is above the horizon, or Ω⊥ < 2^-120
@@ -82,16 +96,25 @@ struct ProjectedSphereCap {
 
   // The straddling map's parts (straddling only; 0 ≤ y ≤ yMax). areaBelow(y): the area of the
   // region's part with 0 ≤ y' ≤ y, in closed form; sliceWidth(y): its derivative.
+  struct Slice {
+    double area, width, slope;  // areaBelow(y), sliceWidth(y), d sliceWidth / dy
+  };
+  Slice slice(double y) const;
   double areaBelow(double y) const;
   double sliceWidth(double y) const;
   struct Inversion {
     double y;
     int steps;
+    double cosPhi;  // √(1 − y²/b²)
   };
   // y with areaBelow(y) = target ∈ [0, halfArea], to the stop rule above.
   Inversion invertArea(double target) const;
 
  private:
+  struct ArcSlice {
+    double area, dArea, d2Area;  // areaBelow(b sin φ) and its derivatives in φ
+  };
+  ArcSlice arcSlice(double phi, double sinPhi, double cosPhi) const;
   double circleGap(double y, double s1) const;
 };
 
