@@ -46,7 +46,7 @@ void drawLightShareLegend() {
   dl->AddRectFilled(q, ImVec2(q.x + side, q.y + side), rgbOf(kNoShareRgb));
   ImGui::Dummy(ImVec2(side, side));
   ImGui::SameLine();
-  hintText("no area light in the pixel");
+  hintText("no reflected area light (sky, full shadow, the lights)");
 }
 
 }  // namespace

@@ -3,7 +3,9 @@
 // because 1/2 (both techniques contribute equally) is the meaningful middle: blue at 0 (all from
 // cosine-hemisphere sampling) through near-white at 1/2 to red at 1 (all from light sampling), the
 // end and middle colours of ColorBrewer's RdBu scheme; pixels with no area light to share are dark grey,
-// a colour the map never takes. shaders/display.frag computes the same (uView 3).
+// a colour the map never takes (the sky, full shadow, and the lights themselves:
+// core/integrators/mis_light_share.h counts a light seen directly as having no share). shaders/display.frag
+// computes the same (uView 3).
 #pragma once
 
 #include <cmath>

@@ -1,9 +1,9 @@
 // The MIS integrator's estimate split by technique, for the viewer's "MIS light share" view: per
 // camera sample the luminance of the weighted light-sampling part (R), of the weighted
-// cosine-hemisphere part (G) and of everything else (B: emission seen directly, point and directional
-// lights). The three add up to the luminance of MisIntegrator::Li for the same sample stream, so the
-// film's per-pixel means give the share of the area-light estimate that light sampling contributes,
-// E[R] / (E[R] + E[G]) (lightShare below). A separate instance of the row loop (the strategy
+// cosine-hemisphere part (G) and of everything else (B: point and directional lights; on a light seen
+// directly, its whole estimate). The three add up to the luminance of MisIntegrator::Li for the same sample
+// stream, so the film's per-pixel means give the share of the area-light estimate that light sampling
+// contributes, E[R] / (E[R] + E[G]) (lightShare below). A separate instance of the row loop (the strategy
 // table's makeLightShareRows): no other strategy, and no ordinary mis render, pays for it.
 #pragma once
 
@@ -29,10 +29,15 @@ struct MisLightShareIntegrator {
 
     ShadingPoint sp(scene, ray, hit);
     const Color3 reflect = material.albedo * kInvPi;
-    const Color3 rest = L + reflect * deltaIrradiance(scene, sp);
+    const Color3 delta = deltaIrradiance(scene, sp);
     Color3 lightPart(0.f), bsdfPart(0.f);
     if (scene.hasAreaLights()) mis.techniques(scene, sp, sampler, lightPart, bsdfPart);
-    return Color3(luminance(reflect * lightPart), luminance(reflect * bsdfPart), luminance(rest));
+    // A light seen directly: its emission outshines what it reflects, so the whole estimate counts as
+    // "the rest" and the view shows the light as having no share.
+    if (material.sphereLight >= 0)
+      return Color3(0.f, 0.f, luminance(L + reflect * (delta + (lightPart + bsdfPart))));
+    return Color3(luminance(reflect * lightPart), luminance(reflect * bsdfPart),
+                  luminance(L + reflect * delta));
   }
 };
 

@@ -55,7 +55,8 @@ std::unique_ptr<Scene> mixedScene() {
 }
 
 // Per camera sample, R + G + B of the split equals the luminance of the MIS estimate (same stream),
-// and every channel is finite and >= 0; on the plane and on a light seen directly.
+// and every channel is finite and >= 0; on the plane and on a light seen directly (whose whole estimate
+// is in B).
 template <LightMeasure kMeasure, MisHeuristic kHeuristic>
 void expectChannelsAddUp(const Scene& scene, int nL, int nB) {
   const MisIntegrator<kMeasure, kHeuristic> mis{nL, nB};
@@ -64,8 +65,10 @@ void expectChannelsAddUp(const Scene& scene, int nL, int nB) {
   Ray onLight;
   onLight.o = kX + Vec3(1.2f, -3.f, 0.4f);
   onLight.d = Vec3(0.f, 1.f, 0.f);
-  int withLight = 0, withBsdf = 0, differing = 0, bad = 0;
-  for (const Ray& ray : {onPlane, onLight}) {
+  int withLight = 0, withBsdf = 0, differing = 0, bad = 0, lightShared = 0;
+  const Ray rays[] = {onPlane, onLight};
+  for (int r = 0; r < 2; ++r) {
+    const Ray& ray = rays[r];
     Sampler a(SamplerKind::Independent, 1, 5), b(SamplerKind::Independent, 1, 5);
     for (uint32_t i = 0; i < 4000; ++i) {
       a.startPixelSample(IVec2(1, 2), i);
@@ -75,11 +78,13 @@ void expectChannelsAddUp(const Scene& scene, int nL, int nB) {
       bad += !(isValidRadiance(parts));
       withLight += parts.x > 0.f;
       withBsdf += parts.y > 0.f;
+      lightShared += r == 1 && (parts.x != 0.f || parts.y != 0.f);  // a light: all in B
       const float sum = parts.x + parts.y + parts.z;
       differing += !(std::fabs(sum - expected) <= 1e-6f * std::max(1.f, expected));
     }
   }
   EXPECT_EQ(bad, 0);
+  EXPECT_EQ(lightShared, 0);
   EXPECT_EQ(differing, 0) << nL << "+" << nB;
   EXPECT_GT(withLight, nL > 0 ? 1000 : -1) << nL << "+" << nB;
   EXPECT_EQ(withLight > 0, nL > 0) << nL << "+" << nB;
