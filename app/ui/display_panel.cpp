@@ -113,7 +113,7 @@ void drawDisplayPanel(ViewerController& c, PanelState& st) {
     else
       ImGui::TextUnformatted("light share: no area light");
     ImGui::Text("light %.5g  cosine %.5g", v.x, v.y);
-    ImGui::Text("other (emission, delta lights) %.5g", v.z);
+    ImGui::Text("rest (lights seen, point/directional) %.5g", v.z);
   } else if (st.hoverValid && !snap.mean.empty()) {
     Color3 v = snap.mean.at(st.hoverX, st.hoverY);
     ImGui::Text("pixel (%d, %d), %u spp", st.hoverX, st.hoverY, snap.spp);
