@@ -9,7 +9,8 @@ uniform sampler2D uMean;    // RGB32F, row 0 = top image row (and row 0 of the t
 uniform sampler2D uStdErr;  // RGB32F standard error of the mean (1x1 when unavailable)
 uniform float uExposure;    // stops
 uniform int uTonemap;       // 0: sRGB OETF, 1: gamma 2.2
-uniform int uView;          // 0: colour, 1: relative standard error, 2: NaN/Inf/negative highlight
+uniform int uView;          // 0: colour, 1: relative standard error, 2: NaN/Inf/negative highlight,
+                            // 3: MIS light share (app/ui/light_share_map.h)
 out vec4 fragColor;
 
 bool bad(float v) { return isnan(v) || isinf(v); }
@@ -37,9 +38,25 @@ vec3 ramp(float t) {
   return vec3(1.0, 4.0 - t, 0.0);
 }
 
+// app/ui/light_share_map.h: share R / (R + G) of a light-share film, blue (0) → near-white (1/2) →
+// red (1), dark grey where R + G is 0; colours as 8-bit levels.
+vec3 lightShareColour(vec3 m) {
+  float total = m.r + m.g;
+  if (!(total > 0.0) || isinf(total)) return vec3(64.0) / 255.0;
+  float s = clamp(m.r / total, 0.0, 1.0);
+  vec3 a = s < 0.5 ? vec3(33.0, 102.0, 172.0) : vec3(247.0);
+  vec3 b = s < 0.5 ? vec3(247.0) : vec3(178.0, 24.0, 43.0);
+  float t = s < 0.5 ? 2.0 * s : 2.0 * s - 1.0;
+  return floor(a + (b - a) * t + 0.5) / 255.0;
+}
+
 void main() {
   ivec2 px = ivec2(gl_FragCoord.xy);
   vec3 m = texelFetch(uMean, px, 0).rgb;
+  if (uView == 3) {
+    fragColor = vec4(lightShareColour(m), 1.0);
+    return;
+  }
   if (uView == 1) {
     // Relative standard error of the luminance, log scale: 0.1 % (blue) … 100 % (red); black: no data.
     ivec2 esize = textureSize(uStdErr, 0);

@@ -181,3 +181,43 @@ TEST(ViewerWindow, RealWindowUnderXvfb) {
     EXPECT_EQ(ui.width, 720);
   }
 }
+
+// The MIS light share view: shaders/display.frag (uView 3) shows the same map as the CPU tone mapping
+// (app/ui/light_share_map.h), pixel for pixel, and the map has colours (it is not the colour view).
+TEST(ViewerOffscreen, LightShareViewIsTheSameMapOnTheShaderAndTheCpuPath) {
+  Image shots[2];
+  Layout layouts[2];
+  const char* modes[] = {"cpu", "shader"};
+  for (int i = 0; i < 2; ++i) {
+    const std::string shot = tempDir() + "/share-" + modes[i] + ".png";
+    RunResult r = run(std::string("PENUMBRA_TONEMAP=") + modes[i] + " " + PENUMBRA_OFFSCREEN_BINARY +
+                      " view " + defaultSceneFile() + " " + kSets +
+                      " --set integrator.measure=mis --view mis-light-share --frames 3 --window 720x560"
+                      " --print-layout --screenshot " +
+                      shot);
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    EXPECT_NE(r.out.find(std::string("tone mapping: ") + modes[i]), std::string::npos) << r.out;
+    shots[i] = readPng(shot);
+    layouts[i] = parseLayout(r.out);
+  }
+  const Layout& l = layouts[0];
+  ASSERT_GT(l.w, 0);
+  int worst = 0, red = 0;
+  for (int y = 0; y < l.h; ++y)
+    for (int x = 0; x < l.w; ++x) {
+      const int sx = int(l.x + (x + 0.5f) * l.zoom), sy = int(l.y + (y + 0.5f) * l.zoom);
+      for (int c = 0; c < 3; ++c)
+        worst =
+            std::max(worst, std::abs(int(byteAt(shots[0], sx, sy, c)) - int(byteAt(shots[1], sx, sy, c))));
+      red += byteAt(shots[0], sx, sy, 0) > byteAt(shots[0], sx, sy, 2) + 60;  // mostly light sampling
+    }
+  EXPECT_LE(worst, 1);
+  EXPECT_GT(red, l.w * l.h / 10);
+}
+
+TEST(ViewerOffscreen, LightShareViewWithoutAMisStrategyExitsWithCode2) {
+  RunResult r = run(std::string(PENUMBRA_OFFSCREEN_BINARY) + " view " + defaultSceneFile() +
+                    " --view mis-light-share --frames 1");
+  EXPECT_EQ(r.exitCode, 2) << r.out;
+  EXPECT_NE(r.out.find("needs a mis strategy"), std::string::npos) << r.out;
+}

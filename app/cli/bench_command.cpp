@@ -142,9 +142,16 @@ Scaling measure(const LoadedScene& s, const RenderSettings& settings, int all, c
           cpuShareBetween(first, readCpuClock(), all).steal};
 }
 
+// Width of the first column: the longest strategy label (the mis rows', 40 characters) fits.
+int labelWidth() {
+  size_t w = 28;
+  for (const StrategyRow& row : strategyTable()) w = std::max(w, row.label.size());
+  return int(w);
+}
+
 void printHeader(const char* what) {
-  std::printf("%-28s %12s %12s %20s %9s %6s\n", what, "1 thread M/s", "all threads", "speed-up (range)",
-              "CPU got", "steal");
+  std::printf("%-*s %12s %12s %20s %9s %6s\n", labelWidth(), what, "1 thread M/s", "all threads",
+              "speed-up (range)", "CPU got", "steal");
 }
 
 void printRow(const std::string& label, const Scaling& m, double scale) {
@@ -152,8 +159,8 @@ void printRow(const std::string& label, const Scaling& m, double scale) {
   std::snprintf(range, sizeof range, "%.2fx (%.2f-%.2f)", m.speedUp, m.speedUpMin, m.speedUpMax);
   char steal[16] = "n/a";
   if (m.steal >= 0) std::snprintf(steal, sizeof steal, "%.1f%%", 100 * m.steal);
-  std::printf("%-28s %12.2f %12.2f %20s %8.0f%% %6s\n", label.c_str(), m.one * scale, m.all * scale, range,
-              100 * m.coresGot, steal);
+  std::printf("%-*s %12.2f %12.2f %20s %8.0f%% %6s\n", labelWidth(), label.c_str(), m.one * scale,
+              m.all * scale, range, 100 * m.coresGot, steal);
 }
 
 std::string locateScene(const std::string& given, const std::string& repoRelative) {

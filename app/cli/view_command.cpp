@@ -34,6 +34,7 @@ struct ViewOptions {
   int threads = 0;
   std::string compare;
   std::string window;  // WxH
+  std::string view;    // colour | mis-light-share
   DisplayServerOption display;
 };
 
@@ -66,6 +67,7 @@ std::vector<std::string> offscreenArgs(const ViewOptions& o) {
   if (o.threads > 0) args.insert(args.end(), {"--threads", std::to_string(o.threads)});
   if (!o.window.empty()) args.insert(args.end(), {"--window", o.window});
   if (!o.compare.empty()) args.insert(args.end(), {"--compare", o.compare});
+  if (!o.view.empty()) args.insert(args.end(), {"--view", o.view});
   if (!o.display.spec.empty()) args.insert(args.end(), {"--display-server", o.display.spec});
   return args;
 }
@@ -87,6 +89,7 @@ int runView(ViewOptions o) {
   vo.printLayout = o.printLayout;
   vo.openWarpInspector = o.openWarpInspector;
   vo.compare = o.compare;
+  vo.lightShareView = o.view == "mis-light-share";
   vo.screenshot = o.screenshot;
   if (offscreenBuild && vo.screenshot.empty() && !o.bench) vo.screenshot = kFallbackScreenshot;
   vo.frames = o.frames >= 0 ? o.frames : (offscreenBuild ? 3 : 0);
@@ -124,6 +127,10 @@ void addViewCommand(CLI::App& app, int& exitCode) {
                   "Start in compare mode: this strategy (e.g. solid-angle) right of the divider, "
                   "the scene's on the left, each with half of the threads");
   cmd->add_option("--window", opts->window, "Window / offscreen buffer size, e.g. 1280x800");
+  cmd->add_option("--view", opts->view,
+                  "Start in this view: colour (default) or mis-light-share (a mis strategy: the light "
+                  "technique's share of each pixel, false colour)")
+      ->check(CLI::IsMember({"colour", "mis-light-share"}));
   opts->display.addTo(*cmd);
   cmd->add_flag("--print-layout", opts->printLayout, "Print where the image is drawn (for tests)")->group("");
   cmd->add_flag("--open-warp-inspector", opts->openWarpInspector,

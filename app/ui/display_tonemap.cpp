@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include "app/ui/light_share_map.h"
 
 #include <immintrin.h>
 
@@ -159,6 +160,15 @@ void tonemapForDisplay(const Image& mean, const Image& standardError, const Disp
       }
       float r = luminance(e + 3 * i) / lm;
       ramp((std::log10(std::max(r, 1e-3f)) + 3.f) / 3.f, o, order);
+    }
+    return;
+  }
+  if (d.falseColour == FalseColour::MisLightShare) {
+    // A light-share film: the light technique's share of each pixel's area-light estimate.
+    for (std::size_t i = 0; i < n; ++i, m += 3, o += 4) {
+      std::uint8_t rgb[3];
+      lightShareRgb(lightShare(Color3(m[0], m[1], m[2])), rgb);
+      o[ri] = rgb[0], o[1] = rgb[1], o[bi] = rgb[2], o[3] = 255;
     }
     return;
   }

@@ -75,7 +75,7 @@ class ViewerApp : public BenchViewer {
     bool redraw = c_.checkFileChanged();
     // The whole image's standard error only for the false-colour view; the pixel inspector gets its
     // pixel's from the snapshot's probe (resolving 590 k pixels a pass for one cost the workers ~10 %).
-    const bool wantError = c_.display.falseColour == FalseColour::RelativeError;
+    const bool wantError = c_.shownDisplay().falseColour == FalseColour::RelativeError;
     c_.setProbePixel(st_.hoverValid ? st_.hoverX : -1, st_.hoverValid ? st_.hoverY : -1);
     c_.pollSnapshot(wantError, requestSnapshot);
     if (c_.compareEnabled() != compareShown_ || c_.compareRestartCount() != compareRestart_) {
@@ -128,7 +128,7 @@ class ViewerApp : public BenchViewer {
     if (c_.loading()) drawLoadingOverlay(fbW, fbH);
     ImGui::Render();
     if (stageTimer_) stageTimer_->end(kUi);
-    display_.prepare(c_.display, c_.snapshot(), c_.compareEnabled() ? &c_.compareSnapshot() : nullptr);
+    display_.prepare(c_.shownDisplay(), c_.snapshot(), c_.compareEnabled() ? &c_.compareSnapshot() : nullptr);
     if (stageTimer_) stageTimer_->end(kTonemap);
 
     // Every pixel is written once: the panel column's background (its ImGui window draws none:
@@ -498,6 +498,12 @@ int runViewer(LoadedScene scene, ViewerController::Overrides overrides, const Vi
   wo.title = "Penumbra — " +
              (controller.scene().path.empty() ? std::string("built-in scene") : controller.scene().path);
 
+  if (o.lightShareView && (!o.compare.empty() || !controller.lightShareOffered()))
+    throw Error(
+        "--view mis-light-share: needs a mis strategy that applies to the scene (e.g. --set "
+        "integrator.measure=mis) and no --compare; the scene renders " +
+        strategyLabel(controller.settings().integrator));
+
   IMGUI_CHECKVERSION();
   ImGui::CreateContext();
   ImGui::GetIO().IniFilename = nullptr;
@@ -510,6 +516,8 @@ int runViewer(LoadedScene scene, ViewerController::Overrides overrides, const Vi
     if (!o.compare.empty()) {
       controller.setCompareIntegrator(controller.parseCompareStrategy(o.compare));
       controller.setCompare(true);  // starts both sides
+    } else if (o.lightShareView) {
+      controller.setLightShareView(true);  // starts the accumulation
     } else {
       controller.start();
     }

@@ -21,6 +21,7 @@ struct ViewerOptions {
   std::string compare;             // non-empty: start in compare mode with this strategy on the right
   bool openWarpInspector = false;  // start with the warp inspector window open (screenshots)
   bool printLayout = false;        // print "image-rect X Y W H ZOOM" (tests)
+  bool lightShareView = false;     // start in the "MIS light share" view (a mis strategy, no compare)
   // After every snapshot poll (last = false) and once when the viewer closes (last = true).
   std::function<void(const ViewerController&, bool last)> onSnapshot;
 };

@@ -7,6 +7,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "app/ui/light_share_map.h"
 #include "core/image/atomic_file.h"
 #include "core/image/image_io.h"
 #include "core/math/error.h"
@@ -141,6 +142,9 @@ void ViewerController::startLeft() {
   auto job = std::make_shared<RenderJob>();
   job->scene = scene_.scene;
   job->settings = settings_;
+  if (lightShareView_ && !lightShareOffered()) lightShareView_ = false;
+  job->output = lightShareView_ ? RenderOutput::MisLightShare : RenderOutput::Radiance;
+  leftOutput_ = job->output;
   bool wasPaused = engine_.paused();
   RenderLimits limits = effectiveLimits();
   limits.preview = true;  // a coarse first frame within milliseconds of any change
@@ -171,6 +175,24 @@ void ViewerController::setCompare(bool on) {
     compareSnapshot_ = FilmSnapshot{};
   }
   start();  // both sides start together with their (new) share of the threads
+}
+
+bool ViewerController::lightShareOffered() const {
+  return !compare_ &&
+         offersLightShare(applicableStrategy(settings_.integrator.strategy, sceneHasAreaLights()));
+}
+
+void ViewerController::setLightShareView(bool on) {
+  on = on && lightShareOffered();
+  if (on == lightShareView_) return;
+  lightShareView_ = on;
+  startLeft();
+}
+
+DisplaySettings ViewerController::shownDisplay() const {
+  DisplaySettings d = display;
+  if (snapshotIsLightShare()) d.falseColour = FalseColour::MisLightShare;
+  return d;
 }
 
 void ViewerController::setCompareIntegrator(const IntegratorDesc& d) {
@@ -271,7 +293,7 @@ bool ViewerController::pollSnapshot(bool wantStandardError, bool requestNext) {
     if (engine_.probeAtRest(probeX_, probeY_, probe) && engine_.progress().spp == snapshot_.spp)
       snapshot_.probe = probe;
   }
-  if (changed) snapshotRestart_ = restarts_, ++snapshotSerial_;
+  if (changed) snapshotRestart_ = restarts_, snapshotOutput_ = leftOutput_, ++snapshotSerial_;
   if (compare_ && pollEngine(compareEngine_, compareSnapshot_, wantStandardError, requestNext)) {
     changed = true;
     ++compareSnapshotSerial_;
@@ -690,6 +712,14 @@ std::string ViewerController::saveImage(const std::string& path) const {
   meta.add("spp", std::to_string(snapshot_.spp));
   meta.add("seconds", std::to_string(snapshot_.seconds));
   meta.add("scene", scene_.path.empty() ? "<built-in>" : scene_.path);
+  if (snapshotIsLightShare()) {
+    // EXR/PFM: the split (R light, G cosine, B the rest, as luminance); PNG: the false-colour map.
+    meta.add("output", "mis-light-share");
+    if (imageFormatFromPath(path) == ImageFormat::Png) {
+      writeImage(path, lightShareMapImage(snapshot_.mean), meta, 0.f);
+      return "saved " + path + " (MIS light share, " + std::to_string(snapshot_.spp) + " spp)";
+    }
+  }
   writeImage(path, snapshot_.mean, meta, display.exposure);
   return "saved " + path + " (" + std::to_string(snapshot_.spp) + " spp)";
 }

@@ -19,7 +19,9 @@
 namespace penumbra::ui {
 
 enum class Tonemap : int { Srgb = 0, Gamma22 = 1 };
-enum class FalseColour : int { None = 0, RelativeError = 1, BadPixels = 2 };
+// The user's false-colour choices (Display panel), and MisLightShare: how a light-share film
+// (ViewerController::setLightShareView) is shown, never chosen directly.
+enum class FalseColour : int { None = 0, RelativeError = 1, BadPixels = 2, MisLightShare = 3 };
 
 // Display-only state: changing it never restarts the engine.
 struct DisplaySettings {
@@ -145,6 +147,23 @@ class ViewerController {
   // "default for 64 sphere lights: bvh (all up to 8)", for the panel.
   std::string lightSelectionDefaultText() const;
 
+  // ---- MIS light share view --------------------------------------------------------------------
+  // The "MIS light share" view renders the strategy's light-share output (RenderOutput::MisLightShare:
+  // per pixel, the luminance of the light-sampling and of the cosine-hemisphere part of the MIS
+  // estimate) and shows the light technique's share as a false-colour map. Offered while the rendered
+  // strategy is a mis row (strategy table: offersLightShare) and compare mode is off; a change that
+  // stops offering it (another strategy, compare on, a scene without area lights) turns it off.
+  // Switching it restarts the accumulation.
+  bool lightShareOffered() const;
+  void setLightShareView(bool on);
+  bool lightShareView() const { return lightShareView_; }
+  // Whether snapshot() holds a light-share film (it lags the switch until the new accumulation's
+  // first snapshot arrives).
+  bool snapshotIsLightShare() const { return snapshotOutput_ == RenderOutput::MisLightShare; }
+  // `display` as the image must be shown: its false colour replaced by MisLightShare for a light-share
+  // snapshot.
+  DisplaySettings shownDisplay() const;
+
   // ---- camera ----------------------------------------------------------------------------------
   void orbit(float dxPixels, float dyPixels);
   void pan(float dxPixels, float dyPixels);
@@ -224,6 +243,9 @@ class ViewerController {
   uint64_t restarts_ = 0;
   uint64_t snapshotRestart_ = 0;
   uint64_t snapshotSerial_ = 0, compareSnapshotSerial_ = 0;
+  bool lightShareView_ = false;
+  RenderOutput leftOutput_ = RenderOutput::Radiance;      // of the left engine's current job
+  RenderOutput snapshotOutput_ = RenderOutput::Radiance;  // of the job snapshot_ came from
   bool compare_ = false;
   IntegratorDesc compareIntegrator_{Strategy::DirectSolidAngle, 1};
   bool compareUserChosen_ = false;  // setCompareIntegrator was called: keep it while it applies

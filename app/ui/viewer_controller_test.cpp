@@ -13,6 +13,10 @@
 #include <string>
 #include <thread>
 
+#include "app/ui/light_share_map.h"
+#include "core/image/image_io.h"
+#include "core/image/tonemap.h"
+#include "core/integrators/mis_light_share.h"
 #include "core/scene/light_selection_default.h"
 #include "core/scene/scaling_scene.h"
 #include "core/scene/scene_builder.h"
@@ -310,4 +314,83 @@ TEST(ViewerCompare, ChangingOneSidesStrategyRestartsOnlyThatSide) {
   EXPECT_EQ(c.restartCount(), left + 1);
   EXPECT_EQ(c.compareRestartCount(), right + 1);
   EXPECT_EQ(c.compareEngine().job()->settings.camera.fovDegrees, c.settings().camera.fovDegrees);
+}
+
+// The "MIS light share" view: offered only while a mis row renders and compare mode is off; a change
+// that stops offering it turns it off; its snapshots are split films shown with the share map.
+TEST(ViewerController, LightShareViewIsOfferedForMisStrategiesOnly) {
+  ui::ViewerController c(smallDefaultScene(), {}, 2);
+  c.start();
+  EXPECT_FALSE(c.lightShareOffered());  // direct/solid-angle
+  c.setLightShareView(true);
+  EXPECT_FALSE(c.lightShareView());
+
+  RenderSettings s = c.settings();
+  s.integrator = directWith(Strategy::DirectMisProjectedBalance);
+  c.setSettings(s);
+  ASSERT_TRUE(c.lightShareOffered());
+  const uint64_t restarts = c.restartCount();
+  c.setLightShareView(true);
+  EXPECT_TRUE(c.lightShareView());
+  EXPECT_EQ(c.restartCount(), restarts + 1);  // the split output is another accumulation
+  ASSERT_TRUE(waitUntil([&] {
+    c.pollSnapshot(false);
+    return c.snapshotIsLightShare() && c.snapshot().spp >= 2;
+  }));
+  EXPECT_EQ(c.shownDisplay().falseColour, ui::FalseColour::MisLightShare);
+  EXPECT_EQ(c.display.falseColour, ui::FalseColour::None);  // the user's choice is kept for later
+  // The split's channels are luminances >= 0; the built-in scene's floor gets a share.
+  int withShare = 0;
+  for (int y = 0; y < c.snapshot().mean.height; ++y)
+    for (int x = 0; x < c.snapshot().mean.width; ++x) {
+      const float share = lightShare(c.snapshot().mean.at(x, y));
+      EXPECT_LE(share, 1.f);
+      withShare += share >= 0.f;
+    }
+  EXPECT_GT(withShare, 100);
+
+  // Another mis row keeps it; compare mode and a non-mis strategy turn it off.
+  s.integrator = directWith(Strategy::DirectMisAreaPower);
+  c.setSettings(s);
+  EXPECT_TRUE(c.lightShareView());
+  c.setCompare(true);
+  EXPECT_FALSE(c.lightShareOffered());
+  EXPECT_FALSE(c.lightShareView());
+  c.setCompare(false);
+  c.setLightShareView(true);
+  EXPECT_TRUE(c.lightShareView());
+  s.integrator = directWith(Strategy::DirectCosineHemisphere);
+  c.setSettings(s);
+  EXPECT_FALSE(c.lightShareOffered());
+  EXPECT_FALSE(c.lightShareView());
+  ASSERT_TRUE(waitUntil([&] {
+    c.pollSnapshot(false);
+    return !c.snapshotIsLightShare() && c.snapshot().spp >= 1;
+  }));
+  EXPECT_EQ(c.shownDisplay().falseColour, ui::FalseColour::None);
+}
+
+// Saved in the light-share view: the PNG is the map, the EXR the split with its metadata.
+TEST(ViewerController, LightShareViewSavesTheMapAndTheSplit) {
+  ui::ViewerController c(smallDefaultScene(), {{"integrator.measure", "mis"}}, 2);
+  RenderSettings s = c.settings();
+  s.integrator = directWith(Strategy::DirectMisSolidAnglePower);
+  c.setSettings(s);
+  c.setLightShareView(true);
+  ASSERT_TRUE(waitUntil([&] {
+    c.pollSnapshot(false);
+    return c.snapshotIsLightShare() && c.snapshot().spp >= 2;
+  }));
+  c.setPaused(true);
+  c.pollSnapshot(false);
+  const fs::path dir = fs::temp_directory_path() / ("penumbra-share-" + std::to_string(getpid()));
+  fs::create_directories(dir);
+  c.saveImage((dir / "share.png").string());
+  const Image png = readPng((dir / "share.png").string());
+  const Image expected = ui::lightShareMapImage(c.snapshot().mean);
+  ASSERT_EQ(png.width, expected.width);
+  size_t differing = 0;
+  for (size_t i = 0; i < png.rgb.size(); ++i) differing += toSrgb8(png.rgb[i]) != toSrgb8(expected.rgb[i]);
+  EXPECT_EQ(differing, 0u);
+  fs::remove_all(dir);
 }

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <limits>
 #include <memory>
+#include <optional>
 
 #include "core/analysis/closed_forms.h"
 #include "core/analysis/ray_estimate.h"
@@ -146,17 +147,24 @@ std::string nameOf(Strategy s) {
 constexpr unsigned bit(Strategy s) {
   return 1u << unsigned(s);
 }
+// The mis rows: every light measure with both heuristics (one light and one cosine sample each).
+constexpr Strategy kMisRows[] = {Strategy::DirectMisSolidAnglePower, Strategy::DirectMisSolidAngleBalance,
+                                 Strategy::DirectMisAreaPower,       Strategy::DirectMisAreaBalance,
+                                 Strategy::DirectMisProjectedPower,  Strategy::DirectMisProjectedBalance};
 constexpr unsigned kSolid = bit(Strategy::DirectSolidAngle), kArea = bit(Strategy::DirectArea),
                    kProjected = bit(Strategy::DirectProjectedSolidAngle),
                    kCosine = bit(Strategy::DirectCosineHemisphere),
                    kUniform = bit(Strategy::DirectUniformHemisphere),
-                   kAll = kSolid | kArea | kProjected | kCosine | kUniform;
+                   kMis = bit(kMisRows[0]) | bit(kMisRows[1]) | bit(kMisRows[2]) | bit(kMisRows[3]) |
+                          bit(kMisRows[4]) | bit(kMisRows[5]),
+                   kAll = kSolid | kArea | kProjected | kCosine | kUniform | kMis;
 
 // Direct lighting of the receiver point by each strategy in `strategies`: light sampling first, then
-// hemisphere sampling (which needs no area light) with hemisphereFactor times the samples; the i-th
-// strategy of that order uses seed + i.
+// hemisphere sampling (which needs no area light) with hemisphereFactor times the samples, then the
+// mis rows with misSamples (0: n); the i-th strategy of that order uses seed + i.
 CaseResult directCase(const CaseOptions& o, const std::string& file, unsigned strategies, int n,
-                      const Vec3& x = kReceiver, float slope = 1e-4f, int hemisphereFactor = 4) {
+                      const Vec3& x = kReceiver, float slope = 1e-4f, int hemisphereFactor = 4,
+                      int misSamples = 0) {
   LoadedScene s = load(o, file);
   const Scene& scene = *s.scene;
   Ray ray = shallowRayOnto(x, slope);
@@ -171,12 +179,23 @@ CaseResult directCase(const CaseOptions& o, const std::string& file, unsigned st
   double truth = directTruth(scene, hit.p);
   bool first = true;
   n = count(o, n);
-  const Strategy order[] = {Strategy::DirectSolidAngle, Strategy::DirectArea,
-                            Strategy::DirectProjectedSolidAngle, Strategy::DirectCosineHemisphere,
-                            Strategy::DirectUniformHemisphere};
+  const Strategy order[] = {Strategy::DirectSolidAngle,
+                            Strategy::DirectArea,
+                            Strategy::DirectProjectedSolidAngle,
+                            Strategy::DirectCosineHemisphere,
+                            Strategy::DirectUniformHemisphere,
+                            kMisRows[0],
+                            kMisRows[1],
+                            kMisRows[2],
+                            kMisRows[3],
+                            kMisRows[4],
+                            kMisRows[5]};
   for (unsigned i = 0; i < std::size(order); ++i) {
     if (!(strategies & bit(order[i]))) continue;
-    int samples = strategyRow(order[i]).needs == SceneNeed::AreaLights ? n : hemisphereFactor * n;
+    const bool mis = kMis & bit(order[i]);
+    int samples = mis && misSamples > 0                                  ? misSamples
+                  : strategyRow(order[i]).needs == SceneNeed::AreaLights ? n
+                                                                         : hemisphereFactor * n;
     merge(acc, fromEstimate(estimate(order[i], scene, ray, samples, o.seed + i), truth), nameOf(order[i]),
           first);
   }
@@ -297,11 +316,16 @@ CaseResult coneCase(const CaseOptions& o, const std::string& tag) {
   LoadedScene s = load(o, "cone-sin2-" + tag + ".xml");
   const Scene& scene = *s.scene;
   const SphereLight& light = scene.sphereLights.at(0);
-  CaseResult acc = directCase(o, "cone-sin2-" + tag + ".xml", kSolid, 20000);
-  // The sampled pdf agrees with pdfSolidAngle(wi) and with the closed form 1 / (2π (1 − cos θmax)).
   const glm::dvec3 x(kReceiver), c(light.sphere.center);
   const double d = glm::length(c - x), r = light.sphere.radius;
   const double sin2 = (r / d) * (r / d), cosMax = std::sqrt((d - r) / d * ((d + r) / d));
+  // MIS: the cosine technique reaches the cone with probability ~sin²θmax and carries a share of up to
+  // ~sin²θmax of the estimate (balance). Where that share exceeds the 1e-5 slack, enough samples for
+  // ~40 such hits, or the rare hits make the sample variance (and so the z-test) meaningless.
+  const int misSamples = sin2 > 1e-5 ? int(std::min(1e6, 40.0 / sin2)) : 0;
+  CaseResult acc =
+      directCase(o, "cone-sin2-" + tag + ".xml", kSolid | kMis, 20000, kReceiver, 1e-4f, 4, misSamples);
+  // The sampled pdf agrees with pdfSolidAngle(wi) and with the closed form 1 / (2π (1 − cos θmax)).
   const double pdfTruth = 1.0 / (2.0 * kPiD * (sin2 / (1.0 + cosMax)));
   Sampler sampler(SamplerKind::Independent, 1, o.seed + 7);
   uint64_t mismatched = 0;
@@ -343,7 +367,7 @@ CaseResult radiusZero(const CaseOptions& o) {
   SurfaceHit hit;
   if (s.scene->geometry.intersect(up, hit)) r.failures.push_back("a radius-0 light was added as geometry");
   r.note = "builder keeps the light (" + std::to_string(s.scene->sphereLights.size()) +
-           "), no geometry; no samples; all 4 strategies exactly 0";
+           "), no geometry; no samples; every strategy exactly 0";
   return r;
 }
 
@@ -469,11 +493,13 @@ struct Render {
   uint64_t bad = 0;
 };
 
-Render render(const LoadedScene& s, uint32_t spp, uint64_t seed) {
+// The scene's own integrator, or `strategy` when given.
+Render render(const LoadedScene& s, uint32_t spp, uint64_t seed, std::optional<Strategy> strategy = {}) {
   auto job = std::make_shared<RenderJob>();
   job->scene = s.scene;
   job->settings = s.settings;
   job->settings.seed = seed;
+  if (strategy) job->settings.integrator.strategy = *strategy;
   Engine engine;
   RenderLimits limits;
   limits.targetSpp = spp;
@@ -494,16 +520,16 @@ void imageMean(const Render& r, double& mean, double& se) {
   se = std::sqrt(var) / double(n);
 }
 
-CaseResult scaleCase(const CaseOptions& o, const std::string& kind) {
+CaseResult scaleCase(const CaseOptions& o, const std::string& kind, std::optional<Strategy> strategy = {}) {
   const uint32_t spp = o.quick ? 16 : 64;
-  Render ref = render(load(o, "scale-" + kind + "-1.xml"), spp, o.seed);
+  Render ref = render(load(o, "scale-" + kind + "-1.xml"), spp, o.seed, strategy);
   double m1, se1;
   imageMean(ref, m1, se1);
   CaseResult acc;
   bool first = true;
   acc.bad = ref.bad;
   for (const char* tag : {"1e-4", "1e4"}) {
-    Render img = render(load(o, "scale-" + kind + "-" + tag + ".xml"), spp, o.seed);
+    Render img = render(load(o, "scale-" + kind + "-" + tag + ".xml"), spp, o.seed, strategy);
     double m, se;
     imageMean(img, m, se);
     CaseResult sub;
@@ -623,6 +649,11 @@ CaseResult brightOccluded(const CaseOptions& o) {
   // in --quick, so the standard error is itself estimated well enough for a z-test.
   merge(acc, fromEstimate(estimate(Strategy::DirectCosineHemisphere, scene, ray, 400000, o.seed + 2), truth),
         nameOf(Strategy::DirectCosineHemisphere), first);
+  // MIS: the light samples carry the estimate; a cosine direction that finds the visible ring weighs
+  // 1e6 by a weight near 0.
+  for (unsigned i = 0; i < std::size(kMisRows); ++i)
+    merge(acc, fromEstimate(estimate(kMisRows[i], scene, ray, n, o.seed + 3 + i), truth), nameOf(kMisRows[i]),
+          first);
   return acc;
 }
 
@@ -746,32 +777,33 @@ std::vector<StiffCase> makeCases() {
   add("light-on-surface", "near-light", "shading point exactly on the light's surface", onSurface);
   add("light-outside-1e-6r", "near-light", "receiver 1e-6 r outside an overhead light (integrator)",
       [](const CaseOptions& o) {
-        return directCase(o, "light-touching.xml", kSolid | kProjected | kCosine, 20000, kReceiver, 1e-5f, 1);
+        return directCase(o, "light-touching.xml", kSolid | kProjected | kCosine | kMis, 20000, kReceiver,
+                          1e-5f, 1);
       });
   add("light-outside-1e-8r", "near-light", "shading point 1e-8 r outside the light", outside1e8);
   add("light-inside", "near-light", "receiver inside a one-sided light: exactly 0", inside);
   add("light-below-horizon", "horizon", "light entirely below the horizon: exactly 0",
       [](const CaseOptions& o) { return exactlyZeroCase(o, "light-below-horizon.xml", 4000); });
   add("light-straddling", "horizon", "light straddling the horizon", [](const CaseOptions& o) {
-    return directCase(o, "light-straddling.xml", kSolid | kProjected | kArea | kCosine, 20000);
+    return directCase(o, "light-straddling.xml", kSolid | kProjected | kArea | kCosine | kMis, 20000);
   });
   add("light-centre-on-horizon", "horizon", "light centre exactly on the horizon", [](const CaseOptions& o) {
-    return directCase(o, "light-centre-on-horizon.xml", kSolid | kProjected | kArea | kCosine, 20000);
+    return directCase(o, "light-centre-on-horizon.xml", kSolid | kProjected | kArea | kCosine | kMis, 20000);
   });
   add("light-grazing-89.9", "horizon", "light centre 89.9 degrees from the normal", [](const CaseOptions& o) {
-    return directCase(o, "light-grazing.xml", kSolid | kProjected | kArea | kCosine, 20000);
+    return directCase(o, "light-grazing.xml", kSolid | kProjected | kArea | kCosine | kMis, 20000);
   });
   add("equal-power-r1", "equal-power", "equal power, r = 1 (all strategies)",
       [](const CaseOptions& o) { return directCase(o, "equal-power-r1.xml", kAll, 20000); });
-  add("equal-power-r1e-3", "equal-power", "equal power, r = 1e-3 (light sampling; hemisphere finite)",
+  add("equal-power-r1e-3", "equal-power", "equal power, r = 1e-3 (light sampling, mis; hemisphere finite)",
       [](const CaseOptions& o) {
-        CaseResult r = directCase(o, "equal-power-r1e-3.xml", kSolid | kProjected | kArea, 20000);
+        CaseResult r = directCase(o, "equal-power-r1e-3.xml", kSolid | kProjected | kArea | kMis, 20000);
         equalPowerTruths(o, "equal-power-r1e-3.xml", r);
         return r;
       });
-  add("equal-power-r1e-6", "equal-power", "equal power, r = 1e-6 (light sampling; hemisphere finite)",
+  add("equal-power-r1e-6", "equal-power", "equal power, r = 1e-6 (light sampling, mis; hemisphere finite)",
       [](const CaseOptions& o) {
-        CaseResult r = directCase(o, "equal-power-r1e-6.xml", kSolid | kProjected | kArea, 20000);
+        CaseResult r = directCase(o, "equal-power-r1e-6.xml", kSolid | kProjected | kArea | kMis, 20000);
         LoadedScene s = load(o, "equal-power-r1e-6.xml");
         bool first = false;
         Ray ray = shallowRayOnto(kReceiver);
@@ -788,6 +820,12 @@ std::vector<StiffCase> makeCases() {
       [](const CaseOptions& o) { return scaleCase(o, "ao"); });
   add("scale-direct", "scale", "direct image at scales 1e-4 and 1e4 vs 1",
       [](const CaseOptions& o) { return scaleCase(o, "direct"); });
+  const std::pair<Strategy, const char*> misScales[] = {{kMisRows[0], "scale-mis-solid-angle"},
+                                                        {kMisRows[3], "scale-mis-area"},
+                                                        {kMisRows[4], "scale-mis-projected"}};
+  for (auto [mis, name] : misScales)
+    add(name, "scale", "direct image at scales 1e-4 and 1e4 vs 1, " + std::string(strategyRow(mis).label),
+        [mis](const CaseOptions& o) { return scaleCase(o, "direct", mis); });
   add("ao-sphere-near-contact", "contact", "AO on a resting sphere near its contact point",
       aoOnSphereNearContact);
   add("ao-plane-near-contact", "contact", "AO on the plane next to the contact point", aoOnPlaneNearContact);

@@ -10,9 +10,14 @@
 
 namespace penumbra {
 
+// What the film accumulates per camera sample: the radiance estimate, or (mis rows only) its parts by
+// technique, for the viewer's light-share view (core/integrators/mis_light_share.h).
+enum class RenderOutput : uint8_t { Radiance, MisLightShare };
+
 struct RenderJob {
   std::shared_ptr<const Scene> scene;
   RenderSettings settings;
+  RenderOutput output = RenderOutput::Radiance;
 };
 
 struct RenderLimits {

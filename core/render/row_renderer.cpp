@@ -6,7 +6,11 @@ namespace penumbra {
 
 RowRenderer makeRowRenderer(const RenderJob& job) {
   const IntegratorDesc& d = job.settings.integrator;
-  return strategyRow(d.strategy).makeRows(job, d);
+  const StrategyRow& row = strategyRow(d.strategy);
+  // A light-share job of a row without that output renders radiance (callers check offersLightShare).
+  if (job.output == RenderOutput::MisLightShare && row.makeLightShareRows)
+    return row.makeLightShareRows(job, d);
+  return row.makeRows(job, d);
 }
 
 }  // namespace penumbra

@@ -5,6 +5,7 @@
 #include "core/integrators/ao_integrator.h"
 #include "core/integrators/direct_integrator.h"
 #include "core/integrators/mis_integrator.h"
+#include "core/integrators/mis_light_share.h"
 #include "core/integrators/normals_integrator.h"
 #include "core/render/ray_estimator.h"
 #include "core/render/row_loop.h"
@@ -36,6 +37,11 @@ RayEstimate alongRay(const Scene& scene, const Ray& ray, int samples, int n, uin
 template <LightMeasure kMeasure, MisHeuristic kHeuristic>
 RowRenderer misRows(const RenderJob& job, const IntegratorDesc& desc) {
   return rowsFor(job, MisIntegrator<kMeasure, kHeuristic>{desc.lightSamples, desc.bsdfSamples});
+}
+
+template <LightMeasure kMeasure, MisHeuristic kHeuristic>
+RowRenderer misLightShareRows(const RenderJob& job, const IntegratorDesc& desc) {
+  return rowsFor(job, MisLightShareIntegrator<kMeasure, kHeuristic>{{desc.lightSamples, desc.bsdfSamples}});
 }
 
 template <LightMeasure kMeasure, MisHeuristic kHeuristic>
@@ -99,6 +105,7 @@ constexpr StrategyRow misRow(Strategy strategy, std::string_view label, std::str
       .baseline = false,
       .makeRows = misRows<kMeasure, kH>,
       .estimateRay = misAlongRay<kMeasure, kH>,
+      .makeLightShareRows = misLightShareRows<kMeasure, kH>,
   };
 }
 
@@ -433,6 +440,10 @@ std::span<const StrategyRow> strategyTable() {
 
 const StrategyRow& strategyRow(Strategy s) {
   return kRows[size_t(s)];
+}
+
+bool offersLightShare(Strategy s) {
+  return strategyRow(s).makeLightShareRows != nullptr;
 }
 
 std::string strategyLabel(const IntegratorDesc& desc) {

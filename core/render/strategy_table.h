@@ -73,11 +73,17 @@ struct StrategyRow {
   // instances, so the per-sample code is resolved at compile time.
   RowRenderer (*makeRows)(const RenderJob& job, const IntegratorDesc& desc);
   RayEstimate (*estimateRay)(const Scene& scene, const Ray& ray, int samples, int n, uint64_t seed);
+  // The row loop of the "MIS light share" output (RenderOutput::MisLightShare,
+  // core/integrators/mis_light_share.h):
+  // the mis rows only; null for every other row, which has no such output.
+  RowRenderer (*makeLightShareRows)(const RenderJob& job, const IntegratorDesc& desc) = nullptr;
 };
 
 // Every row, in enum order (the order lists, combos and reports show).
 std::span<const StrategyRow> strategyTable();
 const StrategyRow& strategyRow(Strategy s);
+// Whether the strategy can render RenderOutput::MisLightShare (the mis rows).
+bool offersLightShare(Strategy s);
 // The row's label, e.g. "direct/solid-angle" or "ao/cosine".
 std::string strategyLabel(const IntegratorDesc& desc);
 // A filesystem- and CSV-friendly name, e.g. "uniform-hemisphere", "solid-angle", "ao-cosine".
