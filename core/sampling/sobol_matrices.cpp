@@ -15,14 +15,17 @@ namespace {
 using JoeKuoTable = boost::random::detail::qrng_tables::sobol;
 static_assert(JoeKuoTable::max_dimension == kSobolDimensions);
 
-SobolDimension1Tables buildDimension1Tables() {
-  SobolMatrix v = sobolMatrix(1);
-  SobolDimension1Tables t{};
+SobolPairTables buildPairTables() {
+  const SobolMatrix v0 = sobolMatrix(0), v1 = sobolMatrix(1);
+  SobolPairTables t{};
   for (int b = 0; b < 4; ++b)
     for (uint32_t byte = 0; byte < 256; ++byte) {
-      uint32_t digits = 0;
-      for (int k = 0; k < 8; ++k)
-        if (byte >> k & 1) digits ^= reverseBits32(v[8 * b + k]);
+      uint64_t digits = 0;
+      for (int k = 0; k < 8; ++k) {
+        if ((byte >> k & 1) == 0) continue;
+        const int j = 31 - (8 * b + k);  // bit 8b + k of the reversed index is index bit j
+        digits ^= (static_cast<uint64_t>(reverseBits32(v1[j])) << 32) | reverseBits32(v0[j]);
+      }
       t.byte[b][byte] = digits;
     }
   return t;
@@ -62,6 +65,6 @@ uint32_t sobolProduct(const SobolMatrix& columns, uint32_t index) {
   return x;
 }
 
-const SobolDimension1Tables kSobolDimension1 = buildDimension1Tables();
+const SobolPairTables kSobolPairTables = buildPairTables();
 
 }  // namespace penumbra

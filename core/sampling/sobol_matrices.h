@@ -24,17 +24,20 @@ SobolMatrix sobolMatrix(unsigned dimension);
 // Matrix-vector product over GF(2): the unscrambled 32-bit fraction of index i (branch-free).
 uint32_t sobolProduct(const SobolMatrix& columns, uint32_t index);
 
-// Dimension 1 in digit order (bit 0 = most significant digit), for the samplers: four tables of 256
-// XOR combinations of 8 consecutive columns each, built once at start-up from sobolMatrix(1), so the
-// product is four lookups. Dimension 0 needs none: in digit order its point is the index itself.
-struct SobolDimension1Tables {
-  uint32_t byte[4][256];
+// Dimensions 0 and 1 in digit order (bit 0 = most significant digit) of the index whose bits are
+// reversed: the samplers' shuffle produces the index bit-reversed, and both dimensions are linear
+// maps of it over GF(2), so four tables of 256 XOR combinations (one per byte, built once at
+// start-up from sobolMatrix(0) and sobolMatrix(1)) give both without any bit reversal.
+// Low word: dimension 0 (the index itself, van der Corput); high word: dimension 1.
+struct SobolPairTables {
+  uint64_t byte[4][256];
 };
-extern const SobolDimension1Tables kSobolDimension1;
+extern const SobolPairTables kSobolPairTables;
 
-inline uint32_t sobolDimension1Digits(uint32_t index) {
-  const auto& t = kSobolDimension1.byte;
-  return t[0][index & 0xff] ^ t[1][(index >> 8) & 0xff] ^ t[2][(index >> 16) & 0xff] ^ t[3][index >> 24];
+inline uint64_t sobolPairDigits(uint32_t reversedIndex) {
+  const auto& t = kSobolPairTables.byte;
+  return t[0][reversedIndex & 0xff] ^ t[1][(reversedIndex >> 8) & 0xff] ^ t[2][(reversedIndex >> 16) & 0xff] ^
+         t[3][reversedIndex >> 24];
 }
 
 }  // namespace penumbra

@@ -34,15 +34,18 @@ TEST(SobolMatrices, DimensionOneIsPascalsTriangleModTwo) {
       EXPECT_EQ((v[j] >> (31 - r)) & 1, (r & j) == r ? 1u : 0u) << j << "," << r;
 }
 
-// The samplers' four-lookup product is the matrix product (both are linear: basis vectors suffice,
-// random indices check the byte split).
-TEST(SobolMatrices, DimensionOneTablesEqualTheMatrixProduct) {
-  SobolMatrix v = sobolMatrix(1);
-  for (uint32_t j = 0; j < 32; ++j) EXPECT_EQ(sobolDimension1Digits(1u << j), reverseBits32(v[j]));
+// The samplers' four-lookup product is both matrix products of the reversed index (all are linear:
+// basis vectors suffice; random indices check the byte split).
+TEST(SobolMatrices, PairTablesEqualTheMatrixProducts) {
+  SobolMatrix v0 = sobolMatrix(0), v1 = sobolMatrix(1);
+  auto expected = [&](uint32_t index) {
+    return (uint64_t{reverseBits32(sobolProduct(v1, index))} << 32) | reverseBits32(sobolProduct(v0, index));
+  };
+  for (uint32_t j = 0; j < 32; ++j) EXPECT_EQ(sobolPairDigits(reverseBits32(1u << j)), expected(1u << j));
   std::mt19937 rng(9);
   for (int i = 0; i < 1000; ++i) {
     uint32_t index = rng();
-    EXPECT_EQ(sobolDimension1Digits(index), reverseBits32(sobolProduct(v, index)));
+    EXPECT_EQ(sobolPairDigits(reverseBits32(index)), expected(index));
   }
 }
 

@@ -4,6 +4,10 @@
 // own index shuffle and value scrambles from hash(key, request), so consecutive requests are
 // independent (0,2)-sequences: "padding". Dimensions 0 and 1 are the first two of Joe and Kuo's
 // table, whose pair is a (0,2)-sequence; no request ever needs a higher dimension.
+//
+// Why the shuffle keeps nets: a Sobol' point's first a digits depend on every index bit, but the
+// block [c 2^k, (c + 1) 2^k) fixes all bits from k up, so each aligned block of 2^k indices is the
+// net of indices [0, 2^k) up to a digital shift. The shuffle maps aligned blocks onto aligned blocks.
 #pragma once
 
 #include <cstdint>
@@ -15,13 +19,13 @@
 
 namespace penumbra {
 
-// The samplers' randomisation: the index shuffled by a nested uniform scramble (a permutation that
-// maps aligned blocks of 2^k indices onto aligned blocks, so every power-of-two prefix of a pixel's
-// samples stays a net) and every value Owen-scrambled. Tests substitute broken versions.
+// The samplers' randomisation. Tests substitute broken versions.
 struct OwenScrambling {
-  // reversedIndex: the index with its bits reversed (computed once per pixel sample).
-  static uint32_t shuffledIndex(uint32_t reversedIndex, uint32_t seed) {
-    return reverseBits32(laineKarrasPermutation(reversedIndex, seed));
+  // Burley's nested uniform scramble of an index (most significant bit first), taken and returned
+  // bit-reversed: maps every aligned block of 2^k indices onto an aligned block (for zsobol: whole
+  // pixel tiles).
+  static uint32_t shuffledReversedIndex(uint32_t reversedIndex, uint32_t seed) {
+    return laineKarrasPermutation(reversedIndex, seed);
   }
   // digits: a point in digit order (bit 0 = most significant digit); returns digit order.
   static uint32_t scrambledDigits(uint32_t digits, uint32_t seed) {
@@ -29,25 +33,27 @@ struct OwenScrambling {
   }
 };
 
-// One request's point. reversedIndex: the bit-reversed sequence index before shuffling;
-// indexXor: bits XORed into the shuffled index (the zsobol sampler's sample counts beyond its
-// tile net); key: the stream's hash (seed, pixel or pixel tile).
+// The request's hash: its low word seeds the index shuffle, the rest the value scrambles.
+inline uint64_t requestHash(uint64_t key, uint32_t request) {
+  return hashCombine(key, request);
+}
+
+// The points of a shuffled index, given bit-reversed. Dimension 0 in digit order is the index.
 template <class Randomizer>
-inline float sobolPoint1D(uint32_t reversedIndex, uint32_t indexXor, uint64_t key, uint32_t request) {
-  const uint64_t h = hashCombine(key, request);
-  const uint32_t index = Randomizer::shuffledIndex(reversedIndex, static_cast<uint32_t>(h)) ^ indexXor;
-  // Dimension 0 in digit order is the index itself (van der Corput).
-  const uint32_t x = Randomizer::scrambledDigits(index, static_cast<uint32_t>(h >> 32));
+inline float sobolPoint1D(uint32_t shuffledReversedIndex, uint64_t hash) {
+  const uint32_t x =
+      Randomizer::scrambledDigits(reverseBits32(shuffledReversedIndex), static_cast<uint32_t>(hash >> 32));
   return bitsToUnitFloat(reverseBits32(x));
 }
 
 template <class Randomizer>
-inline Vec2 sobolPoint2D(uint32_t reversedIndex, uint32_t indexXor, uint64_t key, uint32_t request) {
-  const uint64_t h = hashCombine(key, request);
-  const uint32_t index = Randomizer::shuffledIndex(reversedIndex, static_cast<uint32_t>(h)) ^ indexXor;
-  const uint32_t x = Randomizer::scrambledDigits(index, static_cast<uint32_t>(h >> 32));
-  const uint32_t y =
-      Randomizer::scrambledDigits(sobolDimension1Digits(index), static_cast<uint32_t>(mix64(h)));
+inline Vec2 sobolPoint2D(uint32_t shuffledReversedIndex, uint64_t hash) {
+  const uint64_t digits = sobolPairDigits(shuffledReversedIndex);
+  const uint32_t x =
+      Randomizer::scrambledDigits(static_cast<uint32_t>(digits), static_cast<uint32_t>(hash >> 32));
+  // A third 32-bit seed from the high half of an odd multiple (depends on every bit of the hash).
+  const auto ySeed = static_cast<uint32_t>((hash * 0x9e3779b97f4a7c15ull) >> 32);
+  const uint32_t y = Randomizer::scrambledDigits(static_cast<uint32_t>(digits >> 32), ySeed);
   // One 64-bit reversal turns both digit-order values into fractions: x lands in the high word.
   const uint64_t fractions = reverseBits64((static_cast<uint64_t>(y) << 32) | x);
   return Vec2(bitsToUnitFloat(static_cast<uint32_t>(fractions >> 32)),

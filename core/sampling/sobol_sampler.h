@@ -33,17 +33,25 @@ class BasicSobolSampler {
   }
 
   // Uniform in [0, 1): never returns 1.0.
-  float next1D() { return sobolPoint1D<Randomizer>(reversedIndex_, 0, key_, request_++); }
-  Vec2 next2D() { return sobolPoint2D<Randomizer>(reversedIndex_, 0, key_, request_++); }
+  float next1D() {
+    const uint64_t h = requestHash(key_, request_++);
+    return sobolPoint1D<Randomizer>(
+        Randomizer::shuffledReversedIndex(reversedIndex_, static_cast<uint32_t>(h)), h);
+  }
+  Vec2 next2D() {
+    const uint64_t h = requestHash(key_, request_++);
+    return sobolPoint2D<Randomizer>(
+        Randomizer::shuffledReversedIndex(reversedIndex_, static_cast<uint32_t>(h)), h);
+  }
 
   uint64_t seed() const { return seed_; }
 
  private:
   uint64_t seed_ = 0;
   uint64_t seedHash_ = 0;
-  uint64_t key_ = 0;  // hash of (seed, pixel)
-  uint32_t reversedIndex_ = 0;
-  uint32_t request_ = 0;  // next1D/next2D calls since startPixelSample
+  uint64_t key_ = 0;            // hash of (seed, pixel)
+  uint32_t reversedIndex_ = 0;  // the sample index, bit-reversed for the nested shuffle
+  uint32_t request_ = 0;        // next1D/next2D calls since startPixelSample
 };
 
 using SobolSampler = BasicSobolSampler<OwenScrambling>;

@@ -14,13 +14,10 @@ namespace {
 
 // Deliberately broken randomisations: the tests below must catch them.
 struct NoScrambling {  // the plain Sobol' sequence, identical in every pixel
-  static uint32_t shuffledIndex(uint32_t reversedIndex, uint32_t) { return reverseBits32(reversedIndex); }
+  static uint32_t shuffledReversedIndex(uint32_t reversedIndex, uint32_t) { return reversedIndex; }
   static uint32_t scrambledDigits(uint32_t digits, uint32_t) { return digits; }
 };
-struct AvalancheScrambling {  // a full hash of the value: uniform, but no longer a permutation of intervals
-  static uint32_t shuffledIndex(uint32_t reversedIndex, uint32_t seed) {
-    return OwenScrambling::shuffledIndex(reversedIndex, seed);
-  }
+struct AvalancheScrambling : OwenScrambling {  // a full hash of the value: uniform, but breaks nets
   static uint32_t scrambledDigits(uint32_t digits, uint32_t seed) {
     return static_cast<uint32_t>(mix64(digits ^ (uint64_t{seed} << 32)));
   }

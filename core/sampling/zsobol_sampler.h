@@ -51,26 +51,37 @@ class BasicZSobolSampler {
     key_ = hashCombine(seedHash_, morton >> mortonBits);
     const auto tileCode = static_cast<uint32_t>(morton & ((uint64_t{1} << mortonBits) - 1));
     reversedIndex_ = reverseBits32((tileCode << log2Samples_) | (sampleIndex & sampleMask_));
-    indexXor_ = sampleIndex & ~sampleMask_;
+    reversedIndexXor_ = reverseBits32(sampleIndex & ~sampleMask_);
     request_ = 0;
   }
 
   // Uniform in [0, 1): never returns 1.0.
-  float next1D() { return sobolPoint1D<Randomizer>(reversedIndex_, indexXor_, key_, request_++); }
-  Vec2 next2D() { return sobolPoint2D<Randomizer>(reversedIndex_, indexXor_, key_, request_++); }
+  float next1D() {
+    const uint64_t h = requestHash(key_, request_++);
+    return sobolPoint1D<Randomizer>(index(h), h);
+  }
+  Vec2 next2D() {
+    const uint64_t h = requestHash(key_, request_++);
+    return sobolPoint2D<Randomizer>(index(h), h);
+  }
 
   uint64_t seed() const { return seed_; }
   // log2 of the count at which neighbouring pixels share nets.
   uint32_t log2Samples() const { return log2Samples_; }
 
  private:
+  uint32_t index(uint64_t requestHash) const {
+    return Randomizer::shuffledReversedIndex(reversedIndex_, static_cast<uint32_t>(requestHash)) ^
+           reversedIndexXor_;
+  }
+
   uint64_t seed_ = 0;
   uint64_t seedHash_ = 0;
   uint32_t log2Samples_ = 0;
   uint32_t sampleMask_ = 0;
   uint64_t key_ = 0;  // hash of (seed, Morton code bits above the index)
   uint32_t reversedIndex_ = 0;
-  uint32_t indexXor_ = 0;
+  uint32_t reversedIndexXor_ = 0;  // sample index bits above the tile net, bit-reversed
   uint32_t request_ = 0;
 };
 
