@@ -5,7 +5,6 @@
 
 #include "core/sampling/sampler.h"
 #include "core/sampling/sobol_sampler.h"
-#include "core/sampling/zsobol_sampler.h"
 
 namespace penumbra {
 namespace {

@@ -1,18 +1,12 @@
-// The `sobol` sampler: per pixel, an Owen-scrambled Sobol' sequence with the index shuffled per pixel
-// (Burley 2020; pbrt-v4's padded Sobol' sampler), decorrelated between pixels by seeding every
-// shuffle and scramble from (seed, pixel, request). Progressive: for every k, the first 2^k samples
-// of a pixel form a (0,2)-net in every 2-D request and a (0,1)-net in every 1-D request, whatever
-// the final count. A stream is a pure function of (seed, pixel, sample index).
-//
-// Limits: any number of requests (each uses its own padding of dimensions 0 and 1); sample indices
-// are 32-bit; values have 24 bits (bitsToUnitFloat), so nets of up to 2^24 points are exact.
+// The `sobol` and `zsobol` streams (core/sampling/sobol_stream.h) as stand-alone samplers with the
+// Sampler interface, for tests with other randomisations and for benchmarks.
 #pragma once
 
 #include <cstdint>
 
 #include "core/math/vec.h"
 #include "core/sampling/rng.h"
-#include "core/sampling/sobol_points.h"
+#include "core/sampling/sobol_stream.h"
 
 namespace penumbra {
 
@@ -22,38 +16,41 @@ class BasicSobolSampler {
   explicit BasicSobolSampler(uint64_t seed) : seed_(seed), seedHash_(mix64(seed)) {
     startPixelSample(IVec2(0), 0);
   }
-
-  // Cheap: one hash and one bit reversal per camera sample.
   void startPixelSample(IVec2 pixel, uint32_t sampleIndex) {
-    const uint64_t packed =
-        (static_cast<uint64_t>(static_cast<uint32_t>(pixel.x)) << 32) | static_cast<uint32_t>(pixel.y);
-    key_ = hashCombine(seedHash_, packed);
-    reversedIndex_ = reverseBits32(sampleIndex);
-    request_ = 0;
+    stream_.startSobol(seedHash_, pixel, sampleIndex);
   }
-
-  // Uniform in [0, 1): never returns 1.0.
-  float next1D() {
-    const uint64_t h = requestHash(key_, request_++);
-    return sobolPoint1D<Randomizer>(
-        Randomizer::shuffledReversedIndex(reversedIndex_, static_cast<uint32_t>(h)), h);
-  }
-  Vec2 next2D() {
-    const uint64_t h = requestHash(key_, request_++);
-    return sobolPoint2D<Randomizer>(
-        Randomizer::shuffledReversedIndex(reversedIndex_, static_cast<uint32_t>(h)), h);
-  }
-
+  float next1D() { return stream_.next1D(); }
+  Vec2 next2D() { return stream_.next2D(); }
   uint64_t seed() const { return seed_; }
 
  private:
-  uint64_t seed_ = 0;
-  uint64_t seedHash_ = 0;
-  uint64_t key_ = 0;            // hash of (seed, pixel)
-  uint32_t reversedIndex_ = 0;  // the sample index, bit-reversed for the nested shuffle
-  uint32_t request_ = 0;        // next1D/next2D calls since startPixelSample
+  uint64_t seed_ = 0, seedHash_ = 0;
+  BasicSobolStream<Randomizer> stream_;
+};
+
+template <class Randomizer>
+class BasicZSobolSampler {
+ public:
+  // sampleCount: the run's samples per pixel (the count at which the error is blue noise).
+  BasicZSobolSampler(uint32_t sampleCount, uint64_t seed)
+      : seed_(seed), seedHash_(mix64(seed)), log2Samples_(zsobolLog2Samples(sampleCount)) {
+    startPixelSample(IVec2(0), 0);
+  }
+  void startPixelSample(IVec2 pixel, uint32_t sampleIndex) {
+    stream_.startZSobol(seedHash_, log2Samples_, pixel, sampleIndex);
+  }
+  float next1D() { return stream_.next1D(); }
+  Vec2 next2D() { return stream_.next2D(); }
+  uint64_t seed() const { return seed_; }
+  uint32_t log2Samples() const { return log2Samples_; }
+
+ private:
+  uint64_t seed_ = 0, seedHash_ = 0;
+  uint32_t log2Samples_ = 0;
+  BasicSobolStream<Randomizer> stream_;
 };
 
 using SobolSampler = BasicSobolSampler<OwenScrambling>;
+using ZSobolSampler = BasicZSobolSampler<OwenScrambling>;
 
 }  // namespace penumbra

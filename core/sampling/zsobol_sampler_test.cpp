@@ -1,4 +1,4 @@
-#include "core/sampling/zsobol_sampler.h"
+#include "core/sampling/sobol_sampler.h"
 
 #include <gtest/gtest.h>
 
@@ -6,7 +6,6 @@
 
 #include "core/sampling/chi2.h"
 #include "core/sampling/sampler_checks.h"
-#include "core/sampling/sobol_sampler.h"
 
 namespace penumbra {
 namespace {

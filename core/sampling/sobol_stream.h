@@ -1,0 +1,101 @@
+// The sample streams of the `sobol` and `zsobol` samplers: Owen-scrambled Sobol' points with the
+// index shuffled per request (Burley 2020, "Practical Hash-based Owen Scrambling", JCGT 9(4);
+// pbrt-v4's padded Sobol' and ZSobol samplers). The two differ only in how a pixel sample picks
+// its sequence index and seeds (its start); every next1D/next2D is the same code.
+//
+// `sobol`: per pixel its own sequence (indices = sample indices), every shuffle and scramble seeded
+// from (seed, pixel, request), so pixels are independent.
+//
+// `zsobol`: one sequence per tile of pixels, pixel p taking the indices of its Morton code (Ahmed
+// and Wonka 2020, "Screen-space blue-noise diffusion of Monte Carlo sampling error via hierarchical
+// ordering of pixels"; pbrt-v4's ZSobolSampler). With 2^m = the run's sample count rounded up to a
+// power of two, pixel p's first 2^m samples are the indices (morton(p) << m) + [0, 2^m), shuffled
+// by a nested uniform scramble that maps every aligned 2^j x 2^j pixel tile onto one aligned block
+// of the sequence: at 2^m samples every tile's samples together form a (0, m + 2j, 2)-net, so the
+// errors of neighbouring pixels cancel (their error is spread like blue noise). Ahmed and Wonka
+// permute base-4 digits; this base-2 scramble also maps tiles onto blocks and costs one hash
+// instead of one per digit. For sample indices s >= 2^m the shuffled index is XORed with s's bits
+// above m, so each pixel keeps getting nets (its first 2^k indices stay one aligned block), but
+// neighbours no longer share one: the error is blue noise at 2^m samples per pixel.
+//
+// Both are progressive: for every k, the first 2^k samples of a pixel form a (0,2)-net in every
+// 2-D request and a (0,1)-net in every 1-D request, whatever the final count. A stream is a pure
+// function of (seed, pixel, sample index).
+//
+// Limits: any number of requests (each pads with its own shuffle of dimensions 0 and 1, so no
+// request needs a dimension past the table); 32-bit sample indices; 24-bit values
+// (bitsToUnitFloat), so nets of up to 2^24 points are exact. zsobol: index bits above 32 are not in
+// the matrices, so the Morton code's bits above 32 - m choose the seeds instead (tiles of
+// 2^((32 - m) / 2) pixels are randomised independently of each other), m <= kZSobolMaxLog2Samples.
+#pragma once
+
+#include <algorithm>
+#include <bit>
+#include <cstdint>
+
+#include "core/math/vec.h"
+#include "core/sampling/morton.h"
+#include "core/sampling/owen_scramble.h"
+#include "core/sampling/rng.h"
+#include "core/sampling/sobol_points.h"
+
+namespace penumbra {
+
+// Keeps at least 12 index bits for the Morton code (tiles of 64 x 64 pixels share one sequence).
+inline constexpr uint32_t kZSobolMaxLog2Samples = 20;
+
+// m for zsobol: log2 of the sample count rounded up to a power of two.
+inline uint32_t zsobolLog2Samples(uint32_t sampleCount) {
+  return std::min<uint32_t>(std::bit_width(std::max<uint32_t>(sampleCount, 1) - 1), kZSobolMaxLog2Samples);
+}
+
+template <class Randomizer>
+class BasicSobolStream {
+ public:
+  // seedHash: mix64(seed). One hash and one bit reversal.
+  void startSobol(uint64_t seedHash, IVec2 pixel, uint32_t sampleIndex) {
+    const uint64_t packed =
+        (static_cast<uint64_t>(static_cast<uint32_t>(pixel.x)) << 32) | static_cast<uint32_t>(pixel.y);
+    key_ = hashCombine(seedHash, packed);
+    reversedIndex_ = reverseBits32(sampleIndex);
+    reversedIndexXor_ = 0;
+    request_ = 0;
+  }
+
+  // log2Samples: zsobolLog2Samples(the run's sample count).
+  void startZSobol(uint64_t seedHash, uint32_t log2Samples, IVec2 pixel, uint32_t sampleIndex) {
+    const uint64_t morton = encodeMorton2(static_cast<uint32_t>(pixel.x), static_cast<uint32_t>(pixel.y));
+    const uint32_t mortonBits = 32 - log2Samples;
+    const uint32_t sampleMask = (1u << log2Samples) - 1;
+    key_ = hashCombine(seedHash, morton >> mortonBits);
+    const auto tileCode = static_cast<uint32_t>(morton & ((uint64_t{1} << mortonBits) - 1));
+    reversedIndex_ = reverseBits32((tileCode << log2Samples) | (sampleIndex & sampleMask));
+    reversedIndexXor_ = reverseBits32(sampleIndex & ~sampleMask);
+    request_ = 0;
+  }
+
+  // Uniform in [0, 1): never returns 1.0.
+  float next1D() {
+    const uint64_t h = requestHash(key_, request_++);
+    return sobolPoint1D<Randomizer>(index(h), h);
+  }
+  Vec2 next2D() {
+    const uint64_t h = requestHash(key_, request_++);
+    return sobolPoint2D<Randomizer>(index(h), h);
+  }
+
+ private:
+  uint32_t index(uint64_t requestHash) const {
+    return Randomizer::shuffledReversedIndex(reversedIndex_, static_cast<uint32_t>(requestHash)) ^
+           reversedIndexXor_;
+  }
+
+  uint64_t key_ = 0;               // hash of (seed, pixel) or (seed, Morton code bits above the index)
+  uint32_t reversedIndex_ = 0;     // the sequence index before shuffling, bit-reversed
+  uint32_t reversedIndexXor_ = 0;  // zsobol: sample index bits above m, bit-reversed
+  uint32_t request_ = 0;           // next1D/next2D calls since the start
+};
+
+using SobolStream = BasicSobolStream<OwenScrambling>;
+
+}  // namespace penumbra
