@@ -1,6 +1,7 @@
 #include "core/sampling/sobol_sampler.h"
 
 #include <gtest/gtest.h>
+#include <boost/math/special_functions/gamma.hpp>
 
 #include <vector>
 
@@ -161,6 +162,42 @@ class PixelBlindZSobol : public ZSobolSampler {
 TEST(ZSobolSampler, APixelBlindStreamIsCorrelated) {
   PixelBlindZSobol blind(4, 8);
   EXPECT_GT(sampleCorrelation(blind, IVec2(16, 0)), 0.99);
+}
+
+TEST(ZSobolSampler, APureFunctionOfSeedPixelAndIndex) {
+  ZSobolSampler a(16, 42), b(16, 42), c(16, 43);
+  auto draw = [](ZSobolSampler& s, IVec2 p, uint32_t i) {
+    s.startPixelSample(p, i);
+    std::vector<float> v;
+    for (int d = 0; d < 4; ++d) {
+      Vec2 u = s.next2D();
+      v.insert(v.end(), {u.x, u.y, s.next1D()});
+    }
+    return v;
+  };
+  std::vector<float> first = draw(a, IVec2(17, 4), 21);
+  draw(b, IVec2(3, 3), 0);
+  draw(b, IVec2(17, 4), 6);
+  EXPECT_EQ(draw(b, IVec2(17, 4), 21), first);
+  EXPECT_NE(draw(c, IVec2(17, 4), 21), first);
+  EXPECT_NE(draw(a, IVec2(17, 5), 21), first);
+  EXPECT_NE(draw(a, IVec2(17, 4), 22), first);
+}
+
+TEST(ZSobolSampler, OneDimensionalRequestsAcrossPixelsAreUniform) {
+  for (uint32_t count : {1u, 16u}) {
+    ZSobolSampler s(count, 4);
+    std::vector<double> bins(100, 0.0);
+    for (int y = 0; y < 160; ++y)
+      for (int x = 0; x < 160; ++x) {
+        s.startPixelSample(IVec2(x, y), 3);
+        s.next2D();
+        bins[static_cast<size_t>(s.next1D() * 100)] += 1;
+      }
+    double expected = 160.0 * 160.0 / 100.0, chi2 = 0;
+    for (double o : bins) chi2 += (o - expected) * (o - expected) / expected;
+    EXPECT_GT(boost::math::gamma_q(0.5 * 99, 0.5 * chi2), sidakAlpha(0.01, 2)) << count;
+  }
 }
 
 TEST(ZSobolSampler, EstimatesAreUnbiased) {
