@@ -4,6 +4,7 @@
 // deliberately broken one. S is any sampler with startPixelSample(IVec2, uint32_t), next1D, next2D.
 #pragma once
 
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -56,6 +57,27 @@ std::vector<Vec2> pixelPoints(S& sampler, IVec2 pixel, int request, uint32_t fir
   out.reserve(count);
   for (uint32_t i = first; i < first + count; ++i) out.push_back(requestPoint(sampler, pixel, i, request));
   return out;
+}
+
+// Where the arrays of n points (next2D(j, n), after one plain 2-D request) of a pixel's first 2^k
+// samples fail to be nets: each sample's n points, all n 2^k points, and the plain request after
+// the array. Empty when all are nets; n must be a power of two.
+template <class S>
+std::string arrayNetDefect(S& s, IVec2 pixel, uint32_t n, int k) {
+  const int log2n = std::bit_width(n) - 1;
+  std::vector<Vec2> all, after;
+  for (uint32_t i = 0; i < (1u << k); ++i) {
+    s.startPixelSample(pixel, i);
+    s.next2D();
+    std::vector<Vec2> one;
+    for (uint32_t j = 0; j < n; ++j) one.push_back(s.next2D(j, n));
+    if (std::string d = netDefect(one, log2n); !d.empty()) return "one sample's array: " + d;
+    all.insert(all.end(), one.begin(), one.end());
+    after.push_back(s.next2D());
+  }
+  if (std::string d = netDefect(all, k + log2n); !d.empty()) return "all arrays: " + d;
+  if (std::string d = netDefect(after, k); !d.empty()) return "the request after: " + d;
+  return {};
 }
 
 // Pearson correlation of paired values.

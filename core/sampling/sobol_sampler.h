@@ -21,6 +21,7 @@ class BasicSobolSampler {
   }
   float next1D() { return stream_.next1D(); }
   Vec2 next2D() { return stream_.next2D(); }
+  Vec2 next2D(uint32_t j, uint32_t n) { return stream_.next2D(j, n); }
   uint64_t seed() const { return seed_; }
 
  private:
@@ -41,6 +42,7 @@ class BasicZSobolSampler {
   }
   float next1D() { return stream_.next1D(); }
   Vec2 next2D() { return stream_.next2D(); }
+  Vec2 next2D(uint32_t j, uint32_t n) { return stream_.next2D(j, n); }
   uint64_t seed() const { return seed_; }
   uint32_t log2Samples() const { return log2Samples_; }
 

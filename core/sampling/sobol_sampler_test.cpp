@@ -59,6 +59,16 @@ TEST(SobolSampler, EveryPowerOfTwoPrefixIsANetInEveryRequest) {
   EXPECT_NE(firstNetDefect<BasicSobolSampler<AvalancheScrambling>>(1, 12), "");
 }
 
+TEST(SobolSampler, ArraysAreStratifiedWithinAndAcrossSamples) {
+  for (uint64_t seed : {1ull, 8ull}) {
+    SobolSampler s(seed);
+    for (uint32_t n : {1u, 2u, 4u, 16u})
+      for (int k : {0, 1, 4, 8}) EXPECT_EQ(arrayNetDefect(s, IVec2(7, 3), n, k), "") << n << " " << k;
+  }
+  BasicSobolSampler<AvalancheScrambling> broken(1);
+  EXPECT_NE(arrayNetDefect(broken, IVec2(7, 3), 4, 4), "");
+}
+
 TEST(SobolSampler, EveryAlignedBlockOfSamplesIsANet) {
   SobolSampler s(3);
   for (uint32_t block : {1u, 5u, 1000u})

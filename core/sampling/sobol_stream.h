@@ -24,9 +24,9 @@
 //
 // Limits: any number of requests (each pads with its own shuffle of dimensions 0 and 1, so no
 // request needs a dimension past the table); 32-bit sample indices; 24-bit values
-// (bitsToUnitFloat), so nets of up to 2^24 points are exact. zsobol: index bits above 32 are not in
-// the matrices, so the Morton code's bits above 32 - m choose the seeds instead (tiles of
-// 2^((32 - m) / 2) pixels are randomised independently of each other), m <= kZSobolMaxLog2Samples.
+// (bitsToUnitFloat), so nets of up to 2^24 points are exact. zsobol: the index has 32 bits, so
+// only the Morton code's lowest kZSobolTileBits are in it and the bits above choose the seeds (tiles
+// of 64 x 64 pixels are randomised independently of each other); m <= kZSobolMaxLog2Samples.
 #pragma once
 
 #include <algorithm>
@@ -41,10 +41,12 @@
 
 namespace penumbra {
 
-// Keeps at least 12 index bits for the Morton code (tiles of 64 x 64 pixels share one sequence).
-inline constexpr uint32_t kZSobolMaxLog2Samples = 20;
+// zsobol keeps 12 bits of the Morton code in the index: tiles of 64 x 64 pixels share one
+// sequence, and up to 2^20 samples (times array points) per pixel fit beside them.
+inline constexpr uint32_t kZSobolTileBits = 12;
+inline constexpr uint32_t kZSobolMaxLog2Samples = 32 - kZSobolTileBits;
 
-// m for zsobol: log2 of the sample count rounded up to a power of two.
+// ceil(log2(n)), at most kZSobolMaxLog2Samples: m for zsobol from the run's sample count.
 inline uint32_t zsobolLog2Samples(uint32_t sampleCount) {
   return std::min<uint32_t>(std::bit_width(std::max<uint32_t>(sampleCount, 1) - 1), kZSobolMaxLog2Samples);
 }
@@ -57,6 +59,8 @@ class BasicSobolStream {
     const uint64_t packed =
         (static_cast<uint64_t>(static_cast<uint32_t>(pixel.x)) << 32) | static_cast<uint32_t>(pixel.y);
     key_ = hashCombine(seedHash, packed);
+    zsobol_ = false;
+    sampleIndex_ = sampleIndex;
     reversedIndex_ = reverseBits32(sampleIndex);
     reversedIndexXor_ = 0;
     request_ = 0;
@@ -65,35 +69,63 @@ class BasicSobolStream {
   // log2Samples: zsobolLog2Samples(the run's sample count).
   void startZSobol(uint64_t seedHash, uint32_t log2Samples, IVec2 pixel, uint32_t sampleIndex) {
     const uint64_t morton = encodeMorton2(static_cast<uint32_t>(pixel.x), static_cast<uint32_t>(pixel.y));
-    const uint32_t mortonBits = 32 - log2Samples;
-    const uint32_t sampleMask = (1u << log2Samples) - 1;
-    key_ = hashCombine(seedHash, morton >> mortonBits);
-    const auto tileCode = static_cast<uint32_t>(morton & ((uint64_t{1} << mortonBits) - 1));
-    reversedIndex_ = reverseBits32((tileCode << log2Samples) | (sampleIndex & sampleMask));
-    reversedIndexXor_ = reverseBits32(sampleIndex & ~sampleMask);
+    key_ = hashCombine(seedHash, morton >> kZSobolTileBits);
+    zsobol_ = true;
+    tileCode_ = static_cast<uint32_t>(morton) & ((1u << kZSobolTileBits) - 1);
+    log2Samples_ = log2Samples;
+    sampleIndex_ = sampleIndex;
+    setZSobolIndex(log2Samples, sampleIndex, reversedIndex_, reversedIndexXor_);
     request_ = 0;
   }
 
   // Uniform in [0, 1): never returns 1.0.
   float next1D() {
     const uint64_t h = requestHash(key_, request_++);
-    return sobolPoint1D<Randomizer>(index(h), h);
+    return sobolPoint1D<Randomizer>(shuffled(reversedIndex_, reversedIndexXor_, h), h);
   }
   Vec2 next2D() {
     const uint64_t h = requestHash(key_, request_++);
-    return sobolPoint2D<Randomizer>(index(h), h);
+    return sobolPoint2D<Randomizer>(shuffled(reversedIndex_, reversedIndexXor_, h), h);
+  }
+
+  // Point j of n (j = 0 .. n - 1, in order) of one request: the points of sequence indices
+  // sampleIndex * n + j, so a pixel sample's n points are stratified among themselves (a net when n
+  // is a power of two) and all of a pixel's first 2^k samples together too. The request advances
+  // after point n - 1. For zsobol the array's index takes ceil(log2 n) more bits.
+  Vec2 next2D(uint32_t j, uint32_t n) {
+    const uint64_t h = requestHash(key_, request_);
+    if (j + 1 >= n) ++request_;
+    const uint32_t index = sampleIndex_ * n + j;
+    uint32_t reversed, reversedXor = 0;
+    if (zsobol_)
+      setZSobolIndex(std::min(log2Samples_ + zsobolLog2Samples(n), kZSobolMaxLog2Samples), index, reversed,
+                     reversedXor);
+    else
+      reversed = reverseBits32(index);
+    return sobolPoint2D<Randomizer>(shuffled(reversed, reversedXor, h), h);
   }
 
  private:
-  uint32_t index(uint64_t requestHash) const {
-    return Randomizer::shuffledReversedIndex(reversedIndex_, static_cast<uint32_t>(requestHash)) ^
-           reversedIndexXor_;
+  static uint32_t shuffled(uint32_t reversedIndex, uint32_t reversedXor, uint64_t requestHash) {
+    return Randomizer::shuffledReversedIndex(reversedIndex, static_cast<uint32_t>(requestHash)) ^ reversedXor;
   }
 
-  uint64_t key_ = 0;               // hash of (seed, pixel) or (seed, Morton code bits above the index)
+  // zsobol's index of (tile, sample): (tileCode << m) | (s mod 2^m); s's bits above m are XORed in
+  // after the shuffle.
+  void setZSobolIndex(uint32_t m, uint32_t s, uint32_t& reversed, uint32_t& reversedXor) const {
+    const uint32_t mask = (1u << m) - 1;
+    reversed = reverseBits32((tileCode_ << m) | (s & mask));
+    reversedXor = reverseBits32(s & ~mask);
+  }
+
+  uint64_t key_ = 0;               // hash of (seed, pixel) or (seed, Morton code above the tile bits)
   uint32_t reversedIndex_ = 0;     // the sequence index before shuffling, bit-reversed
   uint32_t reversedIndexXor_ = 0;  // zsobol: sample index bits above m, bit-reversed
-  uint32_t request_ = 0;           // next1D/next2D calls since the start
+  uint32_t request_ = 0;           // requests since the start
+  uint32_t sampleIndex_ = 0;
+  uint32_t tileCode_ = 0;     // zsobol: the pixel's Morton code within its tile
+  uint32_t log2Samples_ = 0;  // zsobol: m
+  bool zsobol_ = false;
 };
 
 using SobolStream = BasicSobolStream<OwenScrambling>;

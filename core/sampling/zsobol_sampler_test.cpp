@@ -76,6 +76,25 @@ TEST(ZSobolSampler, AlignedPixelTilesShareOneNetAtTheRunsCount) {
   EXPECT_NE(tileNetDefect(sobol, 2, 1, IVec2(0, 0)), "");
 }
 
+TEST(ZSobolSampler, ArraysAreStratifiedWithinAndAcrossSamplesAndTiles) {
+  for (uint32_t count : {1u, 4u, 8u}) {
+    ZSobolSampler s(count, 5);
+    for (uint32_t n : {1u, 2u, 4u, 16u})
+      for (int k : {0, 1, 4, 8})
+        EXPECT_EQ(arrayNetDefect(s, IVec2(7, 3), n, k), "") << count << " " << n << " " << k;
+    // A 2 x 2 tile's arrays at the run's count together form one net.
+    const uint32_t n = 4;
+    std::vector<Vec2> tile;
+    for (IVec2 p : {IVec2(4, 6), IVec2(5, 6), IVec2(4, 7), IVec2(5, 7)})
+      for (uint32_t i = 0; i < count; ++i) {
+        s.startPixelSample(p, i);
+        s.next2D();
+        for (uint32_t j = 0; j < n; ++j) tile.push_back(s.next2D(j, n));
+      }
+    EXPECT_EQ(netDefect(tile, static_cast<int>(s.log2Samples()) + 2 + 2), "") << count;
+  }
+}
+
 // Blue noise: the errors of horizontally neighbouring pixels at the run's count are negatively
 // correlated (they cancel in the 2 x 2 average); sobol's are uncorrelated.
 template <class S>
