@@ -17,7 +17,8 @@ namespace {
 
 constexpr int kRayCount = 1 << 14;
 
-// The hw2 sphere-area scene: a unit sphere on a 200×200 two-triangle plane, a small sphere light.
+// The sphere-area scene (scenes/hw2/Tests): a unit sphere on a 200×200 two-triangle plane, a small sphere
+// light.
 SceneGeometry twoSpheresAndPlane(AccelMode mode = AccelMode::Auto) {
   SceneGeometry g;
   g.addSphere(Sphere{Vec3(1, -1.5f, 1.75f), 0.1f}, 0);

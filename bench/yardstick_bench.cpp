@@ -1,10 +1,10 @@
-// The issue's yardstick, measured in the same run as the renderer: a hand-specialised scalar loop for
-// hw2 sphere-area.xml against penumbra's general renderer on the same scene. On a shared machine
+// The yardstick, measured in the same run as the renderer: a hand-specialised scalar loop for
+// scenes/hw2/Tests/sphere-area.xml against penumbra's general renderer on the same scene. On a shared machine
 // whose speed drifts by a third within minutes, "M samples/s" alone says little; the ratio of the
 // two, measured seconds apart, says how far the general renderer is from what this scene allows.
 //   build/penumbra_bench --benchmark_filter=SphereArea --benchmark_repetitions=5
 //     --benchmark_enable_random_interleaving=true --benchmark_report_aggregates_only=true
-// Yardstick target of issue 3: penumbra on 2 threads ≥ 12 M/s, the loop ~12 M/s on one core, i.e.
+// The target: penumbra on 2 threads ≥ 12 M/s, the loop ~12 M/s on one core, i.e.
 // BM_Penumbra_SphereArea/threads:2 ≥ 1.0 × BM_Yardstick_SphereArea.
 //
 // The loop knows everything in advance: a unit sphere at the origin on the plane z = −1 (200 × 200),
@@ -140,7 +140,7 @@ BENCHMARK(BM_Yardstick_SphereArea)->Unit(benchmark::kMillisecond)->UseRealTime()
 // The general renderer on the scene as shipped (gaussian filter, area measure, one shadow ray), in
 // whole passes through the progressive engine; items are camera samples.
 void BM_Penumbra_SphereArea(benchmark::State& state) {
-  LoadedScene s = loadSceneFromString(defaultSceneXml(), "<built-in hw2 sphere>", ".");
+  LoadedScene s = loadSceneFromString(defaultSceneXml(), "<built-in sphere scene>", ".");
   auto job = std::make_shared<RenderJob>();
   job->scene = s.scene;
   job->settings = s.settings;

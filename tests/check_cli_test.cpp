@@ -27,13 +27,15 @@ const std::string kScenes = std::string(PENUMBRA_SOURCE_DIR) + "/scenes/stiff";
 TEST(CheckCli, QuickRunPassesAndPrintsEveryCase) {
   CliRun r = penumbra("check --quick --scenes '" + kScenes + "'");
   EXPECT_EQ(r.exitCode, 0) << r.out;
-  for (const char* column : {"case", "expected", "estimate ± SE", "z", "bad", "verdict"})
+  for (const char* column : {"case", "category", "expected", "estimate ± SE", "z", "bad", "verdict"})
     EXPECT_NE(r.out.find(column), std::string::npos) << column;
   for (const auto& c : penumbra::analysis::stiffCases()) {
     size_t at = r.out.find("\n" + c.name + " ");
     ASSERT_NE(at, std::string::npos) << c.name << " missing from\n" << r.out;
     size_t eol = r.out.find('\n', at + 1);
-    EXPECT_NE(r.out.substr(at, eol - at).find("PASS"), std::string::npos) << r.out.substr(at, eol - at);
+    const std::string row = r.out.substr(at, eol - at);
+    EXPECT_NE(row.find(" " + c.category + " "), std::string::npos) << row;
+    EXPECT_NE(row.find("PASS"), std::string::npos) << row;
   }
   EXPECT_EQ(r.out.find("FAIL"), std::string::npos) << r.out;
 }
@@ -61,6 +63,7 @@ TEST(CheckCli, SelectsCasesAndRejectsUnknownOnes) {
   CliRun list = penumbra("check --list");
   EXPECT_EQ(list.exitCode, 0);
   EXPECT_NE(list.out.find("cone-sin2-1e-12"), std::string::npos);
+  EXPECT_NE(list.out.find("narrow-cone"), std::string::npos) << list.out;
 }
 
 TEST(CheckCli, BadValueScenesAreRejectedAndWriteNoImage) {

@@ -1,18 +1,10 @@
-// Shared helpers for end-to-end tests: scenes from XML strings, per-point Monte Carlo estimates with
-// their standard error, and paths of the repository and the built executable.
+// Shared helpers for end-to-end tests: paths of the repository's files and the assignment's scenes.
 #pragma once
 
 #include <algorithm>
-#include <cmath>
-#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
-
-#include "core/analysis/ray_estimate.h"
-#include "core/sampling/sampler.h"
-#include "core/scene/scene_builder.h"
-#include "core/world/scene.h"
 
 namespace penumbra::test {
 
@@ -20,8 +12,8 @@ inline std::string sourcePath(const std::string& relative) {
   return std::string(PENUMBRA_SOURCE_DIR) + "/" + relative;
 }
 
-// The seed assignment's scene files shipped under scenes/ (hw0, hw1, hw2, dev-scenes), sorted.
-inline std::vector<std::string> seedSceneFiles() {
+// The assignment's scene files shipped under scenes/ (hw0, hw1, hw2, dev-scenes), sorted.
+inline std::vector<std::string> assignmentSceneFiles() {
   std::vector<std::string> out;
   for (const char* dir : {"hw0", "hw1", "hw2", "dev-scenes"})
     for (const auto& e : std::filesystem::recursive_directory_iterator(sourcePath("scenes/") + dir))
@@ -29,10 +21,5 @@ inline std::vector<std::string> seedSceneFiles() {
   std::sort(out.begin(), out.end());
   return out;
 }
-
-// The estimator helpers live in core/analysis/ray_estimate.h (shared with `penumbra check`).
-using analysis::Estimate;
-using analysis::estimateRay;
-using analysis::rayOnto;
 
 }  // namespace penumbra::test

@@ -6,7 +6,8 @@ Core layers, bottom to top; a file may include its own layer and any layer below
 App layers, bottom to top (every app layer may include all of core):
   platform < ui < cli
 Core includes nothing from app/, no GL, GLFW, ImGui or OSMesa header; app/cli only through
-app/ui and app/platform (its GL-linked view and warp-gui commands).
+app/ui and app/platform (its GL-linked view and warp-gui commands). Neither core/ nor app/ includes
+anything from tests/: unit-test fixtures live beside the code they serve.
 
 Usage: tools/check_layers.py [SOURCE_DIR]   (exit 0: clean, 1: violations listed, 2: bad usage)
 """
@@ -59,6 +60,9 @@ def check_file(root: pathlib.Path, path: pathlib.Path):
                 yield f"{where}: core includes no GL or ImGui header"
             continue
         dest = layer_of(pathlib.PurePosixPath(target))
+        if target.startswith("tests/"):
+            yield f"{where}: {area}/ never includes tests/ (keep test fixtures beside their code)"
+            continue
         if dest is None:
             continue
         dest_area, dest_layer = dest

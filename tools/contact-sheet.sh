@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Renders the hw2 test scenes at their own settings and puts each beside the seed's reference image:
+# Renders scenes/hw2/Tests at their own settings and puts each beside the assignment's reference image:
 # docs/images/contact-sheet.png (left: Penumbra, right: reference; rows: ao, area, solid angle,
 # hemisphere). Run from the repository root after tools/setup.
 set -euo pipefail

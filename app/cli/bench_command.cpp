@@ -1,5 +1,6 @@
 // penumbra bench: renderer throughput, measured the way users render (whole passes, all pixels).
-//   * camera samples/s for every direct-illumination strategy on the hw2 sphere scene;
+//   * camera samples/s for every direct-illumination strategy on the sphere scene
+//   (scenes/hw2/Tests/sphere-area.xml);
 //   * AO rays/s on the stand-in rock mesh (1.3 M triangles, Embree);
 // each at 1 thread and at all threads, median of several timed runs, with the threads' speed-up.
 #include <algorithm>
@@ -19,7 +20,7 @@ namespace penumbra::cli {
 namespace {
 
 struct BenchOptions {
-  std::string sphereScene;  // default: the built-in copy of hw2 sphere-area.xml
+  std::string sphereScene;  // default: the built-in sphere scene (defaultSceneXml)
   std::string aoScene;      // default: scenes/standin/rock-ao.xml next to the executable's repo
   // Many short pairs rather than a few long ones: the two runs of a pair are closer in time (less
   // drift between them) and the median has more to go on. The README's figures use these defaults.
@@ -118,7 +119,7 @@ int runBench(const BenchOptions& o) {
       o.repeats, o.seconds, all);
 
   LoadedScene sphere = o.sphereScene.empty()
-                           ? loadSceneFromString(defaultSceneXml(), "<built-in hw2 sphere>", ".")
+                           ? loadSceneFromString(defaultSceneXml(), "<built-in sphere scene>", ".")
                            : loadScene(o.sphereScene);
   printHeader("direct strategy (768x768)");
   struct Strategy {
@@ -161,7 +162,7 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
   auto o = std::make_shared<BenchOptions>();
   CLI::App* cmd = app.add_subcommand("bench", "Measure rendering throughput (camera samples/s, AO rays/s)");
   cmd->add_option("--sphere-scene", o->sphereScene,
-                  "Scene for the direct strategies (default: built-in hw2 sphere)");
+                  "Scene for the direct strategies (default: the built-in sphere scene)");
   cmd->add_option("--ao-scene", o->aoScene,
                   "Scene for the AO benchmark (default: scenes/standin/rock-ao.xml)");
   cmd->add_option("--seconds", o->seconds, "Length of each timed run")

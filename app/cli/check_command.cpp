@@ -48,8 +48,8 @@ int runCheck(const CheckOptions& o) {
   co.quick = o.quick;
   co.sceneDir = o.scenes;
 
-  std::printf("%-24s %3s %13s %26s %8s %5s  %s\n", "case", "#", "expected", "estimate ± SE", "z", "bad",
-              "verdict");
+  std::printf("%-24s %-19s %13s %26s %8s %5s  %s\n", "case", "category", "expected", "estimate ± SE", "z",
+              "bad", "verdict");
   int failed = 0;
   auto t0 = std::chrono::steady_clock::now();
   for (const StiffCase* c : selected) {
@@ -58,8 +58,9 @@ int runCheck(const CheckOptions& o) {
     failed += ok ? 0 : 1;
     std::string est = fmt(r.estimate) + " ± " + fmt(r.standardError);
     std::string z = r.statistical ? fmt(r.zScore()) : "-";
-    std::printf("%-24s %3d %13s %26s %8s %5llu  %s\n", c->name.c_str(), c->item, fmt(r.expected).c_str(),
-                est.c_str(), z.c_str(), (unsigned long long)r.bad, ok ? "PASS" : "FAIL");
+    std::printf("%-24s %-19s %13s %26s %8s %5llu  %s\n", c->name.c_str(), c->category.c_str(),
+                fmt(r.expected).c_str(), est.c_str(), z.c_str(), (unsigned long long)r.bad,
+                ok ? "PASS" : "FAIL");
     if (o.verbose && !r.note.empty()) std::printf("    %s\n", r.note.c_str());
     for (const std::string& f : r.failures) std::printf("    failure: %s\n", f.c_str());
     std::fflush(stdout);
@@ -86,7 +87,7 @@ void addCheckCommand(CLI::App& app, int& exitCode) {
   cmd->callback([opts, list, &exitCode] {
     if (*list) {
       for (const analysis::StiffCase& c : analysis::stiffCases())
-        std::printf("%-24s %3d  %s\n", c.name.c_str(), c.item, c.description.c_str());
+        std::printf("%-24s %-19s  %s\n", c.name.c_str(), c.category.c_str(), c.description.c_str());
       exitCode = 0;
       return;
     }

@@ -1,4 +1,4 @@
-// penumbra converge: error against run time (or spp) for every sampling strategy (issue 6).
+// penumbra converge: error against run time (or spp) for every sampling strategy.
 #include <cstdio>
 #include <filesystem>
 

@@ -1,4 +1,4 @@
-// Files written by `penumbra converge` (issue 6): convergence.csv, convergence.png (Cairo),
+// Files written by `penumbra converge`: convergence.csv, convergence.png (Cairo),
 // equal-time.png (Cairo) and summary.md. Plotting lives in app/, never in core/.
 #pragma once
 

@@ -1,5 +1,6 @@
-// Convergence panel (issue 6): RMSE against elapsed seconds of the current accumulation, log-log,
-// with the curves of the strategies tried earlier in the session kept beside it. Drawn with
+// Convergence panel: RMSE against elapsed seconds of the current accumulation, log-log,
+// with the curves of the strategies tried earlier (on the same scene and camera) kept
+// beside it. Drawn with
 // ImDrawList; the numbers come from ConvergenceTracker (no GL there).
 #include <algorithm>
 #include <cmath>

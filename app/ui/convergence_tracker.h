@@ -1,8 +1,8 @@
-// The viewer's live error measurement (issue 6), without GL or ImGui: holds a reference for the
+// The viewer's live error measurement, without GL or ImGui: holds a reference for the
 // current scene and camera (closed form for scenes/analytic, the cached reference that
 // `penumbra render --reference` writes, or a file the user loads), and turns every new snapshot of the
 // accumulation into a point (seconds, RMSE). Each accumulation (restart) is one curve; curves of
-// strategies tried earlier in the session are kept so they can be compared side by side (until the
+// strategies tried earlier are kept so they can be compared side by side (until the
 // scene or camera changes: errors against another reference are not comparable).
 #pragma once
 

@@ -52,7 +52,7 @@ void drawIntegratorPanel(ViewerController& c, PanelState&) {
   }
   c.setSettings(s);  // restarts only if something changed
 
-  // Compare mode (issue 6): a second strategy right of a draggable divider, equal shares of time.
+  // Compare mode: a second strategy right of a draggable divider, equal shares of time.
   ImGui::Separator();
   ImGui::TextUnformatted("Compare");
   bool on = c.compareEnabled();

@@ -20,7 +20,7 @@ struct PanelState {
   int hoverX = 0, hoverY = 0;
   bool requestSavePng = false;
   double frameMs = 0;  // time the last UI frame took to draw and present
-  // Convergence panel: live RMSE against time for each accumulation of the session.
+  // Convergence panel: live RMSE against time for each accumulation since the scene or camera changed.
   ConvergenceTracker convergence;
   char referencePath[1024] = "";
   bool convergenceNoLight = false;

@@ -76,7 +76,7 @@ class ViewerController {
   // Notified whenever either engine publishes a snapshot or stops (the UI sleeps on it).
   const PublishSignal& publishSignal() const { return *signal_; }
 
-  // ---- compare mode (issue 6) -----------------------------------------------------------------
+  // ---- compare mode ----------------------------------------------------------------------------
   // A second Engine renders the same scene, camera and sampler with `compareIntegrator()`; the image
   // shows it right of the divider. While it is on, each engine gets half of the threads (at least
   // one), so both strategies get equal shares of time. Enabling or disabling restarts both sides;

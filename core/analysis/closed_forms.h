@@ -1,5 +1,5 @@
-// Closed-form ground truth for tests and `penumbra check` (shared/reference/closed-forms.md), in double
-// precision with the numerically careful evaluations the reference prescribes.
+// Closed-form ground truth for tests and `penumbra check`, in double precision with numerically
+// careful evaluations (series where a difference of nearly equal terms would cancel).
 //
 // Notation: shading point x, unit normal n; sphere centre c, radius r; d = |c - x|; sin α = r/d;
 // θ = angle between n and (c - x). Irradiance from a uniform sphere light of radiance Le with nothing

@@ -1,4 +1,4 @@
-// Error against run time (or samples) for one strategy from a cold start (issue 6).
+// Error against run time (or samples) for one strategy from a cold start.
 //
 // The engine renders on all cores with a time (or spp) limit. A polling loop asks for a snapshot
 // when the elapsed rendering time (spp in spp mode) crosses the next of a log-spaced set of targets;

@@ -1,5 +1,6 @@
 // Per-point Monte Carlo estimates of an integrator with their standard error: the shared helper of
-// the closed-form tests (tests/) and the stiff-case catalogue (`penumbra check`).
+// the closed-form tests (estimators_closed_form_test.cpp) and the stiff-case catalogue
+// (`penumbra check`).
 #pragma once
 
 #include <algorithm>

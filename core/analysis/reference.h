@@ -1,4 +1,4 @@
-// References for error measurement (issue 6): the image an estimate is compared with.
+// References for error measurement: the image an estimate is compared with.
 //
 //  (a) rendered: many spp of the lowest-variance estimator available for the scene's integrator
 //      (direct: solid-angle light sampling; ao: cosine-weighted hemisphere), kept with its per-pixel

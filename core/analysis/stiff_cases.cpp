@@ -723,45 +723,48 @@ void equalPowerTruths(const CaseOptions& o, const std::string& file, CaseResult&
 
 std::vector<StiffCase> makeCases() {
   std::vector<StiffCase> v;
-  auto add = [&](std::string name, int item, std::string description,
+  auto add = [&](std::string name, std::string category, std::string description,
                  std::function<CaseResult(const CaseOptions&)> f) {
-    v.push_back(StiffCase{std::move(name), item, std::move(description), std::move(f)});
+    v.push_back(StiffCase{std::move(name), std::move(category), std::move(description), std::move(f)});
   };
-  add("warp-extremes", 1, "every warp at u in {0, 0.5, 1-2^-24}^2; samplers never return 1.0", warpExtremes);
-  add("disk-corners-cosine-rim", 2, "concentric disk centre and corners; cosine hemisphere at the rim",
-      diskAndCosineRim);
+  add("warp-extremes", "warp-extremes", "every warp at u in {0, 0.5, 1-2^-24}^2; samplers never return 1.0",
+      warpExtremes);
+  add("disk-corners-cosine-rim", "warp-extremes",
+      "concentric disk centre and corners; cosine hemisphere at the rim", diskAndCosineRim);
   for (const char* tag : {"1e-4", "1e-6", "1e-8", "1e-12"})
-    add(std::string("cone-sin2-") + tag, 3, std::string("solid-angle sampling, sin^2 theta_max = ") + tag,
+    add(std::string("cone-sin2-") + tag, "narrow-cone",
+        std::string("solid-angle sampling, sin^2 theta_max = ") + tag,
         [tag](const CaseOptions& o) { return coneCase(o, tag); });
-  add("light-radius-0", 4, "radius-0 light: kept, no geometry, no sample, exactly 0", radiusZero);
-  add("light-sin2-underflow", 4, "r = 1e-25 at distance 1: finite, no infinite pdf", sin2Underflow);
-  add("light-on-surface", 5, "shading point exactly on the light's surface", onSurface);
-  add("light-outside-1e-6r", 5, "receiver 1e-6 r outside an overhead light (integrator)",
+  add("light-radius-0", "tiny-light", "radius-0 light: kept, no geometry, no sample, exactly 0", radiusZero);
+  add("light-sin2-underflow", "tiny-light", "r = 1e-25 at distance 1: finite, no infinite pdf",
+      sin2Underflow);
+  add("light-on-surface", "near-light", "shading point exactly on the light's surface", onSurface);
+  add("light-outside-1e-6r", "near-light", "receiver 1e-6 r outside an overhead light (integrator)",
       [](const CaseOptions& o) {
         return directCase(o, "light-touching.xml", kSolid | kCosine, 20000, kReceiver, 1e-5f, 1);
       });
-  add("light-outside-1e-8r", 5, "shading point 1e-8 r outside the light", outside1e8);
-  add("light-inside", 5, "receiver inside a one-sided light: exactly 0", inside);
-  add("light-below-horizon", 6, "light entirely below the horizon: exactly 0",
+  add("light-outside-1e-8r", "near-light", "shading point 1e-8 r outside the light", outside1e8);
+  add("light-inside", "near-light", "receiver inside a one-sided light: exactly 0", inside);
+  add("light-below-horizon", "horizon", "light entirely below the horizon: exactly 0",
       [](const CaseOptions& o) { return exactlyZeroCase(o, "light-below-horizon.xml", 4000); });
-  add("light-straddling", 6, "light straddling the horizon", [](const CaseOptions& o) {
+  add("light-straddling", "horizon", "light straddling the horizon", [](const CaseOptions& o) {
     return directCase(o, "light-straddling.xml", kSolid | kArea | kCosine, 20000);
   });
-  add("light-centre-on-horizon", 6, "light centre exactly on the horizon", [](const CaseOptions& o) {
+  add("light-centre-on-horizon", "horizon", "light centre exactly on the horizon", [](const CaseOptions& o) {
     return directCase(o, "light-centre-on-horizon.xml", kSolid | kArea | kCosine, 20000);
   });
-  add("light-grazing-89.9", 7, "light centre 89.9 degrees from the normal", [](const CaseOptions& o) {
+  add("light-grazing-89.9", "horizon", "light centre 89.9 degrees from the normal", [](const CaseOptions& o) {
     return directCase(o, "light-grazing.xml", kSolid | kArea | kCosine, 20000);
   });
-  add("equal-power-r1", 8, "equal power, r = 1 (all strategies)",
+  add("equal-power-r1", "equal-power", "equal power, r = 1 (all strategies)",
       [](const CaseOptions& o) { return directCase(o, "equal-power-r1.xml", kAll, 20000); });
-  add("equal-power-r1e-3", 8, "equal power, r = 1e-3 (light sampling; hemisphere finite)",
+  add("equal-power-r1e-3", "equal-power", "equal power, r = 1e-3 (light sampling; hemisphere finite)",
       [](const CaseOptions& o) {
         CaseResult r = directCase(o, "equal-power-r1e-3.xml", kSolid | kArea, 20000);
         equalPowerTruths(o, "equal-power-r1e-3.xml", r);
         return r;
       });
-  add("equal-power-r1e-6", 8, "equal power, r = 1e-6 (light sampling; hemisphere finite)",
+  add("equal-power-r1e-6", "equal-power", "equal power, r = 1e-6 (light sampling; hemisphere finite)",
       [](const CaseOptions& o) {
         CaseResult r = directCase(o, "equal-power-r1e-6.xml", kSolid | kArea, 20000);
         LoadedScene s = load(o, "equal-power-r1e-6.xml");
@@ -775,21 +778,24 @@ std::vector<StiffCase> makeCases() {
         equalPowerTruths(o, "equal-power-r1e-3.xml", r);
         return r;
       });
-  add("scale-ao", 9, "AO image at scales 1e-4 and 1e4 vs 1",
+  add("scale-ao", "scale", "AO image at scales 1e-4 and 1e4 vs 1",
       [](const CaseOptions& o) { return scaleCase(o, "ao"); });
-  add("scale-direct", 9, "direct image at scales 1e-4 and 1e4 vs 1",
+  add("scale-direct", "scale", "direct image at scales 1e-4 and 1e4 vs 1",
       [](const CaseOptions& o) { return scaleCase(o, "direct"); });
-  add("ao-sphere-near-contact", 10, "AO on a resting sphere near its contact point", aoOnSphereNearContact);
-  add("ao-plane-near-contact", 10, "AO on the plane next to the contact point", aoOnPlaneNearContact);
-  add("area-far-side", 11, "area sampling: far-side samples add exactly 0, unbiased", areaFarSide);
-  add("radiance-1e6-occluded", 12, "radiance 1e6 with 98% of the light occluded", brightOccluded);
-  add("radiance-0", 12, "radiance 0: exactly 0",
+  add("ao-sphere-near-contact", "contact", "AO on a resting sphere near its contact point",
+      aoOnSphereNearContact);
+  add("ao-plane-near-contact", "contact", "AO on the plane next to the contact point", aoOnPlaneNearContact);
+  add("area-far-side", "far-side", "area sampling: far-side samples add exactly 0, unbiased", areaFarSide);
+  add("radiance-1e6-occluded", "radiance-extremes", "radiance 1e6 with 98% of the light occluded",
+      brightOccluded);
+  add("radiance-0", "radiance-extremes", "radiance 0: exactly 0",
       [](const CaseOptions& o) { return exactlyZeroCase(o, "radiance-0.xml", 4000); });
-  add("bad-values", 13, "nan, inf, 1e999, sampleCount 0/-4/2^32/3.5 rejected; -0 read as 0", badValues);
-  add("degenerate-mesh", 14, "zero-area and repeated-vertex triangles, a mesh without normals",
-      degenerateMesh);
-  add("camera-fov-0-180", 14, "camera fov 0 and 180 rejected", cameraFov);
-  add("film-1e6-samples", 15, "10^6 samples in one pixel without drift", accumulation);
+  add("bad-values", "bad-input", "nan, inf, 1e999, sampleCount 0/-4/2^32/3.5 rejected; -0 read as 0",
+      badValues);
+  add("degenerate-mesh", "degenerate-geometry",
+      "zero-area and repeated-vertex triangles, a mesh without normals", degenerateMesh);
+  add("camera-fov-0-180", "bad-input", "camera fov 0 and 180 rejected", cameraFov);
+  add("film-1e6-samples", "accumulation", "10^6 samples in one pixel without drift", accumulation);
   return v;
 }
 

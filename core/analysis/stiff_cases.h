@@ -1,4 +1,4 @@
-// The stiff-case catalogue (issue 7): every sampler, pdf and estimator checked where naive code
+// The stiff-case catalogue: every sampler, pdf and estimator checked where naive code
 // breaks, against closed forms (core/analysis/closed_forms.h) or exact expectations. Run by
 // `penumbra check` and by core/analysis/stiff_cases_test.cpp; explained in docs/stiff-cases.md.
 //
@@ -10,6 +10,7 @@
 // report the sub-check with the largest z-score and accumulate bad counts and failures.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -40,12 +41,29 @@ struct CaseResult {
 
 struct StiffCase {
   std::string name;
-  int item;  // the numbered item of issue 7 it covers
+  std::string category;  // what the case stresses: one of kStiffCaseCategories
   std::string description;
   std::function<CaseResult(const CaseOptions&)> run;
 };
 
-// All cases, in issue order.
+// What the cases stress, in catalogue order; every category has at least one case.
+inline constexpr std::array<const char*, 13> kStiffCaseCategories = {
+    "warp-extremes",        // warps and samplers at the edges of [0,1)^2
+    "narrow-cone",          // solid-angle sampling of lights subtending sin^2 theta_max down to 1e-12
+    "tiny-light",           // lights of radius 0 or so small that r^2 underflows
+    "near-light",           // shading points on, just outside or inside a light
+    "horizon",              // lights below, straddling, centred on or grazing the horizon
+    "equal-power",          // the same power from lights of radius 1 down to 1e-6
+    "scale",                // the same scene scaled by 1e-4 and 1e4
+    "contact",              // ambient occlusion next to a contact point
+    "far-side",             // area samples on the light's far side
+    "radiance-extremes",    // radiance 0 and 1e6
+    "bad-input",            // values a scene must be rejected for, with file and line
+    "degenerate-geometry",  // zero-area and repeated-vertex triangles, meshes without normals
+    "accumulation",         // 10^6 samples in one pixel
+};
+
+// All cases, grouped by category in the order above.
 const std::vector<StiffCase>& stiffCases();
 // Runs one case, turning an unexpected exception into a failed result.
 CaseResult runStiffCase(const StiffCase& c, const CaseOptions& options);

@@ -5,8 +5,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <set>
+#include <string>
 
 #include "core/analysis/closed_forms.h"
 #include "core/analysis/ray_estimate.h"
@@ -22,15 +24,18 @@ CaseOptions options() {
   return o;
 }
 
-TEST(StiffCases, CatalogueCoversEveryItemOfIssue7WithUniqueNames) {
-  std::set<int> items;
-  std::set<std::string> names;
+TEST(StiffCases, EveryCategoryHasCasesAndNamesAreUnique) {
+  std::set<std::string> categories, names;
   for (const StiffCase& c : stiffCases()) {
-    items.insert(c.item);
+    categories.insert(c.category);
     EXPECT_TRUE(names.insert(c.name).second) << c.name;
     EXPECT_FALSE(c.description.empty()) << c.name;
+    EXPECT_NE(std::find(kStiffCaseCategories.begin(), kStiffCaseCategories.end(), c.category),
+              kStiffCaseCategories.end())
+        << c.name << ": unknown category " << c.category;
   }
-  for (int i = 1; i <= 15; ++i) EXPECT_TRUE(items.count(i)) << "issue 7 item " << i << " has no case";
+  for (const char* category : kStiffCaseCategories)
+    EXPECT_TRUE(categories.count(category)) << "category " << category << " has no case";
 }
 
 TEST(StiffCases, EveryCasePasses) {

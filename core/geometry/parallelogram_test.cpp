@@ -15,8 +15,8 @@
 namespace penumbra {
 namespace {
 
-// The seed's plane.obj: four corners, two triangles sharing the diagonal 4-2, one vertex normal.
-TriangleMesh seedPlane() {
+// The assignment's plane.obj: four corners, two triangles sharing the diagonal 4-2, one vertex normal.
+TriangleMesh assignmentPlane() {
   TriangleMesh m;
   m.positions = {{1, 0, -1}, {1, 0, 1}, {-1, 0, 1}, {-1, 0, -1}};
   m.normals = {{0, 1, 0}, {0, 1, 0}, {0, 1, 0}, {0, 1, 0}};
@@ -35,29 +35,29 @@ size_t quadsOf(const TriangleMesh& mesh, size_t* leftoverCount = nullptr) {
 
 TEST(Parallelogram, PairsOnlyWhenNothingVisibleChanges) {
   size_t leftover = 0;
-  EXPECT_EQ(quadsOf(seedPlane(), &leftover), 1u);
+  EXPECT_EQ(quadsOf(assignmentPlane(), &leftover), 1u);
   EXPECT_EQ(leftover, 0u);
   EXPECT_EQ(quadsOf(makeGridPlane(Vec3(-1), Vec3(2, 0, 0), Vec3(0, 3, 1), 1, 1)), 1u);
 
-  TriangleMesh kite = seedPlane();  // opposite corners no longer mirror each other
+  TriangleMesh kite = assignmentPlane();  // opposite corners no longer mirror each other
   kite.positions[2] = {-1.5f, 0, 1.2f};
   EXPECT_EQ(quadsOf(kite), 0u);
 
-  TriangleMesh bent = seedPlane();  // the fourth corner leaves the plane
+  TriangleMesh bent = assignmentPlane();  // the fourth corner leaves the plane
   bent.positions[2].y = 1e-3f;
   EXPECT_EQ(quadsOf(bent), 0u);
 
-  TriangleMesh smooth = seedPlane();  // different vertex normals would interpolate differently
+  TriangleMesh smooth = assignmentPlane();  // different vertex normals would interpolate differently
   smooth.normals[2] = glm::normalize(Vec3(0.1f, 1, 0));
   EXPECT_EQ(quadsOf(smooth), 0u);
 
-  TriangleMesh flipped = seedPlane();  // inconsistent winding: the two halves face opposite ways
+  TriangleMesh flipped = assignmentPlane();  // inconsistent winding: the two halves face opposite ways
   flipped.triangles[1] = {3, 1, 2};
   EXPECT_EQ(quadsOf(flipped), 0u);
 
   // Interior quads of a grid share outer edges with neighbours: merging could open cracks.
   EXPECT_EQ(quadsOf(makeGridPlane(Vec3(-1), Vec3(2, 0, 0), Vec3(0, 2, 0), 3, 1)), 0u);
-  TriangleMesh degenerate = seedPlane();
+  TriangleMesh degenerate = assignmentPlane();
   degenerate.positions = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {3, 0, 0}};
   EXPECT_EQ(quadsOf(degenerate), 0u);
 }
@@ -147,7 +147,7 @@ TEST(Parallelogram, NoSelfIntersectionButNearbyHitsSurvive) {
 TEST(Parallelogram, ParallelAndDegenerateRaysMiss) {
   std::vector<Parallelogram> quads;
   std::vector<uint32_t> leftover;
-  pairParallelograms(seedPlane(), 0, quads, leftover);
+  pairParallelograms(assignmentPlane(), 0, quads, leftover);
   ASSERT_EQ(quads.size(), 1u);
   float t, u, v;
   EXPECT_FALSE(intersectParallelogram(quads[0], Ray{Vec3(0, 1, 0), Vec3(1, 0, 0)}, INFINITY, t, u, v));

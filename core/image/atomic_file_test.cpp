@@ -1,5 +1,5 @@
 #include "core/image/atomic_file.h"
-#include "tests/temp_dir_test.h"
+#include "core/image/temp_dir_fixture.h"
 
 #include <gtest/gtest.h>
 

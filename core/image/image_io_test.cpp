@@ -1,5 +1,5 @@
 #include "core/image/image_io.h"
-#include "tests/temp_dir_test.h"
+#include "core/image/temp_dir_fixture.h"
 
 #include <gtest/gtest.h>
 #include <png.h>
@@ -223,9 +223,9 @@ TEST_F(ImageIoTest, EmptyImageThrows) {
   EXPECT_TRUE(fs::is_empty(dir));
 }
 
-TEST(ImageIoSeed, ReadsSeedReferenceExr) {
+TEST(ImageIoReference, ReadsTheAssignmentsReferenceExr) {
   const std::string path = PENUMBRA_SOURCE_DIR "/scenes/hw2/References/sphere-area.exr";
-  if (!fs::exists(path)) GTEST_SKIP() << "seed scenes not found at " << path;
+  if (!fs::exists(path)) GTEST_SKIP() << "the assignment's scenes not found at " << path;
   Image img = readImage(path);
   ASSERT_EQ(img.width, 768);
   ASSERT_EQ(img.height, 768);

@@ -1,6 +1,6 @@
-// Ambient occlusion (seed hw2): AO(x) = (1/pi) * integral over the hemisphere of V(x, w) cos(theta) dw,
+// Ambient occlusion: AO(x) = (1/pi) * integral over the hemisphere of V(x, w) cos(theta) dw,
 // estimated with `samples` directions from the uniform (pdf 1/2pi) or cosine (pdf cos/pi) warp.
-// Visibility rays stop at the scene's extent; albedo is not applied (as in the seed's framework).
+// Visibility rays stop at the scene's extent; albedo is not applied (as in the assignment's framework).
 #pragma once
 
 #include "core/integrators/integrator_desc.h"

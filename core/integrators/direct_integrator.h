@@ -1,11 +1,11 @@
-// Direct illumination (seed hw2) from all emitters onto diffuse surfaces:
+// Direct illumination from all emitters onto diffuse surfaces:
 //   Lr(x) = albedo/pi * [ sum over delta lights of E_i  +  integral of Le(x, w) cos(theta) dw ].
 // Point and directional lights are evaluated deterministically. The area-light integral uses the
 // strategy chosen at compile time (one instantiation per measure, so no per-sample branching):
 //   hemisphere (uniform or cosine warp): trace the sampled direction, add Le of an emitter it hits;
 //   area: a uniform point on each light sphere, pdf converted to solid angle (far side adds 0);
 //   solid angle: a uniform direction in the cone each light sphere subtends.
-// `simple` (seed hw1) is the same integrator with delta lights only.
+// `simple` is the same integrator with delta lights only.
 #pragma once
 
 #include <cmath>

@@ -22,7 +22,7 @@ struct IntegratorDesc {
 
 const char* integratorTypeName(IntegratorType type);
 const char* directMeasureName(DirectMeasure measure);
-// The seed's spelling: uniform-hemisphere / cosine-hemisphere.
+// The assignment's spelling: uniform-hemisphere / cosine-hemisphere.
 const char* hemisphereWarpName(HemisphereWarp warp);
 bool parseIntegratorType(const std::string& name, IntegratorType& out);
 // Accepts hemisphere | area | solid-angle | solidAngle.

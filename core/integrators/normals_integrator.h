@@ -1,4 +1,4 @@
-// "normals" (hw0): the absolute shading normal as a colour; black where the camera ray misses.
+// "normals": the absolute shading normal as a colour; black where the camera ray misses.
 #pragma once
 
 #include <glm/common.hpp>

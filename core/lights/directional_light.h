@@ -1,6 +1,6 @@
-// Distant light. `direction` points FROM the scene TOWARD the light (the seed's hw1
+// Distant light. `direction` points FROM the scene TOWARD the light (scenes/hw1's
 // sphere-directional.xml: direction = (1, 1, 0) lights a plane at y = −0.05 from above), so the light
-// travels along −direction. `irradiance` is the seed XML's "radiance" property: the irradiance on a
+// travels along −direction. `irradiance` is the scene XML's "radiance" property: the irradiance on a
 // surface facing the light, E = irradiance · max(0, dot(n, direction)) · V.
 #pragma once
 

@@ -1,4 +1,4 @@
-// Isotropic point light. `intensity` is the seed XML's "radiance" property of a point emitter
+// Isotropic point light. `intensity` is the scene XML's "radiance" property of a point emitter
 // (radiant intensity, W/sr): the irradiance it gives a surface is I · max(0, cos θ) / d² · V.
 #pragma once
 

@@ -1,4 +1,4 @@
-// A uniform, one-sided (outward) spherical area light, with the seed assignment's three measures:
+// A uniform, one-sided (outward) spherical area light, with the assignment's three measures:
 // uniform area sampling, uniform sampling of the subtended cone (solid angle), and their pdfs.
 // Plain struct, no virtuals: integrators pick the sampler once per pass.
 #pragma once

@@ -1,6 +1,6 @@
 // Sample warping: maps uniform points of [0,1)^2 to other domains. Every warp sits next to its pdf
 // (density with respect to area on the plane, or solid angle on the sphere) and, where one exists,
-// its inverse. Names follow the seed assignment (Nori's Warp class).
+// its inverse. Names follow the assignment (Nori's Warp class).
 #pragma once
 
 #include <string>
@@ -22,7 +22,7 @@ enum class WarpType : uint8_t {
 };
 inline constexpr int kWarpTypeCount = 9;
 
-// Seed string names: uniform-square, tent, uniform-disk, concentric-disk, uniform-sphere,
+// The assignment's string names: uniform-square, tent, uniform-disk, concentric-disk, uniform-sphere,
 // uniform-hemisphere, cosine-hemisphere, uniform-cone, beckmann.
 const char* warpTypeName(WarpType type);
 bool parseWarpType(const std::string& name, WarpType& out);

@@ -58,7 +58,7 @@ size_t prescan(const std::string& path, std::istream& in) {
           throw Error(path, lineNo, "'" + k + "': expected finite numbers, got \"" + tok[i] + "\"");
       (k == "v" ? nv : nvn)++;
     } else if (k == "vt") {
-      ++nvt;  // texture coordinates are not used; the seed has a malformed "vt 1.0 " line
+      ++nvt;  // texture coordinates are not used; the assignment's plane.obj has a malformed "vt 1.0 " line
     } else if (k == "f") {
       if (tok.size() < 4)
         throw Error(path, lineNo,

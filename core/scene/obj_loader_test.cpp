@@ -24,8 +24,8 @@ std::string writeTemp(const std::string& name, const std::string& text) {
   return p.string();
 }
 
-TEST(ObjLoader, SeedPlaneWithMalformedTexcoord) {
-  // hw1 plane.obj has a "vt 1.0 " line with one component.
+TEST(ObjLoader, PlaneWithMalformedTexcoord) {
+  // scenes/hw1's plane.obj has a "vt 1.0 " line with one component.
   ObjLoadStats stats;
   TriangleMesh m = loadObjMesh(kScenes + "hw1/Tests/plane.obj", glm::mat4(1.f), "s.xml", 3, &stats);
   ASSERT_EQ(m.triangles.size(), 2u);
@@ -40,18 +40,20 @@ TEST(ObjLoader, SeedPlaneWithMalformedTexcoord) {
     Vec3 g = glm::cross(m.positions[t.y] - m.positions[t.x], m.positions[t.z] - m.positions[t.x]);
     EXPECT_LT(g.y, 0.f);
   }
-  TriangleMesh hw0 = loadObjMesh(kScenes + "hw0/Tests/plane.obj", glm::mat4(1.f), "s.xml", 3);
-  for (const glm::uvec3& t : hw0.triangles) {
-    Vec3 g = glm::cross(hw0.positions[t.y] - hw0.positions[t.x], hw0.positions[t.z] - hw0.positions[t.x]);
+  TriangleMesh other = loadObjMesh(kScenes + "hw0/Tests/plane.obj", glm::mat4(1.f), "s.xml", 3);
+  for (const glm::uvec3& t : other.triangles) {
+    Vec3 g =
+        glm::cross(other.positions[t.y] - other.positions[t.x], other.positions[t.z] - other.positions[t.x]);
     EXPECT_GT(g.y, 0.f);
   }
 }
 
-TEST(ObjLoader, AllSeedPlanesAndTransform) {
+TEST(ObjLoader, EveryAssignmentPlaneAndItsTransform) {
   for (const char* f :
        {"hw0/Tests/plane.obj", "hw0/Final/plane.obj", "hw1/Final/plane.obj", "hw2/Tests/plane.obj",
         "hw2/Finals/plane.obj", "hw2/Early-2017-08-30/Tests/plane.obj", "dev-scenes/sphere/plane.obj"}) {
-    // seed ground plane transform: scale(10,1,10), rotate x 90, translate (0,0,-1) → plane z=-1, normal -z...
+    // the ground plane's transform: scale(10,1,10), rotate x 90, translate (0,0,-1) → plane z=-1, normal
+    // -z...
     // :
     glm::mat4 s = glm::scale(glm::mat4(1.f), Vec3(10, 1, 10));
     glm::mat4 r = glm::rotate(glm::mat4(1.f), glm::radians(90.f), Vec3(1, 0, 0));

@@ -129,7 +129,7 @@ Color3 buildBsdf(const SceneNode* bsdf, std::vector<std::string>& warnings) {
   Color3 albedo = getNonNegativeColor(*bsdf, {"albedo"}, Color3(0.5f), "albedo");
   if (bsdf->type == "diffuse") return albedo;
   if (bsdf->type == "phong") {
-    // The seed's dev scenes carry hw3's Phong; only its diffuse lobe is rendered here.
+    // The assignment's dev scenes carry a Phong BSDF; only its diffuse lobe is rendered here.
     float kd = getPositiveFloat(*bsdf, {"diffuseCoef"}, 1.f, "diffuseCoef", true);
     float ks = getPositiveFloat(*bsdf, {"specularCoef"}, 0.f, "specularCoef", true);
     bsdf->props.markUsed({"shininess"});
@@ -156,7 +156,7 @@ TriangleMesh buildMesh(const SceneNode& node, std::vector<std::string>& warnings
   }
   TriangleMesh mesh;
   if (node.type == "plane") {
-    // The seed's plane.obj without a file: x, z in [-1, 1], y = 0, normal +y.
+    // The assignment's plane.obj without a file: x, z in [-1, 1], y = 0, normal +y.
     mesh = makeGridPlane(Vec3(-1, 0, 1), Vec3(2, 0, 0), Vec3(0, 0, -2), 1, 1);
   } else {
     // "rock": a procedural stand-in for large scanned meshes (no big files in the repository).
@@ -175,7 +175,7 @@ void buildShape(const SceneNode& node, Scene& scene, std::vector<std::string>& w
   SurfaceMaterial material;
   material.albedo = buildBsdf(node.child("bsdf"), warnings);
   const SceneNode* emitter = node.child("emitter");
-  node.props.markUsed({"name"});  // seed scenes label shapes; harmless
+  node.props.markUsed({"name"});  // the assignment's scenes label shapes; harmless
 
   if (node.type == "sphere") {
     Sphere sphere;
@@ -286,7 +286,7 @@ LoadedScene loadSceneFromString(const std::string& xml, const std::string& nameF
 }
 
 const char* defaultSceneXml() {
-  // hw2/Tests/sphere-solid.xml, with the built-in "plane" shape standing in for plane.obj.
+  // scenes/hw2/Tests/sphere-solid.xml, with the built-in "plane" shape standing in for plane.obj.
   return R"(<scene>
   <sampler type="independent"><integer name="sampleCount" value="64"/></sampler>
   <integrator type="direct">

@@ -1,5 +1,5 @@
 // SceneNode tree → a renderable Scene plus the RenderSettings it asks for. This is where type names
-// are resolved ("sphere", "obj", "ao", ...), aliases of the seed's scenes are accepted, ranges are
+// are resolved ("sphere", "obj", "ao", ...), aliases of the assignment's scenes are accepted, ranges are
 // validated with the offending line, and unread properties become warnings.
 #pragma once
 
@@ -34,7 +34,8 @@ LoadedScene buildScene(SceneNode desc);
 // edits settings of an already built scene.
 RenderSettings buildSettings(const SceneNode& desc, std::vector<std::string>* warnings = nullptr);
 
-// The scene `penumbra` opens with no arguments: the hw2 sphere lit by a sphere light.
+// The scene `penumbra` opens with no arguments: a copy of scenes/hw2/Tests/sphere-solid.xml, a
+// sphere on a plane lit by a sphere light.
 const char* defaultSceneXml();
 
 }  // namespace penumbra

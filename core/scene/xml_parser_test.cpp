@@ -165,7 +165,7 @@ TEST(Transform, SingleOperations) {
 }
 
 TEST(Transform, DocumentOrderLeftMultiplies) {
-  // seed ground plane: scale(10,1,10), rotate x 90, translate (0,0,-1).
+  // The assignment's ground plane: scale(10,1,10), rotate x 90, translate (0,0,-1).
   glm::mat4 m = transformOf(
       "<scale value=\"10,1,10\"/><rotate axis=\"1,0,0\" angle=\"90\"/><translate value=\"0,0,-1\"/>");
   // Hand-computed: the point (1,0,1) → scale (10,0,10) → rotate x90 (10,-10,0) → translate (10,-10,-1).
@@ -185,7 +185,7 @@ TEST(Transform, DocumentOrderLeftMultiplies) {
 }
 
 TEST(Transform, LookAtMatchesNori) {
-  // hw0: origin (4,4,0), target 0, up z.
+  // The camera of scenes/hw0/Tests: origin (4,4,0), target 0, up z.
   glm::mat4 m = transformOf("<lookat target=\"0,0,0\" origin=\"4,4,0\" up=\"0,0,1\"/>");
   float s = 1.f / std::sqrt(2.f);
   Vec3 dir(-s, -s, 0);

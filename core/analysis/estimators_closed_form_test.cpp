@@ -1,21 +1,24 @@
-// Every estimator against closed-form ground truth (../shared/reference/closed-forms.md), with a
-// statistical bound: |estimate - truth| < 4 standard errors of the estimate (plus a tiny absolute
-// slack for float rounding when the truth is exactly representable).
+// Every estimator (the direct integrator's four strategies, AO with both warps) against the closed
+// forms of core/analysis/closed_forms.h, with a statistical bound: |estimate - truth| < 4 standard
+// errors of the estimate (plus a tiny absolute slack for float rounding when the truth is exactly
+// representable).
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <sstream>
 
 #include "core/analysis/closed_forms.h"
+#include "core/analysis/ray_estimate.h"
 #include "core/integrators/ao_integrator.h"
 #include "core/integrators/direct_integrator.h"
-#include "tests/test_support.h"
+#include "core/scene/scene_builder.h"
 
 namespace penumbra {
 namespace {
 
-using test::Estimate;
-using test::estimateRay;
+using analysis::Estimate;
+using analysis::estimateRay;
+using analysis::rayOnto;
 
 // A diffuse plane z = 0 (albedo 1, half-size `planeHalf`) and one sphere light.
 // (pbrt's conservative triangle test, which we use, rejects very shallow hits on huge triangles,
@@ -136,7 +139,7 @@ TEST(AoClosedForm, PlaneNextToARestingSphere) {
   for (float rho : {0.05f, 0.3f, 1.f, 2.5f}) {
     double truth = aoPlaneNearRestingSphere(rho, R);
     // Look straight down onto the plane point (rho, 0, 0) from just above it.
-    Ray ray = test::rayOnto(Vec3(rho, 0, 0), Vec3(0, 0, 1), 1e-3f);
+    Ray ray = rayOnto(Vec3(rho, 0, 0), Vec3(0, 0, 1), 1e-3f);
     checkAgainstTruth("ao uniform", aoAt<HemisphereWarp::Uniform>(s, ray, 100000, 5), truth);
     checkAgainstTruth("ao cosine", aoAt<HemisphereWarp::Cosine>(s, ray, 100000, 6), truth);
   }
@@ -150,7 +153,7 @@ TEST(AoClosedForm, PointsOnARestingSphere) {
     Vec3 n(float(std::sin(psi)), 0.f, float(std::cos(psi)));
     Vec3 p = Vec3(0, 0, R) + R * n;
     double truth = aoOnRestingConvexBody(psi);
-    Ray ray = test::rayOnto(p, n, 0.01f);
+    Ray ray = rayOnto(p, n, 0.01f);
     checkAgainstTruth("ao uniform", aoAt<HemisphereWarp::Uniform>(s, ray, 100000, 7), truth);
     checkAgainstTruth("ao cosine", aoAt<HemisphereWarp::Cosine>(s, ray, 100000, 8), truth);
   }

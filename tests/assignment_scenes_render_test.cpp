@@ -1,5 +1,6 @@
-// Every seed scene loads and renders (small, few spp) without NaN/Inf/negative samples; the missing
-// ajax.obj is a clear error; the hw2 sphere scene matches the seed's reference images in mean.
+// Every scene of the assignment loads and renders (small, few spp) without NaN/Inf/negative samples;
+// the missing ajax.obj is a clear error; the sphere, normals and point/directional-light scenes match
+// the assignment's reference images in mean.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -8,16 +9,13 @@
 #include "core/image/image_io.h"
 #include "core/math/error.h"
 #include "core/render/engine.h"
+#include "core/scene/scene_builder.h"
 #include "tests/test_support.h"
 
 namespace penumbra {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::vector<std::string> seedScenes() {
-  return test::seedSceneFiles();
-}
 
 RenderProgress renderScene(const LoadedScene& s, uint32_t spp, Image* mean = nullptr, Image* se = nullptr,
                            uint64_t seed = 0) {
@@ -33,8 +31,8 @@ RenderProgress renderScene(const LoadedScene& s, uint32_t spp, Image* mean = nul
   return engine.progress();
 }
 
-TEST(SeedScenes, EveryOneLoadsAndRendersOrNamesTheMissingMesh) {
-  auto scenes = seedScenes();
+TEST(AssignmentScenes, EveryOneLoadsAndRendersOrNamesTheMissingMesh) {
+  auto scenes = test::assignmentSceneFiles();
   ASSERT_GE(scenes.size(), 20u);
   int rendered = 0;
   for (const std::string& path : scenes) {
@@ -68,7 +66,7 @@ ImageStats stats(const Image& mean, const Image& se) {
   return {sum / n, std::sqrt(var) / n};
 }
 
-TEST(SeedScenes, Hw2SphereMatchesTheReferencesForEveryMeasure) {
+TEST(AssignmentScenes, SphereAreaSceneMatchesItsReferenceForEveryMeasure) {
   std::string dir = test::sourcePath("scenes/hw2/");
   Image ref = readImage(dir + "References/sphere-area.exr");
   ImageStats refStats = stats(ref, Image());
@@ -92,9 +90,9 @@ TEST(SeedScenes, Hw2SphereMatchesTheReferencesForEveryMeasure) {
 namespace penumbra {
 namespace {
 
-// hw0 (normals) and hw1 (point and directional lights through `simple`) are deterministic but for
-// pixel anti-aliasing: their image means must match the seed's references closely.
-TEST(SeedScenes, Hw0AndHw1MatchTheirReferences) {
+// The normals scenes and the point and directional light scenes (through `simple`) are deterministic
+// but for pixel anti-aliasing: their image means must match the assignment's references closely.
+TEST(AssignmentScenes, NormalsAndDeltaLightScenesMatchTheirReferences) {
   struct Pair {
     const char* scene;
     const char* reference;

@@ -2,26 +2,21 @@
 // known-missing ajax.obj).
 #include <gtest/gtest.h>
 
-#include "tests/test_support.h"
-
 #include <filesystem>
 #include <functional>
 
 #include "core/math/error.h"
 #include "core/scene/obj_loader.h"
 #include "core/scene/xml_parser.h"
+#include "tests/test_support.h"
 
 namespace penumbra {
 namespace {
 
 namespace fs = std::filesystem;
 
-std::vector<std::string> sceneFiles() {
-  return test::seedSceneFiles();
-}
-
-TEST(SeedScenes, AllParseAndMeshesLoad) {
-  std::vector<std::string> files = sceneFiles();
+TEST(AssignmentScenes, AllParseAndMeshesLoad) {
+  std::vector<std::string> files = test::assignmentSceneFiles();
   EXPECT_EQ(files.size(), 22u);
   int missingAjax = 0;
   for (const std::string& f : files) {
@@ -53,8 +48,8 @@ TEST(SeedScenes, AllParseAndMeshesLoad) {
   EXPECT_EQ(missingAjax, 3);
 }
 
-TEST(SeedScenes, AliasSpellingsAreVisible) {
-  std::string dir = std::string(PENUMBRA_SOURCE_DIR) + "/scenes/";
+TEST(AssignmentScenes, AliasSpellingsAreVisible) {
+  std::string dir = test::sourcePath("scenes/");
   SceneNode early = parseSceneFile(dir + "hw2/Early-2017-08-30/Tests/sphere-area.xml");
   const SceneNode* integ = early.child("integrator");
   ASSERT_NE(integ, nullptr);

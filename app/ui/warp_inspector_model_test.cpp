@@ -1,0 +1,123 @@
+// The warp inspector's model without GL: point sets, warped grid lines, the background worker's
+// chi-square verdict (cancelled when a newer request arrives) and the histogram panels' images.
+#include "app/ui/warp_inspector_model.h"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cstdio>
+#include <memory>
+#include <thread>
+#include <vector>
+
+#include "core/sampling/rng.h"
+
+using namespace penumbra;
+using namespace penumbra::ui;
+
+namespace {
+
+WarpInspectorSettings cosine14() {
+  WarpInspectorSettings s;
+  s.type = WarpType::CosineHemisphere;
+  s.log2Points = 14;
+  return s;
+}
+
+std::shared_ptr<const WarpVerdict> verdictFor(const WarpInspectorSettings& s) {
+  WarpInspectorWorker w;
+  w.request(s);
+  EXPECT_TRUE(w.waitIdle(60.0));
+  auto v = w.verdict();
+  EXPECT_TRUE(v && v->settings == s);
+  return v;
+}
+
+}  // namespace
+
+TEST(WarpInspectorModel, PointSetsAreThePowerOfTwoAndStratified) {
+  for (int i = 0; i < kPointSetCount; ++i) {
+    auto set = static_cast<PointSet>(i);
+    for (int k : {5, 6, 11}) {
+      std::vector<Vec2> pts = makePointSet(set, k, 7);
+      ASSERT_EQ(pts.size(), size_t(1) << k);
+      if (set == PointSet::Independent) continue;
+      // one point in each cell of the 2^ceil(k/2) x 2^floor(k/2) grid
+      const int nx = 1 << ((k + 1) / 2), ny = 1 << (k / 2);
+      std::vector<int> hits(size_t(nx) * ny, 0);
+      for (Vec2 p : pts) {
+        ASSERT_TRUE(p.x >= 0.f && p.x < 1.f && p.y >= 0.f && p.y < 1.f);
+        ++hits[size_t(int(p.y * ny)) * nx + int(p.x * nx)];
+      }
+      for (int h : hits) EXPECT_EQ(h, 1) << pointSetName(set) << " 2^" << k;
+    }
+  }
+  // independent = the CLI's chi-square stream for the seed (same first sample)
+  Rng rng(mix64(7), 7);
+  float u1 = rng.nextFloat();
+  EXPECT_EQ(makePointSet(PointSet::Independent, 5, 7)[0], Vec2(u1, rng.nextFloat()));
+}
+
+TEST(WarpInspectorModel, GridLinesAreSubdividedAndWarped) {
+  std::vector<Vec3> lines = warpedGridLines(WarpType::ConcentricDisk, 0.f, 4, 16);
+  ASSERT_EQ(lines.size(), size_t(2 * 5 * 16 * 2));
+  for (const Vec3& v : lines) EXPECT_LE(v.x * v.x + v.y * v.y, 1.0001f);
+  for (const Vec3& v : warpedGridLines(WarpType::UniformSphere, 0.f, 4, 16))
+    EXPECT_NEAR(glm::length(v), 1.f, 1e-5f);
+}
+
+TEST(WarpInspectorModel, CosineHemisphereAcceptedPanelsCloseMismatchRejected) {
+  auto ok = verdictFor(cosine14());
+  ASSERT_TRUE(ok);
+  EXPECT_TRUE(ok->chi2.accepted) << ok->chi2.message << " p " << ok->chi2.pValue;
+  EXPECT_EQ(ok->domain.kind, Chi2Domain::Kind::Sphere);
+  HistogramPanels panels = makeHistogramPanels(ok->chi2);
+  ASSERT_EQ(panels.width, 2 * panels.height);
+  double close = meanAbsoluteDifference(panels.observed, panels.expected);
+  std::printf("panels: mean |histogram - density| %.2f / 255 (%dx%d cells)\n", close, panels.width,
+              panels.height);
+  EXPECT_LT(close, 15.0) << "histogram and density panels differ";
+
+  WarpInspectorSettings bad = cosine14();
+  bad.mismatch = true;
+  auto rejected = verdictFor(bad);
+  ASSERT_TRUE(rejected);
+  EXPECT_FALSE(rejected->chi2.accepted) << "p " << rejected->chi2.pValue;
+  HistogramPanels badPanels = makeHistogramPanels(rejected->chi2);
+  EXPECT_GT(meanAbsoluteDifference(badPanels.observed, badPanels.expected), close * 1.5);
+}
+
+TEST(WarpInspectorModel, PlanarWarpsAreHistogrammedOnThePlane) {
+  for (WarpType t : {WarpType::ConcentricDisk, WarpType::Tent}) {
+    WarpInspectorSettings s;
+    s.type = t;
+    s.log2Points = 14;
+    auto v = verdictFor(s);
+    ASSERT_TRUE(v);
+    EXPECT_EQ(v->domain.kind, Chi2Domain::Kind::Square) << warpTypeName(t);
+    EXPECT_EQ(v->chi2.resX, v->chi2.resY);
+    EXPECT_TRUE(v->chi2.accepted) << warpTypeName(t) << ": " << v->chi2.message;
+  }
+}
+
+TEST(WarpInspectorModel, NewRequestsCancelStaleJobs) {
+  WarpInspectorWorker w;
+  WarpInspectorSettings s;
+  s.type = WarpType::Beckmann;
+  s.param = 0.3f;
+  s.log2Points = 20;
+  w.request(s);
+  for (int i = 0; i < 5; ++i) {  // a slider dragged: every frame a new request
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    s.param += 0.05f;
+    w.request(s);
+  }
+  s.log2Points = 12;
+  w.request(s);
+  ASSERT_TRUE(w.waitIdle(60.0));
+  EXPECT_GE(w.cancelledJobs(), 1u);
+  ASSERT_TRUE(w.verdict());
+  EXPECT_TRUE(w.verdict()->settings == s);
+  EXPECT_TRUE(w.points()->settings == s);
+  EXPECT_EQ(w.points()->points.size(), size_t(1) << 12);
+}

@@ -1,0 +1,94 @@
+// Convergence runs: error against time on the analytic scene, and the equal-time ranking of the
+// light-sampling strategies on the sphere scene.
+//
+// Timing and flakiness. The machine these tests run on is shared (other builds compete for the two
+// cores: load average 7-8 while this was written), so wall-clock throughput drifts by 1.5-2x within
+// seconds. Measured on the analytic scene, the fitted slope of log MSE against log *wall* time
+// scattered over [-1.15, -0.88] between runs while the slope against spp was -1.00 +- 0.007: all the
+// scatter is throughput drift, none is the estimator. Hence:
+//  - The slope test uses the render's CPU time (ConvergencePoint::cpuSeconds: process CPU at each
+//    pass boundary minus the polling thread's own), which does not advance while other processes
+//    hold the cores. It fits from 20 ms (and >= 8 passes: start-up and per-pass overheads make the
+//    very first passes slower per sample) to 2 s, two decades, on an image large enough that a pass
+//    takes milliseconds. Slopes observed: -0.98 .. -1.03; the accepted range is
+//    [-1.15, -0.85]. The wall-time slope is printed for information, not asserted.
+//  - The ranking test compares strategies at equal CPU time: each renders the same spp
+//    (deterministic given the seed) and the equal-time MSE is MSE(N) * cpu(N) / budget, i.e. the
+//    ranking is by MSE * CPU seconds = 1/efficiency. (MSE at equal time scales as MSE * cost for an
+//    unbiased estimator because MSE is proportional to 1/spp, which the slope test checks.)
+//  - Rankings use the metric over pixels that see no light: pixels at the light's silhouette have a
+//    large variance from the pixel filter alone (300 vs 0.1 within one footprint), the same for
+//    every light-sampling strategy, and at 64x64 it is ~99.9% of the all-pixel MSE.
+#include "core/analysis/convergence.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "core/analysis/error_metrics.h"
+#include "core/analysis/reference.h"
+#include "core/analysis/test_scenes_fixture.h"
+
+namespace penumbra {
+namespace {
+
+using test::analyticScene;
+using test::loadSmall;
+using test::sphereScene;
+
+TEST(Convergence, MseSlopeAgainstTimeOnAnalyticScene) {
+  // 80x80: a pass (~3 ms) is long against the fixed per-pass cost (barrier, snapshot), which
+  // otherwise makes early passes slower per sample and flattens the fitted slope.
+  LoadedScene scene = loadSmall(analyticScene(), 80);
+  Reference ref = closedFormReference(scene);
+  std::vector<uint8_t> mask = emitterMask(scene);
+  ConvergenceOptions o;
+  o.seconds = 2;
+  o.seed = 3;
+  for (const IntegratorDesc& d : parseStrategies(scene.settings.integrator, "all")) {
+    ConvergenceRun run = runConvergence(scene, d, ref, mask, o);
+    std::vector<double> t, cpu, mse, spp;
+    for (const ConvergencePoint& p : run.points)
+      if (p.seconds >= 0.02 && p.spp >= 8)
+        t.push_back(p.seconds), cpu.push_back(p.cpuSeconds), mse.push_back(p.error.all.mse),
+            spp.push_back(p.spp);
+    ASSERT_GE(t.size(), 5u) << run.strategy;
+    double slope = logLogSlope(cpu, mse);
+    EXPECT_GE(slope, -1.15) << run.strategy;
+    EXPECT_LE(slope, -0.85) << run.strategy;
+    // Against wall time and spp for diagnosis: spp separates sampling noise from throughput drift.
+    std::printf("%-28s slope %.3f against CPU time over %zu points (wall time %.3f, spp %.3f), %u spp\n",
+                run.strategy.c_str(), slope, t.size(), logLogSlope(t, mse), logLogSlope(spp, mse), run.spp);
+  }
+}
+
+TEST(Convergence, EqualTimeRankingOnSphereScene) {
+  LoadedScene scene = loadSmall(sphereScene(), 64);
+  Reference ref = renderReference(scene, RenderLimits{2048, 0});  // kReferenceSeed: independent of 1, 2, 3
+  std::vector<uint8_t> mask = emitterMask(scene);
+  std::vector<IntegratorDesc> order =
+      parseStrategies(scene.settings.integrator, "solid-angle,area,cosine-hemisphere,uniform-hemisphere");
+  for (uint64_t seed : {1, 2, 3}) {
+    std::vector<double> score;  // MSE * CPU seconds: equal-CPU-time MSE up to a common factor
+    for (const IntegratorDesc& d : order) {
+      ConvergenceOptions o;
+      o.spp = 128;
+      o.seed = seed;
+      ConvergenceRun run = runConvergence(scene, d, ref, mask, o);
+      double cpu = run.points.back().cpuSeconds;
+      score.push_back(run.points.back().error.noLight.mse * cpu);
+      std::printf("seed %llu %-28s MSE %.4e (all px %.4e) cpu %.3f s -> %.4e\n", (unsigned long long)seed,
+                  run.strategy.c_str(), run.points.back().error.noLight.mse, run.points.back().error.all.mse,
+                  cpu, score.back());
+    }
+    for (std::size_t i = 0; i + 1 < score.size(); ++i)
+      EXPECT_LT(score[i], score[i + 1])
+          << "seed " << seed << ": " << strategyLabel(order[i]) << " vs " << strategyLabel(order[i + 1]);
+  }
+}
+
+}  // namespace
+}  // namespace penumbra

@@ -1,0 +1,102 @@
+// End-to-end tests of `penumbra converge` (the report's files) and `penumbra render --reference`.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <string>
+
+#include "core/analysis/reference.h"
+#include "core/image/image_io.h"
+#include "tests/run_command.h"
+#include "tests/test_support.h"
+
+namespace penumbra {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string analyticScene() {
+  return test::sourcePath("scenes/analytic/plane-sphere-light.xml");
+}
+
+test::CommandResult penumbraCli(const std::string& args) {
+  return test::runCommand("'" PENUMBRA_BINARY "' " + args);
+}
+
+TEST(ConvergeCli, ReportFilesExistAndParse) {
+  fs::path dir = fs::temp_directory_path() / ("penumbra-converge-" + std::to_string(::getpid()));
+  test::CommandResult r = penumbraCli(
+      "converge '" + analyticScene() +
+      "' --set camera.width=40 --set camera.height=32 --time 0.4 --strategies all -o '" + dir.string() + "'");
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  // CSV: header with the documented columns, one row per measurement, numbers that parse.
+  std::ifstream csv(dir / "convergence.csv");
+  std::string header;
+  std::getline(csv, header);
+  EXPECT_EQ(header,
+            "strategy,seconds,cpu_seconds,spp,samples,mse,rmse,rel_mse,mse_stderr,ref_variance,"
+            "mse_nolight,rmse_nolight,rel_mse_nolight,mse_stderr_nolight");
+  std::set<std::string> strategies;
+  int rows = 0;
+  for (std::string line; std::getline(csv, line); ++rows) {
+    std::stringstream ss(line);
+    std::string cell;
+    std::getline(ss, cell, ',');
+    strategies.insert(cell);
+    int cols = 1;
+    for (; std::getline(ss, cell, ','); ++cols) {
+      size_t used = 0;
+      double v = std::stod(cell, &used);
+      EXPECT_EQ(used, cell.size()) << line;
+      EXPECT_TRUE(std::isfinite(v)) << line;
+    }
+    EXPECT_EQ(cols, 14) << line;
+  }
+  EXPECT_GE(rows, 4 * 3);
+  EXPECT_EQ(strategies,
+            (std::set<std::string>{"uniform-hemisphere", "cosine-hemisphere", "area", "solid-angle"}));
+  // PNGs decode and have a plausible size.
+  for (const char* png : {"convergence.png", "equal-time.png"}) {
+    Image img = readImage((dir / png).string());
+    EXPECT_GT(img.width, 400) << png;
+    EXPECT_GT(img.height, 300) << png;
+  }
+  std::ifstream md(dir / "summary.md");
+  std::string summary((std::istreambuf_iterator<char>(md)), std::istreambuf_iterator<char>());
+  for (const char* s : {"| uniform-hemisphere |", "| cosine-hemisphere |", "| area |", "| solid-angle |",
+                        "efficiency", "speed-up"})
+    EXPECT_NE(summary.find(s), std::string::npos) << s << "\n" << summary;
+  fs::remove_all(dir);
+}
+
+TEST(ConvergeCli, RejectsUnknownStrategy) {
+  fs::path dir = fs::temp_directory_path() / ("penumbra-converge-bogus-" + std::to_string(::getpid()));
+  test::CommandResult r = penumbraCli("converge '" + analyticScene() +
+                                      "' --time 0.1 --strategies bogus -o '" + dir.string() + "'");
+  EXPECT_EQ(r.exitCode, 2) << r.out;
+  EXPECT_NE(r.out.find("unknown strategy"), std::string::npos) << r.out;
+  fs::remove_all(dir);
+}
+
+TEST(ConvergeCli, RenderReferenceWritesMeanAndStandardError) {
+  fs::path dir = fs::temp_directory_path() / ("penumbra-renderref-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  std::string out = (dir / "ref.exr").string();
+  test::CommandResult r =
+      penumbraCli("render --reference '" + test::sourcePath("scenes/hw2/Tests/sphere-area.xml") +
+                  "' --set camera.width=24 --set camera.height=16 --spp 8 -o '" + out + "'");
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  EXPECT_NE(r.out.find("direct/solid-angle"), std::string::npos) << r.out;  // the lowest-variance estimator
+  Reference ref = readReference(out);
+  EXPECT_EQ(ref.mean.width, 24);
+  ASSERT_EQ(ref.standardError.width, 24);
+  EXPECT_NE(ref.source.find("rendered direct/solid-angle 8 spp"), std::string::npos) << ref.source;
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace penumbra
