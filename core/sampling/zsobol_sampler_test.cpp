@@ -241,6 +241,8 @@ TEST(ZSobolSampler, MeanSquaredErrorConvergesFasterThanOneOverN) {
               slopeWithin);
   EXPECT_LE(slopeBelow, -1.8);
   EXPECT_LE(slopeWithin, -1.8);
+  // Owen scrambling's own rate (about -2.1 to -2.3 without the value scrambles).
+  EXPECT_LE(std::max(slopeBelow, slopeWithin), -2.4);
 }
 
 }  // namespace
