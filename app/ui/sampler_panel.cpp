@@ -10,8 +10,8 @@ void drawSamplerPanel(ViewerController& c, PanelState&) {
   if (!ImGui::CollapsingHeader("Sampler", ImGuiTreeNodeFlags_DefaultOpen)) return;
   RenderSettings s = c.settings();
   int kind = int(s.samplerKind);
-  const char* kinds[] = {"independent", "stratified"};
-  if (ImGui::Combo("sampler", &kind, kinds, 2)) s.samplerKind = SamplerKind(kind);
+  const char* kinds[] = {"independent", "stratified", "sobol", "zsobol"};
+  if (ImGui::Combo("sampler", &kind, kinds, 4)) s.samplerKind = SamplerKind(kind);
   int count = int(s.sampleCount);
   if (ImGui::InputInt("sampleCount", &count, 1, 16, ImGuiInputTextFlags_EnterReturnsTrue))
     s.sampleCount = uint32_t(std::clamp(count, 1, 1 << 24));

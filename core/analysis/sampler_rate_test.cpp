@@ -10,16 +10,15 @@
 #include "core/analysis/test_scenes_fixture.h"
 #include "core/render/camera.h"
 #include "core/render/engine.h"
-#include "core/render/filter.h"
 
 namespace penumbra {
 namespace {
 
-// Pixels whose 4 x 4 filter samples all hit the floor (z = -1) and see all of 64 points of the
-// light's visible side: the light is unoccluded over the whole footprint.
+// Pixels whose 9 x 9 grid of offsets over the filter's support all hit the floor (z = -1) and see
+// all of 64 points of the light's visible side: the light is unoccluded over the whole footprint.
 std::vector<int> unoccludedFloorPixels(const LoadedScene& s) {
   PerspectiveCamera camera(s.settings.camera);
-  FilterSampler filter(s.settings.filter);
+  const float radius = s.settings.filter.radius;  // every sample lands within it
   const SphereLight& light = s.scene->sphereLights.at(0);
   std::vector<Vec3> onLight;
   for (int i = 0; i < 64; ++i) {  // a Fibonacci sphere of directions
@@ -31,9 +30,8 @@ std::vector<int> unoccludedFloorPixels(const LoadedScene& s) {
   for (int y = 0; y < camera.height(); ++y)
     for (int x = 0; x < camera.width(); ++x) {
       bool ok = true;
-      for (int j = 0; j < 16 && ok; ++j) {
-        float weight;
-        Vec2 offset = filter.sample(Vec2((j % 4 + 0.5f) / 4.f, (j / 4 + 0.5f) / 4.f), weight);
+      for (int j = 0; j < 81 && ok; ++j) {
+        Vec2 offset = radius * Vec2(j % 9 / 4.f - 1.f, j / 9 / 4.f - 1.f);
         SurfaceHit hit;
         Ray ray = camera.generateRay(Vec2(x + 0.5f + offset.x, y + 0.5f + offset.y));
         if (!s.scene->geometry.intersect(ray, hit) || std::fabs(hit.p.z + 1.f) > 1e-3f || hit.ng.z < 0.99f) {
@@ -73,7 +71,7 @@ double renderMseSlope(const std::string& sampler, int seeds, int* pixelCount = n
                                                   {"camera.height", "40"},
                                                   {"integrator.measure", "solid-angle"},
                                                   {"sampler.type", sampler}});
-  Reference truth = closedFormReference(s, 16);
+  Reference truth = closedFormReference(s, 64);
   std::vector<int> pixels = unoccludedFloorPixels(s);
   if (pixelCount) *pixelCount = static_cast<int>(pixels.size());
   std::vector<double> x, y;
@@ -92,6 +90,7 @@ double renderMseSlope(const std::string& sampler, int seeds, int* pixelCount = n
     }
     x.push_back(std::log(double(spp)));
     y.push_back(std::log(mse));
+    std::printf("  %s %u spp: MSE %.3e\n", sampler.c_str(), spp, mse);
   }
   double mx = 0, my = 0;
   for (size_t i = 0; i < x.size(); ++i) mx += x[i], my += y[i];
@@ -108,6 +107,14 @@ TEST(SamplerRenderRate, IndependentSamplingConvergesAsOneOverN) {
               slope);
   EXPECT_GT(pixels, 200);
   EXPECT_NEAR(slope, -1.0, 0.15);
+}
+
+TEST(SamplerRenderRate, SobolSamplersConvergeFaster) {
+  for (const char* sampler : {"sobol", "zsobol"}) {
+    double slope = renderMseSlope(sampler, 2);
+    std::printf("%s: slope of log MSE against log spp %.2f\n", sampler, slope);
+    EXPECT_LE(slope, -1.4) << sampler;
+  }
 }
 
 }  // namespace

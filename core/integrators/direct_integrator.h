@@ -71,7 +71,7 @@ struct DirectIntegrator {
   Color3 hemisphereIrradiance(const Scene& scene, const ShadingPoint& sp, Sampler& sampler) const {
     Color3 E(0.f);
     for (int i = 0; i < samples; ++i) {
-      Vec2 u = sampler.next2D();
+      Vec2 u = sampler.next2D(uint32_t(i), uint32_t(samples));  // one request: stratified among themselves
       Vec3 local;
       float cosOverPdf;  // cos θ / pdf, in closed form: π (cosine warp), 2π cos θ (uniform warp)
       if constexpr (kStrategy == DirectStrategy::CosineHemisphere) {
@@ -98,7 +98,7 @@ struct DirectIntegrator {
     for (const SphereLight& light : scene.sphereLights) {
       float lightScale = maxAbsComponent(light.sphere.center) + light.sphere.radius;
       for (int i = 0; i < samples; ++i) {
-        Vec2 u = sampler.next2D();
+        Vec2 u = sampler.next2D(uint32_t(i), uint32_t(samples));  // one request per light
         LightSample s = kStrategy == DirectStrategy::Area ? light.sampleArea(sp.hit.p, u)
                                                           : light.sampleSolidAngle(sp.hit.p, u);
         if (!(s.pdf > 0.f) || isBlack(s.Le)) continue;

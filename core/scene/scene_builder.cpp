@@ -90,7 +90,7 @@ void buildCamera(const SceneNode& node, RenderSettings& s) {
 }
 
 void buildSampler(const SceneNode& node, RenderSettings& s) {
-  if (!parseSamplerKind(node.type, s.samplerKind)) unknownType(node, "independent, stratified");
+  if (!parseSamplerKind(node.type, s.samplerKind)) unknownType(node, "independent, stratified, sobol, zsobol");
   s.sampleCount = uint32_t(getCount(node, {"sampleCount"}, 1, 1 << 24, "sampleCount"));
   s.seed = uint64_t(node.props.getInteger({"seed"}, 0));
 }
