@@ -144,8 +144,7 @@ void BM_Penumbra_SphereArea(benchmark::State& state) {
   auto job = std::make_shared<RenderJob>();
   job->scene = s.scene;
   job->settings = s.settings;
-  job->settings.integrator.measure = DirectMeasure::Area;
-  job->settings.integrator.samples = 1;
+  job->settings.integrator = IntegratorDesc{Strategy::DirectArea, 1};
   const int threads = int(state.range(0));
   constexpr uint32_t kPasses = 8;
   Engine engine;

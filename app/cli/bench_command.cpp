@@ -121,20 +121,14 @@ int runBench(const BenchOptions& o) {
   LoadedScene sphere = o.sphereScene.empty()
                            ? loadSceneFromString(defaultSceneXml(), "<built-in sphere scene>", ".")
                            : loadScene(o.sphereScene);
-  printHeader("direct strategy (768x768)");
-  struct Strategy {
-    DirectMeasure measure;
-    HemisphereWarp warp;
-  };
-  for (Strategy st : {Strategy{DirectMeasure::Hemisphere, HemisphereWarp::Uniform},
-                      Strategy{DirectMeasure::Hemisphere, HemisphereWarp::Cosine},
-                      Strategy{DirectMeasure::Area, HemisphereWarp::Cosine},
-                      Strategy{DirectMeasure::SolidAngle, HemisphereWarp::Cosine}}) {
+  // Every strategy of the scene's integrator type (the built-in scene: direct), in table order.
+  const std::string_view type = strategyRow(sphere.settings.integrator.strategy).xmlType;
+  std::string header = std::string(type) + " strategy (" + std::to_string(sphere.settings.camera.width) +
+                       "x" + std::to_string(sphere.settings.camera.height) + ")";
+  printHeader(header.c_str());
+  for (Strategy strategy : strategiesOfType(type)) {
     RenderSettings s = sphere.settings;
-    s.integrator.type = IntegratorType::Direct;
-    s.integrator.samples = 1;
-    s.integrator.measure = st.measure;
-    s.integrator.warp = st.warp;
+    s.integrator = IntegratorDesc{strategy, 1};
     Scaling m = measure(sphere, s, all, o);
     printRow(strategyLabel(s.integrator), m, 1e-6);
   }

@@ -85,9 +85,9 @@ void addConvergeCommand(CLI::App& app, int& exitCode) {
   auto opts = std::make_shared<ConvergeOptions>();
   CLI::App* cmd = app.add_subcommand("converge", "Error against time (or spp) for every sampling strategy");
   opts->scene.addTo(*cmd);
-  cmd->add_option("--strategies", opts->strategies,
-                  "all, or a comma-separated list: uniform-hemisphere,cosine-hemisphere,area,solid-angle "
-                  "(ao: uniform,cosine)");
+  cmd->add_option(
+      "--strategies", opts->strategies,
+      "all, or a comma-separated list of the scene integrator's strategies (" + strategyNamesHelp() + ")");
   cmd->add_option("--time", opts->seconds, "Seconds per strategy (error against time)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--spp", opts->spp, "Samples per pixel per strategy (error against samples)")

@@ -462,10 +462,7 @@ void writeSummary(const std::string& path, const std::vector<ConvergenceRun>& ru
          "MSE).\n\n";
   const ConvergenceRun* base = nullptr;
   for (const ConvergenceRun& r : runs)
-    if ((r.integrator.type == IntegratorType::Direct && r.integrator.measure == DirectMeasure::Hemisphere &&
-         r.integrator.warp == HemisphereWarp::Uniform) ||
-        (r.integrator.type == IntegratorType::Ao && r.integrator.warp == HemisphereWarp::Uniform))
-      base = &r;
+    if (strategyRow(r.integrator.strategy).baseline) base = &r;
   out << "| strategy | spp | wall s | CPU s | MSE | RMSE | relMSE | efficiency (wall) | speed-up (wall) | "
          "speed-up (CPU) | MSE no-light | efficiency no-light (wall) | speed-up no-light (wall) | "
          "speed-up no-light (CPU) |\n";

@@ -115,11 +115,14 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
   opts->scene.addTo(*cmd);
   cmd->add_option("-o,--output", opts->output,
                   "Output image (.exr float, .pfm float, .png sRGB 8-bit); required unless --reference");
+  std::string references;
+  for (const StrategyRow& row : strategyTable())
+    if (row.reference) (references += references.empty() ? "" : ", ") += row.label;
   cmd->add_flag(
       "--reference", opts->reference,
-      "Converged reference: the lowest-variance estimator (direct: solid-angle, ao: cosine), 4096 spp "
-      "unless --spp/--time, written with NAME.stderr.exr; default output: the cache next to the scene "
-      "(SCENE.xml.ref-HASH.exr) that `penumbra converge` reads");
+      "Converged reference: the lowest-variance estimator (" + references +
+          "), 4096 spp unless --spp/--time, written with NAME.stderr.exr; default output: the cache "
+          "next to the scene (SCENE.xml.ref-HASH.exr) that `penumbra converge` reads");
   cmd->add_option("--spp", opts->spp, "Samples per pixel (default: the scene's sampleCount)")
       ->check(CLI::Range(1u, 1u << 30));
   cmd->add_option("--time", opts->seconds, "Render for this many seconds (whole passes)")

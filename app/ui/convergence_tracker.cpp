@@ -27,8 +27,8 @@ void ConvergenceTracker::rekey(const ViewerController& c) {
   lastRestart_ = c.restartCount();
   lastScene_ = c.scene().scene;
   LoadedScene live = liveScene(c);
-  std::string key =
-      sceneContentHash(live.desc) + "/" + std::to_string(live.settings.integrator.type == IntegratorType::Ao);
+  std::string key = sceneContentHash(live.desc) + "/" +
+                    std::string(strategyRow(referenceStrategy(live.settings.integrator.strategy)).label);
   if (key == key_) return;
   key_ = key;
   curves_.clear();  // errors against another reference (camera, scene) are not comparable

@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <string>
 
 #include <imgui.h>
 
@@ -12,41 +13,31 @@ void drawIntegratorPanel(ViewerController& c, PanelState&) {
   IntegratorDesc& d = s.integrator;
   const bool areaLights = c.sceneHasAreaLights();
 
-  int type = d.type == IntegratorType::Ao        ? 0
-             : d.type == IntegratorType::Direct  ? 1
-             : d.type == IntegratorType::Normals ? 2
-                                                 : 3;
-  const char* types[] = {"ao", "direct", "normals", "simple"};
-  if (ImGui::Combo("integrator", &type, types, 4)) {
-    d.type = type == 0   ? IntegratorType::Ao
-             : type == 1 ? IntegratorType::Direct
-             : type == 2 ? IntegratorType::Normals
-                         : IntegratorType::Simple;
-    if (d.type == IntegratorType::Direct && !areaLights) d.measure = DirectMeasure::Hemisphere;
-  }
-
-  if (d.type == IntegratorType::Direct) {
-    // Light measures only when the scene has area lights to sample.
-    if (areaLights) {
-      int m = int(d.measure);
-      const char* measures[] = {"hemisphere", "area", "solid-angle"};
-      if (ImGui::Combo("measure", &m, measures, 3)) d.measure = DirectMeasure(m);
-    } else {
-      ImGui::TextDisabled("measure: hemisphere (no area lights)");
-      d.measure = DirectMeasure::Hemisphere;
+  // Every strategy of the table, in its order; those the scene cannot use are disabled.
+  if (ImGui::BeginCombo("strategy", std::string(strategyRow(d.strategy).label).c_str())) {
+    for (const StrategyRow& row : strategyTable()) {
+      bool applies = strategyApplies(row.strategy, areaLights);
+      if (ImGui::Selectable(std::string(row.label).c_str(), row.strategy == d.strategy,
+                            applies ? 0 : ImGuiSelectableFlags_Disabled))
+        d.strategy = row.strategy;
+      if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+        ImGui::SetTooltip("%s%s", std::string(row.description).c_str(),
+                          applies ? "" : (std::string(" (") + sceneNeedText(row.needs) + ")").c_str());
     }
+    ImGui::EndCombo();
   }
-  bool showWarp = d.type == IntegratorType::Ao ||
-                  (d.type == IntegratorType::Direct && d.measure == DirectMeasure::Hemisphere);
-  if (showWarp) {
-    int w = int(d.warp);
-    const char* warps[] = {"uniform-hemisphere", "cosine-hemisphere"};
-    if (ImGui::Combo("warp", &w, warps, 2)) d.warp = HemisphereWarp(w);
+  Strategy rendered = applicableStrategy(d.strategy, areaLights);
+  if (rendered != d.strategy) {
+    ImGui::TextDisabled("%s %s: %s", std::string(strategyRow(d.strategy).label).c_str(),
+                        sceneNeedText(strategyRow(d.strategy).needs),
+                        std::string(strategyRow(rendered).label).c_str());
+    d.strategy = rendered;
   }
-  if (d.type == IntegratorType::Ao || d.type == IntegratorType::Direct) {
+  const Spellings& samples = strategyRow(d.strategy).samplesProperty;
+  if (!samples.empty()) {
     int n = d.samples;
-    const char* label = d.type == IntegratorType::Ao ? "shadingSamples" : "nSamples";
-    if (ImGui::InputInt(label, &n, 1, 8, ImGuiInputTextFlags_EnterReturnsTrue) ||
+    if (ImGui::InputInt(std::string(samples.canonical()).c_str(), &n, 1, 8,
+                        ImGuiInputTextFlags_EnterReturnsTrue) ||
         ImGui::IsItemDeactivatedAfterEdit())
       d.samples = std::clamp(n, 1, 1 << 16);
   }
@@ -58,33 +49,14 @@ void drawIntegratorPanel(ViewerController& c, PanelState&) {
   bool on = c.compareEnabled();
   if (ImGui::Checkbox("split view", &on)) c.setCompare(on);
   IntegratorDesc r = c.compareIntegrator();
-  // The strategies of `direct` and `ao` (the same scene, camera and sampler as the left side).
-  struct Choice {
-    const char* label;
-    IntegratorDesc desc;
-  };
-  const Choice choices[] = {
-      {"direct/uniform-hemisphere",
-       {IntegratorType::Direct, r.samples, DirectMeasure::Hemisphere, HemisphereWarp::Uniform}},
-      {"direct/cosine-hemisphere",
-       {IntegratorType::Direct, r.samples, DirectMeasure::Hemisphere, HemisphereWarp::Cosine}},
-      {"direct/area", {IntegratorType::Direct, r.samples, DirectMeasure::Area, r.warp}},
-      {"direct/solid-angle", {IntegratorType::Direct, r.samples, DirectMeasure::SolidAngle, r.warp}},
-      {"ao/uniform", {IntegratorType::Ao, r.samples, r.measure, HemisphereWarp::Uniform}},
-      {"ao/cosine", {IntegratorType::Ao, r.samples, r.measure, HemisphereWarp::Cosine}},
-  };
-  int current = -1;
-  for (int i = 0; i < 6; ++i) {
-    const IntegratorDesc& d = choices[i].desc;
-    bool hemi = d.type == IntegratorType::Ao || d.measure == DirectMeasure::Hemisphere;
-    if (d.type == r.type && d.measure == r.measure && (!hemi || d.warp == r.warp)) current = i;
-  }
-  if (ImGui::BeginCombo("right side", current >= 0 ? choices[current].label : strategyLabel(r).c_str())) {
-    for (int i = 0; i < 6; ++i) {
-      bool needsLights = choices[i].desc.type == IntegratorType::Direct &&
-                         choices[i].desc.measure != DirectMeasure::Hemisphere;
-      if (needsLights && !areaLights) continue;
-      if (ImGui::Selectable(choices[i].label, i == current)) c.setCompareIntegrator(choices[i].desc);
+  // The strategies with shading samples (the Monte Carlo estimators), with the same scene, camera and
+  // sampler as the left side.
+  if (ImGui::BeginCombo("right side", strategyLabel(r).c_str())) {
+    for (const StrategyRow& row : strategyTable()) {
+      if (row.samplesProperty.empty() || !strategyApplies(row.strategy, areaLights)) continue;
+      if (ImGui::Selectable(std::string(row.label).c_str(), row.strategy == r.strategy))
+        c.setCompareIntegrator(IntegratorDesc{row.strategy, r.samples});
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", std::string(row.description).c_str());
     }
     ImGui::EndCombo();
   }

@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <string>
 
 #include <imgui.h>
 
@@ -9,12 +10,23 @@ namespace penumbra::ui {
 void drawSamplerPanel(ViewerController& c, PanelState&) {
   if (!ImGui::CollapsingHeader("Sampler", ImGuiTreeNodeFlags_DefaultOpen)) return;
   RenderSettings s = c.settings();
-  int kind = int(s.samplerKind);
-  const char* kinds[] = {"independent", "stratified", "sobol", "zsobol"};
-  if (ImGui::Combo("sampler", &kind, kinds, 4)) s.samplerKind = SamplerKind(kind);
+  // Every sampler of the table, in its order.
+  if (ImGui::BeginCombo("sampler", std::string(samplerRow(s.samplerKind).label).c_str())) {
+    for (const SamplerRow& row : samplerTable()) {
+      if (ImGui::Selectable(std::string(row.label).c_str(), row.kind == s.samplerKind))
+        s.samplerKind = row.kind;
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", std::string(row.description).c_str());
+    }
+    ImGui::EndCombo();
+  }
   int count = int(s.sampleCount);
   if (ImGui::InputInt("sampleCount", &count, 1, 16, ImGuiInputTextFlags_EnterReturnsTrue))
     s.sampleCount = uint32_t(std::clamp(count, 1, 1 << 24));
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip(
+        samplerRow(s.samplerKind).usesSampleCount
+            ? "The scene's samples per pixel: this sampler's strata, and the default target spp"
+            : "The scene's samples per pixel: the default target spp (this sampler ignores it)");
   int seed = int(s.seed);
   if (ImGui::InputInt("seed", &seed, 1, 10, ImGuiInputTextFlags_EnterReturnsTrue))
     s.seed = uint64_t(std::max(seed, 0));

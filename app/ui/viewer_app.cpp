@@ -299,9 +299,7 @@ class ViewerApp {
       if (e >= 0) std::snprintf(buf + n, sizeof buf - n, "  RMSE %.4g", e);
       return std::string(buf);
     };
-    IntegratorDesc right = c_.compareIntegrator();
-    if (right.type == IntegratorType::Direct && !c_.sceneHasAreaLights())
-      right.measure = DirectMeasure::Hemisphere;
+    IntegratorDesc right = c_.renderedCompareIntegrator();
     std::string a = label(c_.settings().integrator, c_.snapshot(), leftError_);
     std::string b = label(right, c_.compareSnapshot(), rightError_);
     // Left label at the image's top-left corner, right label at its top-right corner (one line lower

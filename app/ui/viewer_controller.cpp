@@ -97,9 +97,7 @@ void ViewerController::startCompare() {
   auto job = std::make_shared<RenderJob>();
   job->scene = scene_.scene;
   job->settings = settings_;
-  job->settings.integrator = compareIntegrator_;
-  if (job->settings.integrator.type == IntegratorType::Direct && !sceneHasAreaLights())
-    job->settings.integrator.measure = DirectMeasure::Hemisphere;
+  job->settings.integrator = renderedCompareIntegrator();
   bool wasPaused = engine_.paused();
   RenderLimits limits = limits_;
   limits.preview = true;
@@ -120,10 +118,15 @@ void ViewerController::setCompare(bool on) {
 }
 
 void ViewerController::setCompareIntegrator(const IntegratorDesc& d) {
-  const IntegratorDesc& o = compareIntegrator_;
-  if (d.type == o.type && d.samples == o.samples && d.measure == o.measure && d.warp == o.warp) return;
+  if (d == compareIntegrator_) return;
   compareIntegrator_ = d;
   if (compare_) startCompare();
+}
+
+IntegratorDesc ViewerController::renderedCompareIntegrator() const {
+  IntegratorDesc d = compareIntegrator_;
+  d.strategy = applicableStrategy(d.strategy, sceneHasAreaLights());
+  return d;
 }
 
 void ViewerController::setPaused(bool paused) {
@@ -188,9 +191,7 @@ static bool sameSettings(const RenderSettings& a, const RenderSettings& b) {
          a.camera.width == b.camera.width && a.camera.height == b.camera.height &&
          a.camera.nearClip == b.camera.nearClip && a.camera.farClip == b.camera.farClip &&
          std::memcmp(&a.filter, &b.filter, sizeof a.filter) == 0 && a.samplerKind == b.samplerKind &&
-         a.sampleCount == b.sampleCount && a.seed == b.seed && a.integrator.type == b.integrator.type &&
-         a.integrator.samples == b.integrator.samples && a.integrator.measure == b.integrator.measure &&
-         a.integrator.warp == b.integrator.warp;
+         a.sampleCount == b.sampleCount && a.seed == b.seed && a.integrator == b.integrator;
 }
 
 void ViewerController::setSettings(const RenderSettings& s) {
@@ -394,20 +395,14 @@ SceneNode ViewerController::liveDesc() const {
                 makeProp("seed", PropertyType::Integer, std::to_string(s.seed))},
                {});
 
-  SceneNode& integ = childOrNew(root, "integrator", integratorTypeName(s.integrator.type));
-  integ.type = integratorTypeName(s.integrator.type);
+  const std::string type(strategyRow(s.integrator.strategy).xmlType);
+  SceneNode& integ = childOrNew(root, "integrator", type);
+  integ.type = type;
   integ.props = PropertyList();
   integ.props.setContext(integ.file, integ.tag, integ.type);
-  const IntegratorDesc& d = s.integrator;
-  if (d.type == IntegratorType::Ao) {
-    integ.props.add(makeProp("shadingSamples", PropertyType::Integer, std::to_string(d.samples)));
-    integ.props.add(makeProp("warp-type", PropertyType::String, hemisphereWarpName(d.warp)));
-  } else if (d.type == IntegratorType::Direct) {
-    integ.props.add(makeProp("nSamples", PropertyType::Integer, std::to_string(d.samples)));
-    integ.props.add(makeProp("measure", PropertyType::String, directMeasureName(d.measure)));
-    if (d.measure == DirectMeasure::Hemisphere)
-      integ.props.add(makeProp("warp-type", PropertyType::String, hemisphereWarpName(d.warp)));
-  }
+  for (const CanonicalProperty& p : canonicalProperties(s.integrator))
+    integ.props.add(
+        makeProp(std::string(p.name), p.isInteger ? PropertyType::Integer : PropertyType::String, p.value));
   return root;
 }
 

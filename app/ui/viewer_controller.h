@@ -86,6 +86,9 @@ class ViewerController {
   bool compareEnabled() const { return compare_; }
   const IntegratorDesc& compareIntegrator() const { return compareIntegrator_; }
   void setCompareIntegrator(const IntegratorDesc& d);
+  // What the right side renders: compareIntegrator(), or its fallback when the scene lacks what it
+  // needs (strategy table).
+  IntegratorDesc renderedCompareIntegrator() const;
   RenderProgress compareProgress() const { return compareEngine_.progress(); }
   const FilmSnapshot& compareSnapshot() const { return compareSnapshot_; }
   uint64_t compareRestartCount() const { return compareRestarts_; }
@@ -159,8 +162,7 @@ class ViewerController {
   uint64_t snapshotRestart_ = 0;
   uint64_t snapshotSerial_ = 0, compareSnapshotSerial_ = 0;
   bool compare_ = false;
-  IntegratorDesc compareIntegrator_{IntegratorType::Direct, 1, DirectMeasure::SolidAngle,
-                                    HemisphereWarp::Cosine};
+  IntegratorDesc compareIntegrator_{Strategy::DirectSolidAngle, 1};
   Engine compareEngine_;
   FilmSnapshot compareSnapshot_;
   uint64_t compareRestarts_ = 0;

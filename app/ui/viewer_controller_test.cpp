@@ -41,10 +41,9 @@ bool waitUntil(F done) {
   return true;
 }
 
-IntegratorDesc directWith(DirectMeasure m) {
+IntegratorDesc directWith(Strategy m) {
   IntegratorDesc d;
-  d.type = IntegratorType::Direct;
-  d.measure = m;
+  d.strategy = m;
   return d;
 }
 
@@ -75,12 +74,12 @@ TEST(ViewerController, MeasureChangeRestartsAccumulationExposureDoesNot) {
   // A change of measure: restart, the counter resets.
   uint32_t running = c.progress().spp;
   RenderSettings s = c.settings();
-  ASSERT_EQ(s.integrator.measure, DirectMeasure::SolidAngle);
-  s.integrator.measure = DirectMeasure::Area;
+  ASSERT_EQ(s.integrator.strategy, Strategy::DirectSolidAngle);
+  s.integrator.strategy = Strategy::DirectArea;
   c.setSettings(s);
   EXPECT_EQ(c.restartCount(), restarts + 1);
   EXPECT_LT(c.progress().spp, running);
-  EXPECT_EQ(c.settings().integrator.measure, DirectMeasure::Area);
+  EXPECT_EQ(c.settings().integrator.strategy, Strategy::DirectArea);
   // The shared scene is reused, not rebuilt.
   EXPECT_EQ(c.engine().job()->scene.get(), c.scene().scene.get());
 }
@@ -130,8 +129,7 @@ TEST(ViewerController, CameraAndSamplerChangesRestartAndLiveXmlRoundTrips) {
   RenderSettings s = c.settings();
   s.seed = 17;
   s.samplerKind = SamplerKind::Stratified;
-  s.integrator.type = IntegratorType::Ao;
-  s.integrator.warp = HemisphereWarp::Uniform;
+  s.integrator.strategy = Strategy::AoUniform;
   s.integrator.samples = 3;
   c.setSettings(s);
   EXPECT_EQ(c.restartCount(), r0 + 4);
@@ -141,8 +139,7 @@ TEST(ViewerController, CameraAndSamplerChangesRestartAndLiveXmlRoundTrips) {
   const RenderSettings& t = again.settings;
   EXPECT_EQ(t.seed, 17u);
   EXPECT_EQ(t.samplerKind, SamplerKind::Stratified);
-  EXPECT_EQ(t.integrator.type, IntegratorType::Ao);
-  EXPECT_EQ(t.integrator.warp, HemisphereWarp::Uniform);
+  EXPECT_EQ(t.integrator.strategy, Strategy::AoUniform);
   EXPECT_EQ(t.integrator.samples, 3);
   EXPECT_EQ(t.camera.width, 48);
   for (int i = 0; i < 4; ++i)
@@ -172,7 +169,7 @@ TEST(ViewerCompare, EnablingStartsASecondAccumulationDisablingStopsIt) {
   ui::ViewerController c(smallDefaultScene(), {}, 2);
   c.start();
   EXPECT_FALSE(c.compareEnabled());
-  c.setCompareIntegrator(directWith(DirectMeasure::Area));  // compare off: nothing starts
+  c.setCompareIntegrator(directWith(Strategy::DirectArea));  // compare off: nothing starts
   EXPECT_EQ(c.compareRestartCount(), 0u);
   EXPECT_EQ(c.compareProgress().spp, 0u);
 
@@ -186,8 +183,8 @@ TEST(ViewerCompare, EnablingStartsASecondAccumulationDisablingStopsIt) {
   // Same scene object and settings, only the integrator differs.
   ASSERT_TRUE(c.compareEngine().job());
   EXPECT_EQ(c.compareEngine().job()->scene.get(), c.scene().scene.get());
-  EXPECT_EQ(c.compareEngine().job()->settings.integrator.measure, DirectMeasure::Area);
-  EXPECT_EQ(c.engine().job()->settings.integrator.measure, DirectMeasure::SolidAngle);
+  EXPECT_EQ(c.compareEngine().job()->settings.integrator.strategy, Strategy::DirectArea);
+  EXPECT_EQ(c.engine().job()->settings.integrator.strategy, Strategy::DirectSolidAngle);
   EXPECT_EQ(c.compareEngine().job()->settings.camera.toWorld, c.settings().camera.toWorld);
 
   // Both spp counters grow; both snapshots are published.
@@ -216,7 +213,7 @@ TEST(ViewerCompare, EnablingStartsASecondAccumulationDisablingStopsIt) {
 
 TEST(ViewerCompare, ChangingOneSidesStrategyRestartsOnlyThatSide) {
   ui::ViewerController c(smallDefaultScene(), {}, 2);
-  c.setCompareIntegrator(directWith(DirectMeasure::Area));
+  c.setCompareIntegrator(directWith(Strategy::DirectArea));
   c.setCompare(true);
   ASSERT_TRUE(waitUntil([&] { return c.progress().spp >= 3 && c.compareProgress().spp >= 3; }));
 
@@ -224,25 +221,24 @@ TEST(ViewerCompare, ChangingOneSidesStrategyRestartsOnlyThatSide) {
   uint64_t left = c.restartCount(), right = c.compareRestartCount();
   uint32_t rightSpp = c.compareProgress().spp;
   RenderSettings s = c.settings();
-  s.integrator.measure = DirectMeasure::Hemisphere;
-  s.integrator.warp = HemisphereWarp::Uniform;
+  s.integrator.strategy = Strategy::DirectUniformHemisphere;
   c.setSettings(s);
   EXPECT_EQ(c.restartCount(), left + 1);
   EXPECT_EQ(c.compareRestartCount(), right);
   EXPECT_GE(c.compareProgress().spp, rightSpp);
   ASSERT_TRUE(waitUntil([&] { return c.compareProgress().spp >= rightSpp + 2; }));
-  EXPECT_EQ(c.engine().job()->settings.integrator.measure, DirectMeasure::Hemisphere);
-  EXPECT_EQ(c.compareEngine().job()->settings.integrator.measure, DirectMeasure::Area);
+  EXPECT_EQ(c.engine().job()->settings.integrator.strategy, Strategy::DirectUniformHemisphere);
+  EXPECT_EQ(c.compareEngine().job()->settings.integrator.strategy, Strategy::DirectArea);
 
   // Right strategy: only the right restarts.
   ASSERT_TRUE(waitUntil([&] { return c.progress().spp >= 3; }));
   uint32_t leftSpp = c.progress().spp;
   left = c.restartCount();
-  c.setCompareIntegrator(directWith(DirectMeasure::SolidAngle));
+  c.setCompareIntegrator(directWith(Strategy::DirectSolidAngle));
   EXPECT_EQ(c.restartCount(), left);
   EXPECT_EQ(c.compareRestartCount(), right + 1);
   EXPECT_GE(c.progress().spp, leftSpp);
-  EXPECT_EQ(c.compareEngine().job()->settings.integrator.measure, DirectMeasure::SolidAngle);
+  EXPECT_EQ(c.compareEngine().job()->settings.integrator.strategy, Strategy::DirectSolidAngle);
 
   // The camera is shared: moving it restarts both sides.
   right = c.compareRestartCount();

@@ -1,5 +1,6 @@
 #include "core/analysis/convergence.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <ctime>
@@ -19,38 +20,58 @@ double cpuClock(clockid_t id) {
 }
 }  // namespace
 
-std::string strategyShortName(const IntegratorDesc& d) {
-  if (d.type == IntegratorType::Ao)
-    return std::string("ao-") + (d.warp == HemisphereWarp::Cosine ? "cosine" : "uniform");
-  if (d.type == IntegratorType::Direct) {
-    if (d.measure == DirectMeasure::Hemisphere) return hemisphereWarpName(d.warp);
-    return directMeasureName(d.measure);
+namespace {
+// Every name --strategies accepts for a row: its label with or without the integrator type, its
+// short name, and each spelling of its most specific selecting value in a scene file (solidAngle,
+// uniform).
+bool namesStrategy(const StrategyRow& row, const std::string& name) {
+  std::string_view label = row.label;
+  if (name == label || name == row.shortName || name == label.substr(label.find('/') + 1)) return true;
+  for (size_t i = row.select.size(); i-- > 0;)  // the most specific selecting property
+    if (!row.select[i].name.empty()) return row.select[i].value.accepts(name);
+  return false;
+}
+
+// The integrator types with more than one strategy, in table order.
+std::vector<std::string_view> comparableTypeList() {
+  std::vector<std::string_view> types;
+  for (const StrategyRow& r : strategyTable())
+    if (strategiesOfType(r.xmlType).size() > 1 &&
+        std::find(types.begin(), types.end(), r.xmlType) == types.end())
+      types.push_back(r.xmlType);
+  return types;
+}
+
+// "direct or ao".
+std::string comparableTypes() {
+  std::vector<std::string_view> types = comparableTypeList();
+  std::string out;
+  for (size_t i = 0; i < types.size(); ++i)
+    (out += i == 0 ? "" : i + 1 == types.size() ? " or " : ", ") += types[i];
+  return out;
+}
+}  // namespace
+
+std::string strategyNamesHelp() {
+  std::string out;
+  for (std::string_view type : comparableTypeList()) {
+    (out += out.empty() ? "" : "; ") += type;
+    out += ":";
+    for (Strategy s : strategiesOfType(type)) (out += " ") += strategyRow(s).shortName;
   }
-  return integratorTypeName(d.type);
+  return out;
 }
 
 std::vector<IntegratorDesc> parseStrategies(const IntegratorDesc& base, const std::string& list) {
   std::vector<IntegratorDesc> all;
-  if (base.type == IntegratorType::Direct) {
-    for (auto [m, w] : {std::pair{DirectMeasure::Hemisphere, HemisphereWarp::Uniform},
-                        std::pair{DirectMeasure::Hemisphere, HemisphereWarp::Cosine},
-                        std::pair{DirectMeasure::Area, HemisphereWarp::Cosine},
-                        std::pair{DirectMeasure::SolidAngle, HemisphereWarp::Cosine}}) {
-      IntegratorDesc d = base;
-      d.measure = m;
-      d.warp = w;
-      all.push_back(d);
-    }
-  } else if (base.type == IntegratorType::Ao) {
-    for (HemisphereWarp w : {HemisphereWarp::Uniform, HemisphereWarp::Cosine}) {
-      IntegratorDesc d = base;
-      d.warp = w;
-      all.push_back(d);
-    }
-  } else {
-    throw Error(std::string("converge: the ") + integratorTypeName(base.type) +
-                " integrator has no sampling strategies to compare (use direct or ao)");
+  for (Strategy s : strategiesOfType(strategyRow(base.strategy).xmlType)) {
+    IntegratorDesc d = base;
+    d.strategy = s;
+    all.push_back(d);
   }
+  if (all.size() < 2)
+    throw Error(std::string("converge: the ") + std::string(strategyRow(base.strategy).xmlType) +
+                " integrator has no sampling strategies to compare (use " + comparableTypes() + ")");
   if (list.empty() || list == "all") return all;
   std::vector<IntegratorDesc> out;
   std::stringstream ss(list);
@@ -59,13 +80,7 @@ std::vector<IntegratorDesc> parseStrategies(const IntegratorDesc& base, const st
     if (name.empty()) continue;
     bool found = false;
     for (const IntegratorDesc& d : all) {
-      std::string label = strategyLabel(d), shortName = strategyShortName(d);
-      std::string tail = label.substr(label.find('/') + 1);
-      if (name == label || name == shortName || name == tail ||
-          (d.type == IntegratorType::Direct && d.measure == DirectMeasure::Hemisphere &&
-           name == (d.warp == HemisphereWarp::Uniform ? "uniform" : "cosine")) ||
-          (d.type == IntegratorType::Direct && name == "solidAngle" &&
-           d.measure == DirectMeasure::SolidAngle)) {
+      if (namesStrategy(strategyRow(d.strategy), name)) {
         out.push_back(d);
         found = true;
         break;
@@ -74,7 +89,8 @@ std::vector<IntegratorDesc> parseStrategies(const IntegratorDesc& base, const st
     if (!found) {
       std::string names;
       for (const IntegratorDesc& d : all) names += (names.empty() ? "" : ", ") + strategyShortName(d);
-      throw Error("unknown strategy \"" + name + "\" (expected all or a list of: " + names + ")");
+      throw Error("unknown strategy \"" + name + "\" (expected all, or a comma-separated list of: " + names +
+                  ")");
     }
   }
   if (out.empty()) throw Error("no strategies given");

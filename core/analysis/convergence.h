@@ -45,12 +45,14 @@ struct ConvergenceOptions {
   double firstFraction = 1e-3;  // first target = firstFraction * limit (time mode)
 };
 
-// Every strategy for the integrator type (direct: uniform-hemisphere, cosine-hemisphere, area,
-// solid-angle; ao: uniform, cosine), or those named in `list` (comma separated; "all"; names as in
-// strategyLabel with or without the "direct/"/"ao/" prefix, e.g. "area,solid-angle"). Throws Error.
+// Every strategy of base's integrator type in table order (core/render/strategy_table.h), or those
+// named in `list`: "all", or comma separated names, each a row's label with or without the
+// integrator type ("direct/area", "area"), its short name or a spelling of its selecting property's
+// value ("solidAngle", "uniform"). Throws Error.
 std::vector<IntegratorDesc> parseStrategies(const IntegratorDesc& base, const std::string& list);
-// A filesystem- and CSV-friendly name, e.g. "uniform-hemisphere", "solid-angle", "ao-cosine".
-std::string strategyShortName(const IntegratorDesc& d);
+// "direct: uniform-hemisphere, ...; ao: ao-uniform, ao-cosine": the short names parseStrategies
+// accepts for each integrator type with strategies to compare.
+std::string strategyNamesHelp();
 
 ConvergenceRun runConvergence(const LoadedScene& scene, const IntegratorDesc& strategy, const Reference& ref,
                               const std::vector<uint8_t>& seesLight, const ConvergenceOptions& options);

@@ -9,15 +9,13 @@
 
 #include "core/analysis/closed_forms.h"
 #include "core/analysis/ray_estimate.h"
-#include "core/integrators/ao_integrator.h"
-#include "core/integrators/direct_integrator.h"
+#include "core/render/strategy_table.h"
 #include "core/scene/scene_builder.h"
 
 namespace penumbra {
 namespace {
 
 using analysis::Estimate;
-using analysis::estimateRay;
 using analysis::rayOnto;
 
 // A diffuse plane z = 0 (albedo 1, half-size `planeHalf`) and one sphere light.
@@ -39,10 +37,9 @@ LoadedScene planeAndLight(const Vec3& c, float r, float Le, float planeHalf = 10
 
 using analysis::shallowRayOnto;
 
-template <DirectStrategy S>
-Estimate directAt(const LoadedScene& s, const Vec3& x, int n, uint64_t seed) {
-  DirectIntegrator<S> integrator{1};
-  return estimateRay(*s.scene, integrator, shallowRayOnto(x), n, seed);
+// The strategy table's estimator of `strategy`, one shading sample per camera sample.
+Estimate directAt(Strategy strategy, const LoadedScene& s, const Vec3& x, int n, uint64_t seed) {
+  return strategyRow(strategy).estimateRay(*s.scene, shallowRayOnto(x), 1, n, seed);
 }
 
 struct LightCase {
@@ -74,12 +71,12 @@ TEST_P(DirectClosedForm, EveryMeasureMatchesTheIrradianceClosedForm) {
       sphereLightIrradianceFactor(glm::dvec3(x), glm::dvec3(0, 0, 1), glm::dvec3(x + lc.c), double(lc.r));
   const int n = 40000;
   for (uint64_t seed : {1u, 2u}) {
-    checkAgainstTruth("solid-angle", directAt<DirectStrategy::SolidAngle>(s, x, n, seed), truth);
-    if (lc.areaToo) checkAgainstTruth("area", directAt<DirectStrategy::Area>(s, x, n, seed), truth);
+    checkAgainstTruth("solid-angle", directAt(Strategy::DirectSolidAngle, s, x, n, seed), truth);
+    if (lc.areaToo) checkAgainstTruth("area", directAt(Strategy::DirectArea, s, x, n, seed), truth);
     if (lc.hemisphereToo) {
-      checkAgainstTruth("cosine-hemisphere", directAt<DirectStrategy::CosineHemisphere>(s, x, 4 * n, seed),
+      checkAgainstTruth("cosine-hemisphere", directAt(Strategy::DirectCosineHemisphere, s, x, 4 * n, seed),
                         truth);
-      checkAgainstTruth("uniform-hemisphere", directAt<DirectStrategy::UniformHemisphere>(s, x, 4 * n, seed),
+      checkAgainstTruth("uniform-hemisphere", directAt(Strategy::DirectUniformHemisphere, s, x, 4 * n, seed),
                         truth);
     }
   }
@@ -102,9 +99,9 @@ INSTANTIATE_TEST_SUITE_P(
 
 TEST(DirectClosedForm, LightBelowTheHorizonGivesExactlyZero) {
   LoadedScene s = planeAndLight(Vec3(0, 2, -1.5f), 1.f, 100.f);
-  for (auto e : {directAt<DirectStrategy::SolidAngle>(s, Vec3(0), 1000, 3),
-                 directAt<DirectStrategy::Area>(s, Vec3(0), 1000, 3),
-                 directAt<DirectStrategy::UniformHemisphere>(s, Vec3(0), 1000, 3)}) {
+  for (auto e : {directAt(Strategy::DirectSolidAngle, s, Vec3(0), 1000, 3),
+                 directAt(Strategy::DirectArea, s, Vec3(0), 1000, 3),
+                 directAt(Strategy::DirectUniformHemisphere, s, Vec3(0), 1000, 3)}) {
     EXPECT_EQ(e.mean, 0.0);
     EXPECT_EQ(e.bad, 0u);
   }
@@ -127,10 +124,8 @@ LoadedScene restingSphere(float R, float planeHalf = 2000.f) {
   return loadSceneFromString(xml.str(), "ao.xml", ".");
 }
 
-template <HemisphereWarp W>
-Estimate aoAt(const LoadedScene& s, const Ray& ray, int n, uint64_t seed) {
-  AoIntegrator<W> integrator{1};
-  return estimateRay(*s.scene, integrator, ray, n, seed);
+Estimate aoAt(Strategy strategy, const LoadedScene& s, const Ray& ray, int n, uint64_t seed) {
+  return strategyRow(strategy).estimateRay(*s.scene, ray, 1, n, seed);
 }
 
 TEST(AoClosedForm, PlaneNextToARestingSphere) {
@@ -140,8 +135,8 @@ TEST(AoClosedForm, PlaneNextToARestingSphere) {
     double truth = aoPlaneNearRestingSphere(rho, R);
     // Look straight down onto the plane point (rho, 0, 0) from just above it.
     Ray ray = rayOnto(Vec3(rho, 0, 0), Vec3(0, 0, 1), 1e-3f);
-    checkAgainstTruth("ao uniform", aoAt<HemisphereWarp::Uniform>(s, ray, 100000, 5), truth);
-    checkAgainstTruth("ao cosine", aoAt<HemisphereWarp::Cosine>(s, ray, 100000, 6), truth);
+    checkAgainstTruth("ao uniform", aoAt(Strategy::AoUniform, s, ray, 100000, 5), truth);
+    checkAgainstTruth("ao cosine", aoAt(Strategy::AoCosine, s, ray, 100000, 6), truth);
   }
 }
 
@@ -154,8 +149,8 @@ TEST(AoClosedForm, PointsOnARestingSphere) {
     Vec3 p = Vec3(0, 0, R) + R * n;
     double truth = aoOnRestingConvexBody(psi);
     Ray ray = rayOnto(p, n, 0.01f);
-    checkAgainstTruth("ao uniform", aoAt<HemisphereWarp::Uniform>(s, ray, 100000, 7), truth);
-    checkAgainstTruth("ao cosine", aoAt<HemisphereWarp::Cosine>(s, ray, 100000, 8), truth);
+    checkAgainstTruth("ao uniform", aoAt(Strategy::AoUniform, s, ray, 100000, 7), truth);
+    checkAgainstTruth("ao cosine", aoAt(Strategy::AoCosine, s, ray, 100000, 8), truth);
   }
 }
 
@@ -164,7 +159,7 @@ TEST(AoClosedForm, ACameraRayThatMissesIsBlack) {
   Ray ray;
   ray.o = Vec3(0, 0, 5);
   ray.d = Vec3(0, 0, 1);
-  Estimate e = aoAt<HemisphereWarp::Cosine>(s, ray, 100, 1);
+  Estimate e = aoAt(Strategy::AoCosine, s, ray, 100, 1);
   EXPECT_EQ(e.mean, 0.0);
 }
 

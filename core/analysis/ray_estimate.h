@@ -1,45 +1,17 @@
-// Per-point Monte Carlo estimates of an integrator with their standard error: the shared helper of
-// the closed-form tests (estimators_closed_form_test.cpp) and the stiff-case catalogue
-// (`penumbra check`).
+// Per-point Monte Carlo estimates of an integrator with their standard error (estimateRay, from
+// core/render/ray_estimator.h) and the rays that reach a point: the shared helpers of the
+// closed-form tests (estimators_closed_form_test.cpp) and the stiff-case catalogue (`penumbra check`).
 #pragma once
 
-#include <algorithm>
-#include <cmath>
-#include <cstdint>
+#include <glm/geometric.hpp>
 
 #include "core/geometry/ray.h"
-#include "core/sampling/sampler.h"
-#include "core/world/scene.h"
+#include "core/render/ray_estimator.h"
 
 namespace penumbra::analysis {
 
-struct Estimate {
-  double mean = 0, standardError = 0;
-  uint64_t bad = 0;  // NaN / Inf / negative values seen (excluded from the mean)
-};
-
-// Runs `integrator.Li(ray)` n times with independent sample streams and returns the mean (of the
-// red channel) and its standard error.
-template <class Integrator>
-Estimate estimateRay(const Scene& scene, const Integrator& integrator, const Ray& ray, int n, uint64_t seed) {
-  Sampler sampler(SamplerKind::Independent, 1, seed);
-  double sum = 0, sumSq = 0;
-  Estimate e;
-  for (int i = 0; i < n; ++i) {
-    sampler.startPixelSample(IVec2(7, 11), uint32_t(i));
-    Color3 L = integrator.Li(scene, ray, sampler);
-    if (!(L.x >= 0.f) || !std::isfinite(L.x)) {
-      ++e.bad;
-      continue;
-    }
-    sum += L.x;
-    sumSq += double(L.x) * L.x;
-  }
-  e.mean = sum / n;
-  double var = std::max(0.0, sumSq / n - e.mean * e.mean) * n / (n - 1.0);
-  e.standardError = std::sqrt(var / n);
-  return e;
-}
+using Estimate = RayEstimate;
+using ::penumbra::estimateRay;  // core/render/ray_estimator.h
 
 // A ray that hits point `x` coming straight down the normal `n` from a little above.
 inline Ray rayOnto(const Vec3& x, const Vec3& n, float height) {

@@ -22,12 +22,16 @@ namespace fs = std::filesystem;
 
 IntegratorDesc referenceEstimator(const IntegratorDesc& sceneIntegrator) {
   IntegratorDesc d = sceneIntegrator;
-  if (d.type == IntegratorType::Direct) d.measure = DirectMeasure::SolidAngle;
-  if (d.type == IntegratorType::Ao) d.warp = HemisphereWarp::Cosine;
+  d.strategy = referenceStrategy(d.strategy);
   return d;
 }
 
 namespace {
+
+// The closed form is direct illumination from sphere lights: any strategy of the direct integrator.
+bool hasDirectClosedForm(const IntegratorDesc& d) {
+  return sameIntegratorType(d.strategy, Strategy::DirectSolidAngle);
+}
 
 void fnv(uint64_t& h, const char* data, std::size_t n) {
   for (std::size_t i = 0; i < n; ++i) {
@@ -141,11 +145,11 @@ Reference readReference(const std::string& path) {
 bool hasClosedFormReference(const LoadedScene& scene) {
   if (scene.path.empty()) return false;
   fs::path dir = fs::path(scene.path).parent_path();
-  return dir.filename() == "analytic" && scene.settings.integrator.type == IntegratorType::Direct;
+  return dir.filename() == "analytic" && hasDirectClosedForm(scene.settings.integrator);
 }
 
 Reference closedFormReference(const LoadedScene& loaded, int grid) {
-  if (loaded.settings.integrator.type != IntegratorType::Direct)
+  if (!hasDirectClosedForm(loaded.settings.integrator))
     throw Error("closed-form reference: only the direct integrator is supported");
   const Scene& scene = *loaded.scene;
   if (scene.hasDeltaLights()) throw Error("closed-form reference: the scene has point or directional lights");

@@ -10,11 +10,11 @@
 
 #include "core/analysis/closed_forms.h"
 #include "core/analysis/ray_estimate.h"
-#include "core/integrators/ao_integrator.h"
-#include "core/integrators/direct_integrator.h"
 #include "core/math/error.h"
+#include "core/math/float_util.h"
 #include "core/render/engine.h"
 #include "core/render/film.h"
+#include "core/render/strategy_table.h"
 #include "core/sampling/sampler.h"
 #include "core/sampling/warp.h"
 #include "core/scene/scene_builder.h"
@@ -133,19 +133,28 @@ double directTruth(const Scene& scene, const Vec3& x, const Vec3& n = kUp) {
   return sum;
 }
 
-template <DirectStrategy S>
-Estimate direct(const Scene& scene, const Ray& ray, int n, uint64_t seed) {
-  return estimateRay(scene, DirectIntegrator<S>{1}, ray, n, seed);
+// One strategy's estimate along `ray`, one shading sample per camera sample (the strategy table's
+// instance of its integrator).
+Estimate estimate(Strategy s, const Scene& scene, const Ray& ray, int n, uint64_t seed) {
+  return strategyRow(s).estimateRay(scene, ray, 1, n, seed);
 }
 
-template <HemisphereWarp W>
-Estimate ao(const Scene& scene, const Ray& ray, int n, uint64_t seed) {
-  return estimateRay(scene, AoIntegrator<W>{1}, ray, n, seed);
+std::string nameOf(Strategy s) {
+  return std::string(strategyRow(s).shortName);
 }
 
-// Direct lighting of the receiver point by every strategy that is practical for the light.
-enum StrategyMask : unsigned { kSolid = 1, kArea = 2, kCosine = 4, kUniform = 8, kAll = 15 };
+// The strategies a case runs, as bits of Strategy.
+constexpr unsigned bit(Strategy s) {
+  return 1u << unsigned(s);
+}
+constexpr unsigned kSolid = bit(Strategy::DirectSolidAngle), kArea = bit(Strategy::DirectArea),
+                   kCosine = bit(Strategy::DirectCosineHemisphere),
+                   kUniform = bit(Strategy::DirectUniformHemisphere),
+                   kAll = kSolid | kArea | kCosine | kUniform;
 
+// Direct lighting of the receiver point by each strategy in `strategies`: light sampling first, then
+// hemisphere sampling (which needs no area light) with hemisphereFactor times the samples; the i-th
+// strategy of that order uses seed + i.
 CaseResult directCase(const CaseOptions& o, const std::string& file, unsigned strategies, int n,
                       const Vec3& x = kReceiver, float slope = 1e-4f, int hemisphereFactor = 4) {
   LoadedScene s = load(o, file);
@@ -162,21 +171,14 @@ CaseResult directCase(const CaseOptions& o, const std::string& file, unsigned st
   double truth = directTruth(scene, hit.p);
   bool first = true;
   n = count(o, n);
-  if (strategies & kSolid)
-    merge(acc, fromEstimate(direct<DirectStrategy::SolidAngle>(scene, ray, n, o.seed), truth), "solid-angle",
+  const Strategy order[] = {Strategy::DirectSolidAngle, Strategy::DirectArea,
+                            Strategy::DirectCosineHemisphere, Strategy::DirectUniformHemisphere};
+  for (unsigned i = 0; i < std::size(order); ++i) {
+    if (!(strategies & bit(order[i]))) continue;
+    int samples = strategyRow(order[i]).needs == SceneNeed::AreaLights ? n : hemisphereFactor * n;
+    merge(acc, fromEstimate(estimate(order[i], scene, ray, samples, o.seed + i), truth), nameOf(order[i]),
           first);
-  if (strategies & kArea)
-    merge(acc, fromEstimate(direct<DirectStrategy::Area>(scene, ray, n, o.seed + 1), truth), "area", first);
-  if (strategies & kCosine)
-    merge(acc,
-          fromEstimate(direct<DirectStrategy::CosineHemisphere>(scene, ray, hemisphereFactor * n, o.seed + 2),
-                       truth),
-          "cosine", first);
-  if (strategies & kUniform)
-    merge(acc,
-          fromEstimate(
-              direct<DirectStrategy::UniformHemisphere>(scene, ray, hemisphereFactor * n, o.seed + 3), truth),
-          "uniform", first);
+  }
   return acc;
 }
 
@@ -446,11 +448,12 @@ CaseResult inside(const CaseOptions& o) {
   CaseResult acc;
   bool first = true;
   int n = count(o, 4000);
-  merge(acc, fromEstimate(direct<DirectStrategy::SolidAngle>(*s.scene, ray, n, o.seed), 0.0), "solid-angle",
-        first);
-  merge(acc, fromEstimate(direct<DirectStrategy::Area>(*s.scene, ray, n, o.seed), 0.0), "area", first);
-  merge(acc, fromEstimate(direct<DirectStrategy::CosineHemisphere>(*s.scene, ray, n, o.seed), 0.0), "cosine",
-        first);
+  merge(acc, fromEstimate(estimate(Strategy::DirectSolidAngle, *s.scene, ray, n, o.seed), 0.0),
+        nameOf(Strategy::DirectSolidAngle), first);
+  merge(acc, fromEstimate(estimate(Strategy::DirectArea, *s.scene, ray, n, o.seed), 0.0),
+        nameOf(Strategy::DirectArea), first);
+  merge(acc, fromEstimate(estimate(Strategy::DirectCosineHemisphere, *s.scene, ray, n, o.seed), 0.0),
+        nameOf(Strategy::DirectCosineHemisphere), first);
   acc.relSlack = 0;
   double truth = sphereLightIrradianceFactor(glm::dvec3(kReceiver), glm::dvec3(kUp),
                                              glm::dvec3(light.sphere.center), light.sphere.radius);
@@ -534,7 +537,7 @@ CaseResult aoOnSphereNearContact(const CaseOptions& o) {
     Vec3 n(float(std::sin(psi)), 0.f, float(std::cos(psi)));
     Vec3 p = Vec3(0, 0, 1) + n;
     Ray ray = rayOnto(p, n, 1e-3f);
-    CaseResult sub = fromEstimate(ao<HemisphereWarp::Cosine>(*s.scene, ray, count(o, 60000), o.seed),
+    CaseResult sub = fromEstimate(estimate(Strategy::AoCosine, *s.scene, ray, count(o, 60000), o.seed),
                                   aoOnRestingConvexBody(psi));
     merge(acc, sub, "psi " + num(psiDeg), first);
   }
@@ -548,7 +551,7 @@ CaseResult aoOnPlaneNearContact(const CaseOptions& o) {
   bool first = true;
   for (float rho : {0.05f, 0.1f}) {
     Ray ray = rayOnto(Vec3(rho, 0, 0), kUp, 5e-4f);
-    CaseResult sub = fromEstimate(ao<HemisphereWarp::Cosine>(*s.scene, ray, count(o, 60000), o.seed),
+    CaseResult sub = fromEstimate(estimate(Strategy::AoCosine, *s.scene, ray, count(o, 60000), o.seed),
                                   aoPlaneNearRestingSphere(rho, 1.0));
     merge(acc, sub, "rho " + num(rho), first);
   }
@@ -611,13 +614,14 @@ CaseResult brightOccluded(const CaseOptions& o) {
   CaseResult acc;
   bool first = true;
   int n = count(o, 40000);
-  merge(acc, fromEstimate(direct<DirectStrategy::SolidAngle>(scene, ray, n, o.seed), truth), "solid-angle",
-        first);
-  merge(acc, fromEstimate(direct<DirectStrategy::Area>(scene, ray, n, o.seed + 1), truth), "area", first);
+  merge(acc, fromEstimate(estimate(Strategy::DirectSolidAngle, scene, ray, n, o.seed), truth),
+        nameOf(Strategy::DirectSolidAngle), first);
+  merge(acc, fromEstimate(estimate(Strategy::DirectArea, scene, ray, n, o.seed + 1), truth),
+        nameOf(Strategy::DirectArea), first);
   // Hemisphere sampling finds the visible ring with probability ~2e-4: 400k samples (~80 hits) even
   // in --quick, so the standard error is itself estimated well enough for a z-test.
-  merge(acc, fromEstimate(direct<DirectStrategy::CosineHemisphere>(scene, ray, 400000, o.seed + 2), truth),
-        "cosine", first);
+  merge(acc, fromEstimate(estimate(Strategy::DirectCosineHemisphere, scene, ray, 400000, o.seed + 2), truth),
+        nameOf(Strategy::DirectCosineHemisphere), first);
   return acc;
 }
 
@@ -770,11 +774,12 @@ std::vector<StiffCase> makeCases() {
         LoadedScene s = load(o, "equal-power-r1e-6.xml");
         bool first = false;
         Ray ray = shallowRayOnto(kReceiver);
-        merge(r, finiteOnly(direct<DirectStrategy::CosineHemisphere>(*s.scene, ray, count(o, 20000), o.seed)),
-              "cosine", first);
         merge(r,
-              finiteOnly(direct<DirectStrategy::UniformHemisphere>(*s.scene, ray, count(o, 20000), o.seed)),
-              "uniform", first);
+              finiteOnly(estimate(Strategy::DirectCosineHemisphere, *s.scene, ray, count(o, 20000), o.seed)),
+              nameOf(Strategy::DirectCosineHemisphere), first);
+        merge(r,
+              finiteOnly(estimate(Strategy::DirectUniformHemisphere, *s.scene, ray, count(o, 20000), o.seed)),
+              nameOf(Strategy::DirectUniformHemisphere), first);
         equalPowerTruths(o, "equal-power-r1e-3.xml", r);
         return r;
       });

@@ -10,16 +10,19 @@
 
 #include <cmath>
 
+#include "core/integrators/integrator_desc.h"
 #include "core/integrators/shading_point.h"
 #include "core/sampling/sampler.h"
 #include "core/sampling/warp.h"
 
 namespace penumbra {
 
-enum class DirectStrategy : uint8_t { DeltaOnly, UniformHemisphere, CosineHemisphere, Area, SolidAngle };
-
-template <DirectStrategy kStrategy>
+// kStrategy: Simple (delta lights only) or one of the Direct* strategies.
+template <Strategy kStrategy>
 struct DirectIntegrator {
+  static_assert(kStrategy == Strategy::Simple || kStrategy == Strategy::DirectUniformHemisphere ||
+                kStrategy == Strategy::DirectCosineHemisphere || kStrategy == Strategy::DirectArea ||
+                kStrategy == Strategy::DirectSolidAngle);
   int samples = 1;
 
   Color3 Li(const Scene& scene, const Ray& ray, Sampler& sampler) const {
@@ -31,12 +34,12 @@ struct DirectIntegrator {
     if (isBlack(material.albedo)) return L;
 
     constexpr bool kSamplesHemisphere =
-        kStrategy == DirectStrategy::UniformHemisphere || kStrategy == DirectStrategy::CosineHemisphere;
+        kStrategy == Strategy::DirectUniformHemisphere || kStrategy == Strategy::DirectCosineHemisphere;
     ShadingPoint sp(scene, ray, hit, kSamplesHemisphere);
     Color3 E = deltaIrradiance(scene, sp);
     if constexpr (kSamplesHemisphere) {
       if (scene.hasAreaLights()) E += hemisphereIrradiance(scene, sp, sampler);
-    } else if constexpr (kStrategy == DirectStrategy::Area || kStrategy == DirectStrategy::SolidAngle) {
+    } else if constexpr (kStrategy == Strategy::DirectArea || kStrategy == Strategy::DirectSolidAngle) {
       E += lightSamplingIrradiance(scene, sp, sampler);
     }
     return L + material.albedo * kInvPi * E;
@@ -74,7 +77,7 @@ struct DirectIntegrator {
       Vec2 u = sampler.next2D(uint32_t(i), uint32_t(samples));  // one request: stratified among themselves
       Vec3 local;
       float cosOverPdf;  // cos θ / pdf, in closed form: π (cosine warp), 2π cos θ (uniform warp)
-      if constexpr (kStrategy == DirectStrategy::CosineHemisphere) {
+      if constexpr (kStrategy == Strategy::DirectCosineHemisphere) {
         local = Warp::squareToCosineHemisphere(u);
         if (!(local.z > 0.f)) continue;
         cosOverPdf = kPi;
@@ -99,7 +102,7 @@ struct DirectIntegrator {
       float lightScale = maxAbsComponent(light.sphere.center) + light.sphere.radius;
       for (int i = 0; i < samples; ++i) {
         Vec2 u = sampler.next2D(uint32_t(i), uint32_t(samples));  // one request per light
-        LightSample s = kStrategy == DirectStrategy::Area ? light.sampleArea(sp.hit.p, u)
+        LightSample s = kStrategy == Strategy::DirectArea ? light.sampleArea(sp.hit.p, u)
                                                           : light.sampleSolidAngle(sp.hit.p, u);
         if (!(s.pdf > 0.f) || isBlack(s.Le)) continue;
         float cosTheta = glm::dot(sp.ns, s.wi);

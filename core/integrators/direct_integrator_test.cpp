@@ -11,7 +11,7 @@ namespace {
 
 using namespace test;  // the hand-built scenes
 
-template <DirectStrategy S>
+template <Strategy S>
 Color3 once(const Scene& scene, const Ray& ray, uint64_t seed = 1) {
   Sampler sampler(SamplerKind::Independent, 1, seed);
   sampler.startPixelSample(IVec2(0), 0);
@@ -19,7 +19,7 @@ Color3 once(const Scene& scene, const Ray& ray, uint64_t seed = 1) {
 }
 
 // Mean and standard error of the red channel over n independent samples.
-template <DirectStrategy S>
+template <Strategy S>
 std::pair<double, double> estimate(const Scene& scene, const Ray& ray, int n) {
   Sampler sampler(SamplerKind::Independent, 1, 7);
   double sum = 0, sumSq = 0;
@@ -39,10 +39,10 @@ TEST(DirectIntegrator, PointLightGivesAlbedoOverPiTimesIntensityCosOverDistanceS
   finish(*scene);
   // d² = 5, cos θ = 2/√5.
   const double truth = 0.5 / M_PI * 8.0 / 5.0 * 2.0 / std::sqrt(5.0);
-  EXPECT_NEAR(once<DirectStrategy::DeltaOnly>(*scene, rayDownOnto(0, 0)).x, truth, 1e-6 * truth);
+  EXPECT_NEAR(once<Strategy::Simple>(*scene, rayDownOnto(0, 0)).x, truth, 1e-6 * truth);
   // Without area lights every strategy is the delta-light sum.
-  EXPECT_NEAR(once<DirectStrategy::SolidAngle>(*scene, rayDownOnto(0, 0)).x, truth, 1e-6 * truth);
-  EXPECT_NEAR(once<DirectStrategy::CosineHemisphere>(*scene, rayDownOnto(0, 0)).x, truth, 1e-6 * truth);
+  EXPECT_NEAR(once<Strategy::DirectSolidAngle>(*scene, rayDownOnto(0, 0)).x, truth, 1e-6 * truth);
+  EXPECT_NEAR(once<Strategy::DirectCosineHemisphere>(*scene, rayDownOnto(0, 0)).x, truth, 1e-6 * truth);
 }
 
 TEST(DirectIntegrator, DirectionalLightGivesAlbedoOverPiTimesIrradianceCos) {
@@ -50,7 +50,7 @@ TEST(DirectIntegrator, DirectionalLightGivesAlbedoOverPiTimesIrradianceCos) {
   scene->directionalLights.push_back(DirectionalLight::make(Vec3(0, 1, 1), Color3(2)));
   finish(*scene);
   const double truth = 2.0 * std::sqrt(0.5) / M_PI;
-  EXPECT_NEAR(once<DirectStrategy::DeltaOnly>(*scene, rayDownOnto(0.3f, -0.2f)).x, truth, 1e-6 * truth);
+  EXPECT_NEAR(once<Strategy::Simple>(*scene, rayDownOnto(0.3f, -0.2f)).x, truth, 1e-6 * truth);
 }
 
 TEST(DirectIntegrator, OccludedOrBelowTheHorizonDeltaLightsGiveExactlyZero) {
@@ -58,13 +58,13 @@ TEST(DirectIntegrator, OccludedOrBelowTheHorizonDeltaLightsGiveExactlyZero) {
   blocked->pointLights.push_back(PointLight{Vec3(1, 0, 2), Color3(8)});
   addSphere(*blocked, Vec3(0.5f, 0, 1), 0.2f);  // on the segment from the origin to the light
   finish(*blocked);
-  EXPECT_EQ(once<DirectStrategy::DeltaOnly>(*blocked, rayDownOnto(0, 0)), Color3(0.f));
+  EXPECT_EQ(once<Strategy::Simple>(*blocked, rayDownOnto(0, 0)), Color3(0.f));
 
   auto below = planeScene();
   below->pointLights.push_back(PointLight{Vec3(0, 0, -2), Color3(8)});
   below->directionalLights.push_back(DirectionalLight::make(Vec3(0, 1, -1), Color3(2)));
   finish(*below);
-  EXPECT_EQ(once<DirectStrategy::DeltaOnly>(*below, rayDownOnto(0, 0)), Color3(0.f));
+  EXPECT_EQ(once<Strategy::Simple>(*below, rayDownOnto(0, 0)), Color3(0.f));
 }
 
 TEST(DirectIntegrator, ACameraRayOnTheLightSeesItsRadiance) {
@@ -74,8 +74,8 @@ TEST(DirectIntegrator, ACameraRayOnTheLightSeesItsRadiance) {
   Ray ray;
   ray.o = Vec3(0, 0, 6);
   ray.d = Vec3(0, 0, -1);
-  EXPECT_EQ(once<DirectStrategy::SolidAngle>(*scene, ray), Color3(5));
-  EXPECT_EQ(once<DirectStrategy::Area>(*scene, ray), Color3(5));
+  EXPECT_EQ(once<Strategy::DirectSolidAngle>(*scene, ray), Color3(5));
+  EXPECT_EQ(once<Strategy::DirectArea>(*scene, ray), Color3(5));
 }
 
 // A sphere light of radius 1 at height 3 straight above, fully visible: E = π Le sin²α cos θ with
@@ -89,17 +89,17 @@ TEST(DirectIntegrator, EveryStrategyAgreesOnAFullyVisibleSphereLight) {
   const Ray ray = rayDownOnto(0, 0);
   constexpr int kN = 200000;
   for (auto [name, e] :
-       {std::pair{"solid-angle", estimate<DirectStrategy::SolidAngle>(*scene, ray, kN)},
-        std::pair{"area", estimate<DirectStrategy::Area>(*scene, ray, kN)},
-        std::pair{"cosine", estimate<DirectStrategy::CosineHemisphere>(*scene, ray, kN)},
-        std::pair{"uniform", estimate<DirectStrategy::UniformHemisphere>(*scene, ray, kN)}}) {
+       {std::pair{"solid-angle", estimate<Strategy::DirectSolidAngle>(*scene, ray, kN)},
+        std::pair{"area", estimate<Strategy::DirectArea>(*scene, ray, kN)},
+        std::pair{"cosine", estimate<Strategy::DirectCosineHemisphere>(*scene, ray, kN)},
+        std::pair{"uniform", estimate<Strategy::DirectUniformHemisphere>(*scene, ray, kN)}}) {
     auto [mean, se] = e;
     EXPECT_GT(se, 0.0) << name;
     EXPECT_NEAR(mean, truth, 4 * se) << name;
     EXPECT_GT(std::fabs(mean - 1.1 * truth), 4 * se) << name << ": the bound would not catch a 10 % bias";
   }
   // Delta-only ignores area lights.
-  EXPECT_EQ(once<DirectStrategy::DeltaOnly>(*scene, ray), Color3(0.f));
+  EXPECT_EQ(once<Strategy::Simple>(*scene, ray), Color3(0.f));
 }
 
 }  // namespace

@@ -1,36 +1,30 @@
 // Which estimator renders the image, with its settings. Plain data: the viewer edits it live and the
-// engine resolves it to one concrete integrator type per pass (no per-sample dispatch).
+// row renderer resolves it to one concrete integrator type per render (no per-sample dispatch).
 #pragma once
 
 #include <cstdint>
-#include <string>
 
 namespace penumbra {
 
-enum class IntegratorType : uint8_t { Normals, Simple, Ao, Direct };
-// How `direct` estimates light from area emitters.
-enum class DirectMeasure : uint8_t { Hemisphere, Area, SolidAngle };
-// Direction sampling for ao, and for direct with measure = hemisphere.
-enum class HemisphereWarp : uint8_t { Uniform, Cosine };
+// Every way of rendering an image: an integrator with its sampling strategy. Names, XML spellings,
+// when each applies and how it is instantiated: one row each in core/render/strategy_table.h.
+enum class Strategy : uint8_t {
+  DirectUniformHemisphere,  // direct light by uniform hemisphere directions
+  DirectCosineHemisphere,   // direct light by cosine-weighted hemisphere directions
+  DirectArea,               // direct light by uniform points on each light sphere
+  DirectSolidAngle,         // direct light by uniform directions in each light's cone
+  AoUniform,                // ambient occlusion by uniform hemisphere directions
+  AoCosine,                 // ambient occlusion by cosine-weighted directions
+  Simple,                   // point and directional lights only
+  Normals,                  // the shading normal as a colour
+};
+inline constexpr int kStrategyCount = 8;
 
 struct IntegratorDesc {
-  IntegratorType type = IntegratorType::Direct;
+  Strategy strategy = Strategy::DirectSolidAngle;
   int samples = 1;  // shading samples per camera sample (ao: shadingSamples, direct: nSamples)
-  DirectMeasure measure = DirectMeasure::SolidAngle;
-  HemisphereWarp warp = HemisphereWarp::Cosine;
+
+  bool operator==(const IntegratorDesc&) const = default;
 };
-
-const char* integratorTypeName(IntegratorType type);
-const char* directMeasureName(DirectMeasure measure);
-// The assignment's spelling: uniform-hemisphere / cosine-hemisphere.
-const char* hemisphereWarpName(HemisphereWarp warp);
-bool parseIntegratorType(const std::string& name, IntegratorType& out);
-// Accepts hemisphere | area | solid-angle | solidAngle.
-bool parseDirectMeasure(const std::string& name, DirectMeasure& out);
-// Accepts uniform | uniform-hemisphere | cosine | cosine-hemisphere.
-bool parseHemisphereWarp(const std::string& name, HemisphereWarp& out);
-
-// A short human label, e.g. "direct/solid-angle" or "ao/cosine".
-std::string strategyLabel(const IntegratorDesc& desc);
 
 }  // namespace penumbra

@@ -7,7 +7,8 @@
 #include "core/integrators/integrator_desc.h"
 #include "core/render/camera.h"
 #include "core/render/filter.h"
-#include "core/sampling/sampler.h"
+#include "core/render/strategy_table.h"
+#include "core/sampling/sampler_table.h"
 
 namespace penumbra {
 
@@ -28,8 +29,9 @@ struct RenderSettings {
 
 namespace penumbra {
 
-// Key/value description of the settings, for image metadata and logs
-// (integrator, measure, warp-type, samples, sampler, sampleCount, seed, filter, resolution).
+// Key/value description of the settings, for image metadata and logs: the integrator and its
+// properties as the scene file spells them (canonical spellings of the strategy table), sampler,
+// sampleCount, seed, filter, resolution.
 std::vector<std::pair<std::string, std::string>> describeSettings(const RenderSettings& s);
 
 }  // namespace penumbra

@@ -46,40 +46,6 @@ inline float jittered(uint32_t stratum, float jitter, float invStrata) {
 
 }  // namespace
 
-const char* samplerKindName(SamplerKind kind) {
-  switch (kind) {
-    case SamplerKind::Independent:
-      return "independent";
-    case SamplerKind::Stratified:
-      return "stratified";
-    case SamplerKind::Sobol:
-      return "sobol";
-    case SamplerKind::ZSobol:
-      return "zsobol";
-  }
-  return "unknown";
-}
-
-bool parseSamplerKind(const std::string& name, SamplerKind& out) {
-  if (name == "independent") {
-    out = SamplerKind::Independent;
-    return true;
-  }
-  if (name == "stratified") {
-    out = SamplerKind::Stratified;
-    return true;
-  }
-  if (name == "sobol") {
-    out = SamplerKind::Sobol;
-    return true;
-  }
-  if (name == "zsobol") {
-    out = SamplerKind::ZSobol;
-    return true;
-  }
-  return false;
-}
-
 Sampler::Sampler(SamplerKind kind, uint32_t sampleCount, uint64_t seed)
     : seed_(seed), seedHash_(mix64(seed)), sampleCount_(std::max<uint32_t>(sampleCount, 1)), kind_(kind) {
   auto side = static_cast<uint32_t>(std::sqrt(static_cast<double>(sampleCount_)));

@@ -12,12 +12,10 @@
 
 namespace penumbra {
 
+// One row per kind in core/sampling/sampler_table.h (names, labels, which settings apply).
 // Sobol and ZSobol: core/sampling/sobol_stream.h.
 enum class SamplerKind : uint8_t { Independent, Stratified, Sobol, ZSobol };
-
-const char* samplerKindName(SamplerKind kind);
-// Returns false for unknown names.
-bool parseSamplerKind(const std::string& name, SamplerKind& out);
+inline constexpr int kSamplerKindCount = 4;
 
 class Sampler {
  public:

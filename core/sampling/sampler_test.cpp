@@ -23,17 +23,6 @@ std::vector<float> draw(Sampler& s, IVec2 pixel, uint32_t index, int dims) {
   return out;
 }
 
-TEST(Sampler, KindNamesRoundTrip) {
-  for (SamplerKind k : {SamplerKind::Independent, SamplerKind::Stratified}) {
-    SamplerKind parsed;
-    ASSERT_TRUE(parseSamplerKind(samplerKindName(k), parsed));
-    EXPECT_EQ(parsed, k);
-  }
-  SamplerKind dummy;
-  EXPECT_FALSE(parseSamplerKind("halton", dummy));
-  EXPECT_STREQ(samplerKindName(SamplerKind::Stratified), "stratified");
-}
-
 TEST(Sampler, AccessorsKeepConstructorArguments) {
   Sampler s(SamplerKind::Stratified, 16, 99);
   EXPECT_EQ(s.kind(), SamplerKind::Stratified);

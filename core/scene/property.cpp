@@ -242,13 +242,17 @@ void PropertyList::add(Property p) {
 }
 
 const Property* PropertyList::find(std::initializer_list<std::string_view> names) const {
+  return find(std::span<const std::string_view>(names.begin(), names.size()));
+}
+
+const Property* PropertyList::find(std::span<const std::string_view> names) const {
   for (std::string_view n : names)
     for (const Property& p : props_)
       if (p.name == n) return &p;
   return nullptr;
 }
 
-const Property* PropertyList::lookup(std::initializer_list<std::string_view> names) const {
+const Property* PropertyList::lookup(std::span<const std::string_view> names) const {
   const Property* found = nullptr;
   for (std::string_view n : names) {
     for (const Property& p : props_) {
@@ -282,6 +286,11 @@ int PropertyList::lineOf(std::initializer_list<std::string_view> names) const {
   return p ? p->line : 0;
 }
 
+int PropertyList::lineOf(std::span<const std::string_view> names) const {
+  const Property* p = find(names);
+  return p ? p->line : 0;
+}
+
 void PropertyList::markUsed(std::initializer_list<std::string_view> names) const {
   for (std::string_view n : names)
     for (const Property& p : props_)
@@ -296,6 +305,10 @@ bool PropertyList::getBoolean(std::initializer_list<std::string_view> names, boo
 }
 
 int64_t PropertyList::getInteger(std::initializer_list<std::string_view> names, int64_t def) const {
+  return getInteger(std::span<const std::string_view>(names.begin(), names.size()), def);
+}
+
+int64_t PropertyList::getInteger(std::span<const std::string_view> names, int64_t def) const {
   const Property* p = lookup(names);
   if (!p) return def;
   if (p->type != PropertyType::Integer) typeError(*p, "an integer");
@@ -320,12 +333,16 @@ float PropertyList::getFloat(std::initializer_list<std::string_view> names, floa
   return f;
 }
 
-std::string PropertyList::getString(std::initializer_list<std::string_view> names,
-                                    const std::string& def) const {
+std::string PropertyList::getString(std::span<const std::string_view> names, const std::string& def) const {
   const Property* p = lookup(names);
   if (!p) return def;
   if (p->type != PropertyType::String) typeError(*p, "a string");
   return p->stringValue;
+}
+
+std::string PropertyList::getString(std::initializer_list<std::string_view> names,
+                                    const std::string& def) const {
+  return getString(std::span<const std::string_view>(names.begin(), names.size()), def);
 }
 
 namespace {

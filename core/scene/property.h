@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <initializer_list>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -73,6 +74,9 @@ class PropertyList {
   // An integer property is accepted where a float is wanted. Values outside float range are errors.
   float getFloat(std::initializer_list<std::string_view> names, float def) const;
   std::string getString(std::initializer_list<std::string_view> names, const std::string& def) const;
+  // The same getters for a list of spellings kept as data (the strategy and sampler tables).
+  std::string getString(std::span<const std::string_view> names, const std::string& def) const;
+  int64_t getInteger(std::span<const std::string_view> names, int64_t def) const;
   Vec3 getPoint(std::initializer_list<std::string_view> names, const Vec3& def) const;
   Vec3 getVector(std::initializer_list<std::string_view> names, const Vec3& def) const;
   // A color may also be written as a single grey value (value="0.5"); an integer or float property
@@ -83,8 +87,10 @@ class PropertyList {
   bool has(std::initializer_list<std::string_view> names) const;
   // Source line of the property (0 when absent or when it came from an override).
   int lineOf(std::initializer_list<std::string_view> names) const;
+  int lineOf(std::span<const std::string_view> names) const;
   // The property under any of the names, or nullptr. Does not mark it used.
   const Property* find(std::initializer_list<std::string_view> names) const;
+  const Property* find(std::span<const std::string_view> names) const;
   // Marks a property as used without reading it through a typed getter.
   void markUsed(std::initializer_list<std::string_view> names) const;
 
@@ -103,7 +109,10 @@ class PropertyList {
   bool empty() const { return props_.empty(); }
 
  private:
-  const Property* lookup(std::initializer_list<std::string_view> names) const;
+  const Property* lookup(std::span<const std::string_view> names) const;
+  const Property* lookup(std::initializer_list<std::string_view> names) const {
+    return lookup(std::span<const std::string_view>(names.begin(), names.size()));
+  }
   std::string owner() const;
   [[noreturn]] void typeError(const Property& p, const char* expected) const;
 

@@ -1,11 +1,14 @@
 #include "core/scene/scene_builder.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
 #include "core/geometry/procedural_mesh.h"
 #include "core/math/error.h"
 #include "core/math/float_util.h"
+#include "core/render/strategy_table.h"
+#include "core/sampling/sampler_table.h"
 #include "core/scene/obj_loader.h"
 #include "core/scene/xml_parser.h"
 
@@ -13,10 +16,15 @@ namespace penumbra {
 
 namespace {
 
-[[noreturn]] void fail(const SceneNode& node, std::initializer_list<std::string_view> names,
+[[noreturn]] void fail(const SceneNode& node, std::span<const std::string_view> names,
                        const std::string& message) {
   int line = node.props.lineOf(names);
   throw Error(node.file, line > 0 ? line : node.line, message);
+}
+
+[[noreturn]] void fail(const SceneNode& node, std::initializer_list<std::string_view> names,
+                       const std::string& message) {
+  fail(node, std::span<const std::string_view>(names.begin(), names.size()), message);
 }
 
 [[noreturn]] void unknownType(const SceneNode& node, const char* known) {
@@ -24,14 +32,19 @@ namespace {
               "unknown " + node.tag + " type \"" + node.type + "\" (expected one of: " + known + ")");
 }
 
-int64_t getCount(const SceneNode& node, std::initializer_list<std::string_view> names, int64_t def,
-                 int64_t maxValue, const char* what) {
+int64_t getCount(const SceneNode& node, std::span<const std::string_view> names, int64_t def,
+                 int64_t maxValue, std::string_view what) {
   int64_t v = node.props.getInteger(names, def);
   if (v < 1 || v > maxValue)
     fail(node, names,
          std::string(what) + " must be an integer in [1, " + std::to_string(maxValue) + "], got " +
              std::to_string(v));
   return v;
+}
+
+int64_t getCount(const SceneNode& node, std::initializer_list<std::string_view> names, int64_t def,
+                 int64_t maxValue, std::string_view what) {
+  return getCount(node, std::span<const std::string_view>(names.begin(), names.size()), def, maxValue, what);
 }
 
 float getPositiveFloat(const SceneNode& node, std::initializer_list<std::string_view> names, float def,
@@ -90,36 +103,43 @@ void buildCamera(const SceneNode& node, RenderSettings& s) {
 }
 
 void buildSampler(const SceneNode& node, RenderSettings& s) {
-  if (!parseSamplerKind(node.type, s.samplerKind)) unknownType(node, "independent, stratified, sobol, zsobol");
+  if (!parseSamplerKind(node.type, s.samplerKind)) unknownType(node, acceptedSamplerNames().c_str());
   s.sampleCount = uint32_t(getCount(node, {"sampleCount"}, 1, 1 << 24, "sampleCount"));
   s.seed = uint64_t(node.props.getInteger({"seed"}, 0));
 }
 
+// The strategy table decides: the rows of the node's type, narrowed by each selecting property in
+// turn (an absent property takes the value its default row names).
 void buildIntegrator(const SceneNode& node, RenderSettings& s) {
+  std::vector<Strategy> candidates = strategiesOfType(node.type);
+  if (candidates.empty()) unknownType(node, acceptedIntegratorTypes().c_str());
   IntegratorDesc& d = s.integrator;
-  if (!parseIntegratorType(node.type, d.type)) unknownType(node, "ao, direct, simple, normals");
+  const Spellings& samples = strategyRow(candidates.front()).samplesProperty;
   constexpr int64_t kMaxShadingSamples = 1 << 16;
-  if (d.type == IntegratorType::Ao) {
-    d.samples = int(getCount(node, {"shadingSamples", "nSamples"}, 1, kMaxShadingSamples, "shadingSamples"));
-    std::string warp = node.props.getString({"sampler", "sampling", "warp-type", "warp"}, "cosine");
-    if (!parseHemisphereWarp(warp, d.warp))
-      fail(node, {"sampler", "sampling", "warp-type", "warp"},
-           "unknown ao sampling strategy \"" + warp +
-               "\" (expected uniform, uniform-hemisphere, cosine or cosine-hemisphere)");
-  } else if (d.type == IntegratorType::Direct) {
-    d.samples = int(getCount(node, {"nSamples", "shadingSamples"}, 1, kMaxShadingSamples, "nSamples"));
-    std::string measure = node.props.getString({"measure"}, "solid-angle");
-    if (!parseDirectMeasure(measure, d.measure))
-      fail(node, {"measure"},
-           "unknown measure \"" + measure + "\" (expected hemisphere, area or solid-angle)");
-    if (d.measure == DirectMeasure::Hemisphere) {
-      std::string warp =
-          node.props.getString({"warp-type", "sampling", "sampler", "warp"}, "cosine-hemisphere");
-      if (!parseHemisphereWarp(warp, d.warp))
-        fail(node, {"warp-type", "sampling", "sampler", "warp"},
-             "unknown warp-type \"" + warp + "\" (expected uniform-hemisphere or cosine-hemisphere)");
+  d.samples =
+      samples.empty() ? 1 : int(getCount(node, samples.list(), 1, kMaxShadingSamples, samples.canonical()));
+  for (size_t level = 0; level < 2; ++level) {
+    const Spellings& name = strategyRow(candidates.front()).select[level].name;
+    if (name.empty()) break;
+    std::string def;
+    std::vector<std::string_view> accepted;
+    for (Strategy c : candidates) {
+      const StrategyProperty& p = strategyRow(c).select[level];
+      if (p.isDefault) def = p.value.canonical();
+      for (std::string_view v : p.value.list())
+        if (std::find(accepted.begin(), accepted.end(), v) == accepted.end()) accepted.push_back(v);
+    }
+    std::string value = node.props.getString(name.list(), def);
+    std::erase_if(candidates, [&](Strategy c) { return !strategyRow(c).select[level].value.accepts(value); });
+    if (candidates.empty()) {
+      std::string list;
+      for (std::string_view v : accepted) (list += list.empty() ? "" : ", ") += v;
+      fail(node, name.list(),
+           "unknown " + std::string(name.canonical()) + " \"" + value + "\" of <integrator type=\"" +
+               node.type + "\"> (expected one of: " + list + ")");
     }
   }
+  d.strategy = candidates.front();
 }
 
 // ---- geometry and lights ------------------------------------------------------------------------
@@ -238,7 +258,7 @@ RenderSettings buildSettings(const SceneNode& desc, std::vector<std::string>* wa
   if (const SceneNode* integ = desc.child("integrator"))
     buildIntegrator(*integ, s);
   else if (warnings)
-    warnings->push_back(desc.file + ": warning: no <integrator>; using direct/solid-angle");
+    warnings->push_back(desc.file + ": warning: no <integrator>; using " + strategyLabel(IntegratorDesc{}));
   return s;
 }
 

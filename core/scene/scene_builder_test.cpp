@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "core/math/error.h"
+#include "core/render/strategy_table.h"
 
 namespace penumbra {
 namespace {
@@ -26,20 +27,90 @@ void expectError(const std::string& body, int line, const std::string& needle) {
 TEST(SceneBuilder, SeedSpellingsOfTheIntegrators) {
   auto ao = fromXml(R"(<integrator type="ao"><integer name="shadingSamples" value="4"/>
                        <string name="sampler" value="uniform"/></integrator>)");
-  EXPECT_EQ(ao.settings.integrator.type, IntegratorType::Ao);
+  EXPECT_EQ(ao.settings.integrator.strategy, Strategy::AoUniform);
   EXPECT_EQ(ao.settings.integrator.samples, 4);
-  EXPECT_EQ(ao.settings.integrator.warp, HemisphereWarp::Uniform);
   auto ao2 = fromXml(R"(<integrator type="ao"><integer name="nSamples" value="2"/>
                         <string name="warp-type" value="cosine-hemisphere"/></integrator>)");
   EXPECT_EQ(ao2.settings.integrator.samples, 2);
-  EXPECT_EQ(ao2.settings.integrator.warp, HemisphereWarp::Cosine);
+  EXPECT_EQ(ao2.settings.integrator.strategy, Strategy::AoCosine);
   auto d = fromXml(R"(<integrator type="direct"><integer name="nSamples" value="3"/>
                       <string name="measure" value="solidAngle"/></integrator>)");
-  EXPECT_EQ(d.settings.integrator.measure, DirectMeasure::SolidAngle);
+  EXPECT_EQ(d.settings.integrator.strategy, Strategy::DirectSolidAngle);
   auto h = fromXml(R"(<integrator type="direct"><string name="measure" value="hemisphere"/>
                       <string name="warp-type" value="uniform-hemisphere"/></integrator>)");
-  EXPECT_EQ(h.settings.integrator.measure, DirectMeasure::Hemisphere);
-  EXPECT_EQ(h.settings.integrator.warp, HemisphereWarp::Uniform);
+  EXPECT_EQ(h.settings.integrator.strategy, Strategy::DirectUniformHemisphere);
+}
+
+// <integrator type="T"> with the given string properties and, if samplesName is set, 3 samples.
+std::string integratorXml(const StrategyRow& row,
+                          const std::vector<std::pair<std::string_view, std::string_view>>& props,
+                          std::string_view samplesName) {
+  std::string xml = "<integrator type=\"" + std::string(row.xmlType) + "\">";
+  if (!samplesName.empty()) xml += "<integer name=\"" + std::string(samplesName) + "\" value=\"3\"/>";
+  for (auto [name, value] : props)
+    xml += "<string name=\"" + std::string(name) + "\" value=\"" + std::string(value) + "\"/>";
+  return xml + "</integrator>";
+}
+
+// Every spelling the strategy table accepts loads its row: each alias of each selecting property's
+// name and value (the others canonical), each alias of the samples property, and a default value
+// left out.
+TEST(SceneBuilder, EverySpellingOfEveryStrategyLoadsItsRow) {
+  for (const StrategyRow& row : strategyTable()) {
+    std::vector<std::pair<std::string_view, std::string_view>> canonical;
+    for (const StrategyProperty& p : row.select)
+      if (!p.name.empty()) canonical.emplace_back(p.name.canonical(), p.value.canonical());
+    auto expectRow = [&](const std::string& xml, bool samples) {
+      LoadedScene s = fromXml(xml);
+      EXPECT_EQ(s.settings.integrator.strategy, row.strategy) << xml;
+      EXPECT_EQ(s.settings.integrator.samples, samples ? 3 : 1) << xml;
+      EXPECT_TRUE(s.warnings.empty()) << xml << ": " << (s.warnings.empty() ? "" : s.warnings[0]);
+    };
+    expectRow(integratorXml(row, canonical, row.samplesProperty.canonical()), !row.samplesProperty.empty());
+    for (std::string_view samples : row.samplesProperty.list())
+      expectRow(integratorXml(row, canonical, samples), true);
+    for (size_t i = 0; i < canonical.size(); ++i) {
+      const StrategyProperty& p = row.select[i];
+      for (std::string_view name : p.name.list())
+        for (std::string_view value : p.value.list()) {
+          auto props = canonical;
+          props[i] = {name, value};
+          expectRow(integratorXml(row, props, {}), false);
+        }
+      if (p.isDefault) {
+        auto props = canonical;
+        props.erase(props.begin() + long(i), props.end());  // a refining property makes no sense without it
+        if (i + 1 == canonical.size()) expectRow(integratorXml(row, props, {}), false);
+      }
+    }
+  }
+}
+
+// What the viewer writes (canonical spellings) loads back to the same strategy and counts.
+TEST(SceneBuilder, CanonicalSpellingsRoundTrip) {
+  for (const StrategyRow& row : strategyTable()) {
+    IntegratorDesc d{row.strategy, row.samplesProperty.empty() ? 1 : 5};
+    std::string xml = "<integrator type=\"" + std::string(row.xmlType) + "\">";
+    for (const CanonicalProperty& p : canonicalProperties(d))
+      xml += std::string(p.isInteger ? "<integer" : "<string") + " name=\"" + std::string(p.name) +
+             "\" value=\"" + p.value + "\"/>";
+    xml += "</integrator>";
+    EXPECT_EQ(fromXml(xml).settings.integrator, d) << xml;
+  }
+}
+
+TEST(SceneBuilder, UnknownStrategiesAreRejectedWithWhatIsAccepted) {
+  expectError("<integrator type=\"path\"/>", 2, "(expected one of: direct, ao, simple, normals)");
+  expectError("<integrator type=\"direct\">\n<string name=\"measure\" value=\"solid\"/></integrator>", 3,
+              "unknown measure \"solid\" of <integrator type=\"direct\"> (expected one of: hemisphere, area, "
+              "solid-angle, solidAngle)");
+  expectError("<integrator type=\"ao\">\n<string name=\"sampling\" value=\"area\"/></integrator>", 3,
+              "(expected one of: uniform-hemisphere, uniform, cosine-hemisphere, cosine)");
+  expectError(
+      "<integrator type=\"direct\"><string name=\"measure\" value=\"hemisphere\"/>\n"
+      "<string name=\"warp\" value=\"beckmann\"/></integrator>",
+      3, "unknown warp-type \"beckmann\"");
+  expectError("<sampler type=\"halton\"/>", 2, "(expected one of: independent, stratified)");
 }
 
 TEST(SceneBuilder, BadCountsAreRejectedWithTheirLine) {
@@ -97,7 +168,7 @@ TEST(SceneBuilder, SmallScenesPayForNoBvh) {
 TEST(SceneBuilder, OverridesReachTheSettings) {
   LoadedScene s = loadSceneFromString(defaultSceneXml(), "default", ".",
                                       {{"integrator.measure", "area"}, {"sampler.sampleCount", "7"}});
-  EXPECT_EQ(s.settings.integrator.measure, DirectMeasure::Area);
+  EXPECT_EQ(s.settings.integrator.strategy, Strategy::DirectArea);
   EXPECT_EQ(s.settings.sampleCount, 7u);
 }
 

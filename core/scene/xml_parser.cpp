@@ -11,6 +11,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "core/math/error.h"
+#include "core/render/render_settings.h"
 
 namespace penumbra {
 
@@ -338,7 +339,10 @@ void applyOverride(SceneNode& root, std::string_view key, std::string_view value
     // Scene-wide objects may be absent from the file: --set creates them with their default type.
     SceneNode created;
     created.tag = tag;
-    created.type = tag == "integrator" ? "direct" : tag == "sampler" ? "independent" : "perspective";
+    const RenderSettings defaults;
+    created.type = tag == "integrator" ? std::string(strategyRow(defaults.integrator.strategy).xmlType)
+                   : tag == "sampler"  ? std::string(samplerKindName(defaults.samplerKind))
+                                       : "perspective";
     created.file = root.file;
     created.baseDir = root.baseDir;
     created.props.setContext(root.file, created.tag, created.type);
