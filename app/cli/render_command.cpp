@@ -12,6 +12,7 @@
 #include "core/image/image_io.h"
 #include "core/math/error.h"
 #include "core/render/engine.h"
+#include "core/render/sample_count_fit.h"
 
 namespace penumbra::cli {
 
@@ -63,6 +64,8 @@ int runRender(const RenderOptions& o) {
   limits.seconds = o.seconds;
   uint32_t defaultSpp = o.reference ? 4096u : job->settings.sampleCount;
   limits.targetSpp = o.spp > 0 ? o.spp : (o.seconds > 0 ? 0 : defaultSpp);
+  if (std::string note = fitSampleCountToTarget(job->settings, limits.targetSpp); !note.empty())
+    std::fprintf(stderr, "warning: %s\n", note.c_str());
 
   gInterrupted = false;
   auto previous = std::signal(SIGINT, onInterrupt);

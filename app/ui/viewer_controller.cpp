@@ -11,6 +11,8 @@
 #include "core/image/image_io.h"
 #include "core/math/error.h"
 #include "core/math/frame.h"
+#include "core/render/sample_count_fit.h"
+#include "core/sampling/sampler_table.h"
 #include "core/scene/xml_parser.h"
 
 namespace penumbra::ui {
@@ -85,6 +87,7 @@ void ViewerController::startLeft() {
   auto job = std::make_shared<RenderJob>();
   job->scene = scene_.scene;
   job->settings = settings_;
+  samplerNote_ = fitSampleCountToTarget(job->settings, useTimeBudget_ ? 0 : limits_.targetSpp);
   bool wasPaused = engine_.paused();
   RenderLimits limits = limits_;
   limits.preview = true;  // a coarse first frame within milliseconds of any change
@@ -97,6 +100,7 @@ void ViewerController::startCompare() {
   auto job = std::make_shared<RenderJob>();
   job->scene = scene_.scene;
   job->settings = settings_;
+  fitSampleCountToTarget(job->settings, useTimeBudget_ ? 0 : limits_.targetSpp);
   job->settings.integrator = renderedCompareIntegrator();
   bool wasPaused = engine_.paused();
   RenderLimits limits = limits_;
@@ -210,6 +214,8 @@ void ViewerController::setLimits(const RenderLimits& l) {
   if (l.targetSpp == limits_.targetSpp && l.seconds == limits_.seconds) return;
   limits_ = l;
   useTimeBudget_ = l.seconds > 0;
+  // A sampler shaped by the count (stratified, zsobol) needs a new pattern for a new target.
+  if (samplerRow(settings_.samplerKind).usesSampleCount) return start();
   if (!engine_.extend(limits_)) startLeft();  // a new target continues the accumulation
   if (compare_ && !compareEngine_.extend(limits_)) startCompare();
 }

@@ -9,6 +9,7 @@
 
 #include "core/math/error.h"
 #include "core/render/engine.h"
+#include "core/render/sample_count_fit.h"
 #include "core/sampling/sampler_table.h"
 
 namespace penumbra {
@@ -133,7 +134,7 @@ ConvergenceRun runConvergence(const LoadedScene& scene, const IntegratorDesc& st
   job->settings.integrator = strategy;
   job->settings.samplerKind = sampler;
   // A known final count shapes stratified's strata and zsobol's nets (as `render --spp` does).
-  if (sppMode && samplerRow(sampler).usesSampleCount) job->settings.sampleCount = o.spp;
+  fitSampleCountToTarget(job->settings, sppMode ? o.spp : 0);
   job->settings.seed = o.seed;
   const uint64_t pixels = uint64_t(job->settings.camera.width) * uint64_t(job->settings.camera.height);
 
