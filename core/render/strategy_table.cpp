@@ -24,8 +24,9 @@ RowRenderer rows(const RenderJob& job, const IntegratorDesc& desc) {
 }
 
 template <class Integrator>
-RayEstimate alongRay(const Scene& scene, const Ray& ray, int samples, int n, uint64_t seed) {
-  return estimateRay(scene, makeIntegrator<Integrator>(samples), ray, n, seed);
+RayEstimate alongRay(const Scene& scene, const Ray& ray, int samples, int n, uint64_t seed,
+                     SamplerKind sampler) {
+  return estimateRay(scene, makeIntegrator<Integrator>(samples), ray, n, seed, sampler);
 }
 
 // Spellings the assignment's scenes use for each setting.
