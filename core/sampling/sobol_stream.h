@@ -64,7 +64,6 @@ class BasicSobolStream {
     reversedIndex_ = reverseBits32(sampleIndex);
     reversedIndexXor_ = 0;
     request_ = 0;
-    prepare();
   }
 
   // log2Samples: zsobolLog2Samples(the run's sample count).
@@ -77,19 +76,16 @@ class BasicSobolStream {
     sampleIndex_ = sampleIndex;
     setZSobolIndex(log2Samples, sampleIndex, reversedIndex_, reversedIndexXor_);
     request_ = 0;
-    prepare();
   }
 
   // Uniform in [0, 1): never returns 1.0.
   float next1D() {
-    const float v = sobolPoint1D<Randomizer>(index_, hash_);
-    advance();
-    return v;
+    const uint64_t h = requestHash(key_, request_++);
+    return sobolPoint1D<Randomizer>(shuffled(reversedIndex_, reversedIndexXor_, h), h);
   }
   Vec2 next2D() {
-    const Vec2 v = sobolPoint2D<Randomizer>(index_, hash_);
-    advance();
-    return v;
+    const uint64_t h = requestHash(key_, request_++);
+    return sobolPoint2D<Randomizer>(shuffled(reversedIndex_, reversedIndexXor_, h), h);
   }
 
   // Point j of n (j = 0 .. n - 1, in order) of one request: the points of sequence indices
@@ -97,8 +93,10 @@ class BasicSobolStream {
   // is a power of two) and all of a pixel's first 2^k samples together too. The request advances
   // after point n - 1. For zsobol the array's index takes ceil(log2 n) more bits.
   Vec2 next2D(uint32_t j, uint32_t n) {
-    const uint64_t h = hash_;
-    if (j + 1 >= n) advance();
+    // n = 1: index sampleIndex, zsobol's m unchanged (m + 0 <= kZSobolMaxLog2Samples): a plain request.
+    if (n == 1) return next2D();
+    const uint64_t h = requestHash(key_, request_);
+    if (j + 1 >= n) ++request_;
     const uint32_t index = sampleIndex_ * n + j;
     uint32_t reversed, reversedXor = 0;
     if (zsobol_)
@@ -110,17 +108,6 @@ class BasicSobolStream {
   }
 
  private:
-  // The next request's hash and shuffled index are computed one request ahead, so they are ready
-  // (off the critical path of the sample that needs them) when it is drawn.
-  void prepare() {
-    hash_ = requestHash(key_, request_);
-    index_ = shuffled(reversedIndex_, reversedIndexXor_, hash_);
-  }
-  void advance() {
-    ++request_;
-    prepare();
-  }
-
   static uint32_t shuffled(uint32_t reversedIndex, uint32_t reversedXor, uint64_t requestHash) {
     return Randomizer::shuffledReversedIndex(reversedIndex, static_cast<uint32_t>(requestHash)) ^ reversedXor;
   }
@@ -137,8 +124,6 @@ class BasicSobolStream {
   uint32_t reversedIndex_ = 0;     // the sequence index before shuffling, bit-reversed
   uint32_t reversedIndexXor_ = 0;  // zsobol: sample index bits above m, bit-reversed
   uint32_t request_ = 0;           // requests since the start
-  uint64_t hash_ = 0;              // requestHash(key_, request_)
-  uint32_t index_ = 0;             // request_'s shuffled index (bit-reversed)
   uint32_t sampleIndex_ = 0;
   uint32_t tileCode_ = 0;     // zsobol: the pixel's Morton code within its tile
   uint32_t log2Samples_ = 0;  // zsobol: m
