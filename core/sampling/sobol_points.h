@@ -13,6 +13,7 @@
 #include <cstdint>
 
 #include "core/math/vec.h"
+#include "core/sampling/digits_to_float.h"
 #include "core/sampling/owen_scramble.h"
 #include "core/sampling/rng.h"
 #include "core/sampling/sobol_matrices.h"
@@ -43,7 +44,7 @@ template <class Randomizer>
 inline float sobolPoint1D(uint32_t shuffledReversedIndex, uint64_t hash) {
   const uint32_t x =
       Randomizer::scrambledDigits(reverseBits32(shuffledReversedIndex), static_cast<uint32_t>(hash >> 32));
-  return bitsToUnitFloat(reverseBits32(x));
+  return digitsToUnitFloat(x);
 }
 
 template <class Randomizer>
@@ -54,10 +55,7 @@ inline Vec2 sobolPoint2D(uint32_t shuffledReversedIndex, uint64_t hash) {
   // A third 32-bit seed from the high half of an odd multiple (depends on every bit of the hash).
   const auto ySeed = static_cast<uint32_t>((hash * 0x9e3779b97f4a7c15ull) >> 32);
   const uint32_t y = Randomizer::scrambledDigits(static_cast<uint32_t>(digits >> 32), ySeed);
-  // One 64-bit reversal turns both digit-order values into fractions: x lands in the high word.
-  const uint64_t fractions = reverseBits64((static_cast<uint64_t>(y) << 32) | x);
-  return Vec2(bitsToUnitFloat(static_cast<uint32_t>(fractions >> 32)),
-              bitsToUnitFloat(static_cast<uint32_t>(fractions)));
+  return Vec2(digitsToUnitFloat(x), digitsToUnitFloat(y));
 }
 
 }  // namespace penumbra
