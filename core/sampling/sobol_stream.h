@@ -30,6 +30,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cstdint>
 
@@ -45,6 +46,18 @@ namespace penumbra {
 // sequence, and up to 2^20 samples (times array points) per pixel fit beside them.
 inline constexpr uint32_t kZSobolTileBits = 12;
 inline constexpr uint32_t kZSobolMaxLog2Samples = 32 - kZSobolTileBits;
+inline constexpr uint32_t kZSobolTileSideBits = kZSobolTileBits / 2;  // 64 pixels
+static_assert(kZSobolTileBits % 2 == 0);
+
+// reverseBits32(spreadBitsToEven(v)) for v < 2^kZSobolTileSideBits: the bit-reversed Morton code
+// of a pixel within its tile is kZSobolReversedSpread[x] | kZSobolReversedSpread[y] >> 1.
+inline constexpr auto kZSobolReversedSpread = [] {
+  std::array<uint32_t, 1u << kZSobolTileSideBits> t{};
+  for (uint32_t v = 0; v < t.size(); ++v)
+    for (uint32_t i = 0; i < kZSobolTileSideBits; ++i)
+      if (v >> i & 1) t[v] |= 1u << (31 - 2 * i);
+  return t;
+}();
 
 // ceil(log2(n)), at most kZSobolMaxLog2Samples: m for zsobol from the run's sample count.
 inline uint32_t zsobolLog2Samples(uint32_t sampleCount) {
@@ -54,27 +67,38 @@ inline uint32_t zsobolLog2Samples(uint32_t sampleCount) {
 template <class Randomizer>
 class BasicSobolStream {
  public:
-  // seedHash: mix64(seed). One hash and one bit reversal.
+  // seedHash: mix64(seed). One hash; the sample index's bit reversal is kept while the index repeats
+  // (the renderer restarts every pixel of a pass with one index).
   void startSobol(uint64_t seedHash, IVec2 pixel, uint32_t sampleIndex) {
     const uint64_t packed =
         (static_cast<uint64_t>(static_cast<uint32_t>(pixel.x)) << 32) | static_cast<uint32_t>(pixel.y);
     key_ = hashCombine(seedHash, packed);
     zsobol_ = false;
     sampleIndex_ = sampleIndex;
-    reversedIndex_ = reverseBits32(sampleIndex);
+    reversedIndex_ = reversedSampleIndex(sampleIndex);
     reversedIndexXor_ = 0;
     request_ = 0;
   }
 
-  // log2Samples: zsobolLog2Samples(the run's sample count).
+  // log2Samples: zsobolLog2Samples(the run's sample count). The tile's hash is kept while the pixel
+  // stays in its tile, and the sample index's bit reversal while the index repeats.
   void startZSobol(uint64_t seedHash, uint32_t log2Samples, IVec2 pixel, uint32_t sampleIndex) {
-    const uint64_t morton = encodeMorton2(static_cast<uint32_t>(pixel.x), static_cast<uint32_t>(pixel.y));
-    key_ = hashCombine(seedHash, morton >> kZSobolTileBits);
+    const auto x = static_cast<uint32_t>(pixel.x), y = static_cast<uint32_t>(pixel.y);
+    // The Morton code's bits above the tile are the Morton code of the tile's coordinates.
+    const uint64_t tile =
+        (static_cast<uint64_t>(x >> kZSobolTileSideBits) << 32) | (y >> kZSobolTileSideBits);
+    if (tile != memoTile_ || seedHash != memoSeedHash_) {
+      memoTile_ = tile;
+      memoSeedHash_ = seedHash;
+      memoTileKey_ = hashCombine(seedHash, encodeMorton2(x >> kZSobolTileSideBits, y >> kZSobolTileSideBits));
+    }
+    key_ = memoTileKey_;
     zsobol_ = true;
-    tileCode_ = static_cast<uint32_t>(morton) & ((1u << kZSobolTileBits) - 1);
+    constexpr uint32_t side = (1u << kZSobolTileSideBits) - 1;
+    reversedTileCode_ = kZSobolReversedSpread[x & side] | kZSobolReversedSpread[y & side] >> 1;
     log2Samples_ = log2Samples;
     sampleIndex_ = sampleIndex;
-    setZSobolIndex(log2Samples, sampleIndex, reversedIndex_, reversedIndexXor_);
+    setZSobolIndex(log2Samples, reversedSampleIndex(sampleIndex), reversedIndex_, reversedIndexXor_);
     request_ = 0;
   }
 
@@ -100,8 +124,8 @@ class BasicSobolStream {
     const uint32_t index = sampleIndex_ * n + j;
     uint32_t reversed, reversedXor = 0;
     if (zsobol_)
-      setZSobolIndex(std::min(log2Samples_ + zsobolLog2Samples(n), kZSobolMaxLog2Samples), index, reversed,
-                     reversedXor);
+      setZSobolIndex(std::min(log2Samples_ + zsobolLog2Samples(n), kZSobolMaxLog2Samples),
+                     reverseBits32(index), reversed, reversedXor);
     else
       reversed = reverseBits32(index);
     return sobolPoint2D<Randomizer>(shuffled(reversed, reversedXor, h), h);
@@ -113,11 +137,19 @@ class BasicSobolStream {
   }
 
   // zsobol's index of (tile, sample): (tileCode << m) | (s mod 2^m); s's bits above m are XORed in
-  // after the shuffle.
-  void setZSobolIndex(uint32_t m, uint32_t s, uint32_t& reversed, uint32_t& reversedXor) const {
-    const uint32_t mask = (1u << m) - 1;
-    reversed = reverseBits32((tileCode_ << m) | (s & mask));
-    reversedXor = reverseBits32(s & ~mask);
+  // after the shuffle. Both from s bit-reversed: s mod 2^m is its top m bits.
+  void setZSobolIndex(uint32_t m, uint32_t reversedS, uint32_t& reversed, uint32_t& reversedXor) const {
+    const uint32_t top = ~(~0u >> m);
+    reversed = (reversedTileCode_ >> m) | (reversedS & top);
+    reversedXor = reversedS & ~top;
+  }
+
+  uint32_t reversedSampleIndex(uint32_t sampleIndex) {
+    if (sampleIndex != memoIndex_) {
+      memoIndex_ = sampleIndex;
+      memoReversedIndex_ = reverseBits32(sampleIndex);
+    }
+    return memoReversedIndex_;
   }
 
   uint64_t key_ = 0;               // hash of (seed, pixel) or (seed, Morton code above the tile bits)
@@ -125,9 +157,12 @@ class BasicSobolStream {
   uint32_t reversedIndexXor_ = 0;  // zsobol: sample index bits above m, bit-reversed
   uint32_t request_ = 0;           // requests since the start
   uint32_t sampleIndex_ = 0;
-  uint32_t tileCode_ = 0;     // zsobol: the pixel's Morton code within its tile
-  uint32_t log2Samples_ = 0;  // zsobol: m
+  uint32_t reversedTileCode_ = 0;  // zsobol: the pixel's Morton code within its tile, bit-reversed
+  uint32_t log2Samples_ = 0;       // zsobol: m
   bool zsobol_ = false;
+  // Kept from the previous start: reverseBits32(memoIndex_); zsobol: the key of tile memoTile_.
+  uint32_t memoIndex_ = 0, memoReversedIndex_ = 0;
+  uint64_t memoTile_ = ~0ull, memoSeedHash_ = 0, memoTileKey_ = 0;
 };
 
 using SobolStream = BasicSobolStream<OwenScrambling>;
