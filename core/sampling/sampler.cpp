@@ -56,7 +56,10 @@ Sampler::Sampler(SamplerKind kind, uint32_t sampleCount, uint64_t seed)
   startPixelSample(IVec2(0, 0), 0);
 }
 
-void Sampler::startPseudorandom(IVec2 pixel, uint32_t sampleIndex) {
+void Sampler::startPixelSample(IVec2 pixel, uint32_t sampleIndex) {
+  if (kind_ == SamplerKind::Sobol) return sobol_.startSobol(seedHash_, pixel, sampleIndex);
+  if (kind_ == SamplerKind::ZSobol)
+    return sobol_.startZSobol(seedHash_, zsobolLog2Samples_, pixel, sampleIndex);
   uint64_t packed =
       (static_cast<uint64_t>(static_cast<uint32_t>(pixel.x)) << 32) | static_cast<uint32_t>(pixel.y);
   pixelKey_ = hashCombine(seedHash_, packed);

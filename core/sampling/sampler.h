@@ -40,7 +40,6 @@ class Sampler {
   uint64_t seed() const;
 
  private:
-  void startPseudorandom(IVec2 pixel, uint32_t sampleIndex);
   float stratified1D();
   Vec2 stratified2D();
   // Key of the (pixel, dimension, epoch) permutation of strata; epoch = sampleIndex / strata.
@@ -58,14 +57,6 @@ class Sampler {
   uint32_t dimension_ = 0;  // dimensions consumed since startPixelSample
   SamplerKind kind_ = SamplerKind::Independent;
 };
-
-// The Sobol' restarts are inline: a few hashes and stores, on every camera sample's path.
-inline void Sampler::startPixelSample(IVec2 pixel, uint32_t sampleIndex) {
-  if (kind_ == SamplerKind::Sobol) return sobol_.startSobol(seedHash_, pixel, sampleIndex);
-  if (kind_ == SamplerKind::ZSobol)
-    return sobol_.startZSobol(seedHash_, zsobolLog2Samples_, pixel, sampleIndex);
-  startPseudorandom(pixel, sampleIndex);
-}
 
 inline float Sampler::next1D() {
   if (kind_ == SamplerKind::Stratified) return stratified1D();
