@@ -135,7 +135,7 @@ double directTruth(const Scene& scene, const Vec3& x, const Vec3& n = kUp) {
 // One strategy's estimate along `ray`, one shading sample per camera sample (the strategy table's
 // instance of its integrator).
 Estimate estimate(Strategy s, const Scene& scene, const Ray& ray, int n, uint64_t seed) {
-  return strategyRow(s).estimateRay(scene, ray, 1, n, seed);
+  return strategyRow(s).estimateRay(scene, ray, 1, n, seed, SamplerKind::Independent);
 }
 
 std::string nameOf(Strategy s) {
