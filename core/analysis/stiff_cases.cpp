@@ -16,6 +16,7 @@
 #include "core/render/film.h"
 #include "core/render/strategy_table.h"
 #include "core/sampling/sampler.h"
+#include "core/sampling/sampler_table.h"
 #include "core/sampling/warp.h"
 #include "core/scene/scene_builder.h"
 
@@ -219,8 +220,8 @@ CaseResult warpExtremes(const CaseOptions& o) {
   const int n = count(o, 400000);
   double sum = 0;
   uint64_t draws = 0;
-  for (SamplerKind kind : {SamplerKind::Independent, SamplerKind::Stratified}) {
-    Sampler sampler(kind, 64, o.seed);
+  for (const SamplerRow& row : samplerTable()) {
+    Sampler sampler(row.kind, 64, o.seed);
     for (int i = 0; i < n / 8; ++i) {
       sampler.startPixelSample(IVec2(i % 13, i / 13), uint32_t(i * 2654435761u));
       for (int k = 0; k < 4; ++k) {
