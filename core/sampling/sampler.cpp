@@ -69,6 +69,16 @@ void Sampler::startPixelSample(IVec2 pixel, uint32_t sampleIndex) {
   rng_.seed(hashCombine(pixelKey_, sampleIndex), pixelKey_);
 }
 
+float Sampler::sobol1D() {
+  return sobol_.next1D();
+}
+Vec2 Sampler::sobol2D() {
+  return sobol_.next2D();
+}
+Vec2 Sampler::sobolArray2D(uint32_t j, uint32_t n) {
+  return sobol_.next2D(j, n);
+}
+
 uint64_t Sampler::dimensionKey(uint32_t epoch) const {
   return hashCombine(pixelKey_, (static_cast<uint64_t>(epoch) << 32) | dimension_);
 }

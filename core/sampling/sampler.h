@@ -43,6 +43,11 @@ class Sampler {
   uint64_t seed() const;
 
  private:
+  // The Sobol' kinds' draws are out-of-line calls, so next1D/next2D stay small enough to be inlined
+  // into the integrators and the row loop for every kind.
+  float sobol1D();
+  Vec2 sobol2D();
+  Vec2 sobolArray2D(uint32_t j, uint32_t n);
   float stratified1D();
   Vec2 stratified2D();
   // Key of the (pixel, dimension, epoch) permutation of strata; epoch = sampleIndex / strata.
@@ -63,21 +68,21 @@ class Sampler {
 
 inline float Sampler::next1D() {
   if (kind_ == SamplerKind::Stratified) return stratified1D();
-  if (kind_ >= SamplerKind::Sobol) return sobol_.next1D();
+  if (kind_ >= SamplerKind::Sobol) return sobol1D();
   ++dimension_;
   return rng_.nextFloat();
 }
 
 inline Vec2 Sampler::next2D() {
   if (kind_ == SamplerKind::Stratified) return stratified2D();
-  if (kind_ >= SamplerKind::Sobol) return sobol_.next2D();
+  if (kind_ >= SamplerKind::Sobol) return sobol2D();
   ++dimension_;
   float x = rng_.nextFloat();
   return Vec2(x, rng_.nextFloat());
 }
 
 inline Vec2 Sampler::next2D(uint32_t j, uint32_t n) {
-  if (kind_ >= SamplerKind::Sobol) return sobol_.next2D(j, n);
+  if (kind_ >= SamplerKind::Sobol) return n == 1 ? sobol2D() : sobolArray2D(j, n);
   return next2D();
 }
 
