@@ -78,6 +78,9 @@ Vec2 Sampler::sobol2D() {
 Vec2 Sampler::sobolArray2D(uint32_t j, uint32_t n) {
   return sobol_.next2D(j, n);
 }
+Vec2 Sampler::sobolInterleaved2D(uint32_t j, uint32_t n, uint32_t k, uint32_t m) {
+  return sobol_.next2D(j, n, k, m);
+}
 
 uint64_t Sampler::dimensionKey(uint32_t epoch) const {
   return hashCombine(pixelKey_, (static_cast<uint64_t>(epoch) << 32) | dimension_);

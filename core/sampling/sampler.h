@@ -48,6 +48,7 @@ class Sampler {
   float sobol1D();
   Vec2 sobol2D();
   Vec2 sobolArray2D(uint32_t j, uint32_t n);
+  Vec2 sobolInterleaved2D(uint32_t j, uint32_t n, uint32_t k, uint32_t m);
   float stratified1D();
   Vec2 stratified2D();
   // Key of the (pixel, dimension, epoch) permutation of strata; epoch = sampleIndex / strata.
@@ -87,7 +88,7 @@ inline Vec2 Sampler::next2D(uint32_t j, uint32_t n) {
 }
 
 inline Vec2 Sampler::next2D(uint32_t j, uint32_t n, uint32_t k, uint32_t m) {
-  if (kind_ >= SamplerKind::Sobol) return sobol_.next2D(j, n, k, m);
+  if (kind_ >= SamplerKind::Sobol) return sobolInterleaved2D(j, n, k, m);
   return next2D();
 }
 
