@@ -78,6 +78,7 @@ class BasicSobolStream {
     reversedIndex_ = reversedSampleIndex(sampleIndex);
     reversedIndexXor_ = 0;
     request_ = 0;
+    prepare();
   }
 
   // log2Samples: zsobolLog2Samples(the run's sample count). The tile's hash is kept while the pixel
@@ -100,16 +101,19 @@ class BasicSobolStream {
     sampleIndex_ = sampleIndex;
     setZSobolIndex(log2Samples, reversedSampleIndex(sampleIndex), reversedIndex_, reversedIndexXor_);
     request_ = 0;
+    prepare();
   }
 
   // Uniform in [0, 1): never returns 1.0.
   float next1D() {
-    const uint64_t h = requestHash(key_, request_++);
-    return sobolPoint1D<Randomizer>(shuffled(reversedIndex_, reversedIndexXor_, h), h);
+    const float v = sobolPoint1D<Randomizer>(index_, hash_);
+    advance();
+    return v;
   }
   Vec2 next2D() {
-    const uint64_t h = requestHash(key_, request_++);
-    return sobolPoint2D<Randomizer>(shuffled(reversedIndex_, reversedIndexXor_, h), h);
+    const Vec2 v = sobolPoint2D<Randomizer>(index_, hash_);
+    advance();
+    return v;
   }
 
   // Point j of n (j = 0 .. n - 1, in order) of one request: the points of sequence indices
@@ -119,8 +123,8 @@ class BasicSobolStream {
   Vec2 next2D(uint32_t j, uint32_t n) {
     // n = 1: index sampleIndex, zsobol's m unchanged (m + 0 <= kZSobolMaxLog2Samples): a plain request.
     if (n == 1) return next2D();
-    const uint64_t h = requestHash(key_, request_);
-    if (j + 1 >= n) ++request_;
+    const uint64_t h = hash_;
+    if (j + 1 >= n) advance();
     const uint32_t index = sampleIndex_ * n + j;
     uint32_t reversed, reversedXor = 0;
     if (zsobol_)
@@ -144,6 +148,17 @@ class BasicSobolStream {
   }
 
  private:
+  // The next request's hash and shuffled index are computed one request ahead, so they are ready
+  // (off the critical path of the sample that needs them) when it is drawn.
+  void prepare() {
+    hash_ = requestHash(key_, request_);
+    index_ = shuffled(reversedIndex_, reversedIndexXor_, hash_);
+  }
+  void advance() {
+    ++request_;
+    prepare();
+  }
+
   static uint32_t shuffled(uint32_t reversedIndex, uint32_t reversedXor, uint64_t requestHash) {
     return Randomizer::shuffledReversedIndex(reversedIndex, static_cast<uint32_t>(requestHash)) ^ reversedXor;
   }
@@ -168,6 +183,8 @@ class BasicSobolStream {
   uint32_t reversedIndex_ = 0;     // the sequence index before shuffling, bit-reversed
   uint32_t reversedIndexXor_ = 0;  // zsobol: sample index bits above m, bit-reversed
   uint32_t request_ = 0;           // requests since the start
+  uint64_t hash_ = 0;              // requestHash(key_, request_)
+  uint32_t index_ = 0;             // request_'s shuffled index (bit-reversed)
   uint32_t sampleIndex_ = 0;
   uint32_t reversedTileCode_ = 0;  // zsobol: the pixel's Morton code within its tile, bit-reversed
   uint32_t log2Samples_ = 0;       // zsobol: m
