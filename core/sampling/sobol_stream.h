@@ -139,11 +139,19 @@ class BasicSobolStream {
   // values, k = 0 .. m - 1, before sample j + 1 draws its): the points that m array requests drawn
   // one after another would give, so each of the m is stratified over the n samples. The m
   // requests advance together after point n - 1 of request m - 1.
+  // The prepared request is moved only when it is not already the one drawn or the one next.
   Vec2 next2D(uint32_t j, uint32_t n, uint32_t k, uint32_t m) {
     const uint32_t first = request_;
-    request_ = first + k;
+    if (k != 0) {
+      request_ = first + k;
+      prepare();
+    }
     const Vec2 v = next2D(j, n);
-    request_ = j + 1 >= n && k + 1 >= m ? first + m : first;
+    const uint32_t next = j + 1 >= n && k + 1 >= m ? first + m : first;
+    if (request_ != next) {
+      request_ = next;
+      prepare();
+    }
     return v;
   }
 
