@@ -20,15 +20,6 @@ inline uint32_t reverseBits32(uint32_t x) {
   return x;
 }
 
-// Reverses all 64 bits: used to reverse two 32-bit digit-order values packed in one word at once.
-inline uint64_t reverseBits64(uint64_t x) {
-  x = __builtin_bswap64(x);
-  x = ((x & 0x0f0f0f0f0f0f0f0full) << 4) | ((x >> 4) & 0x0f0f0f0f0f0f0f0full);
-  x = ((x & 0x3333333333333333ull) << 2) | ((x >> 2) & 0x3333333333333333ull);
-  x = ((x & 0x5555555555555555ull) << 1) | ((x >> 1) & 0x5555555555555555ull);
-  return x;
-}
-
 // Burley's Laine-Karras-style permutation (JCGT 9(4), section 3) of a digit-order value: the seed
 // addition and each x ^= x * even carry information only towards higher bits, so output bit j is a
 // function of input bits <= j (a valid Owen scramble for every seed).

@@ -194,13 +194,20 @@ TEST(ZSobolSampler, APureFunctionOfSeedPixelAndIndex) {
     }
     return v;
   };
-  std::vector<float> first = draw(a, IVec2(17, 4), 21);
+  // (81, 4) lies in the second 64 x 64 tile of the first row of tiles.
+  std::vector<float> first = draw(a, IVec2(81, 4), 21);
+  // b visits the first tile, another row of tiles, other pixels of the tile and other indices first
   draw(b, IVec2(3, 3), 0);
-  draw(b, IVec2(17, 4), 6);
-  EXPECT_EQ(draw(b, IVec2(17, 4), 21), first);
-  EXPECT_NE(draw(c, IVec2(17, 4), 21), first);
-  EXPECT_NE(draw(a, IVec2(17, 5), 21), first);
-  EXPECT_NE(draw(a, IVec2(17, 4), 22), first);
+  draw(b, IVec2(100, 70), 21);
+  draw(b, IVec2(81, 4), 6);
+  draw(b, IVec2(17, 4), 21);
+  EXPECT_EQ(draw(b, IVec2(81, 4), 21), first);
+  EXPECT_EQ(draw(a, IVec2(81, 4), 21), first);
+  EXPECT_NE(draw(c, IVec2(81, 4), 21), first);
+  EXPECT_NE(draw(a, IVec2(81, 5), 21), first);
+  EXPECT_NE(draw(a, IVec2(81, 4), 22), first);
+  // (17, 4) is the same place of the first tile: only the tiles' own randomisations tell them apart
+  EXPECT_NE(draw(a, IVec2(17, 4), 21), first);
 }
 
 TEST(ZSobolSampler, OneDimensionalRequestsAcrossPixelsAreUniform) {
