@@ -9,6 +9,7 @@
 
 #include "core/image/image_io.h"
 #include "core/render/engine.h"
+#include "core/render/sample_count_fit.h"
 #include "python/bindings.h"
 
 namespace penumbra::python {
@@ -51,6 +52,9 @@ RenderResult render(const PyScene& s, std::optional<int64_t> spp, std::optional<
   RenderLimits limits;
   limits.seconds = time.value_or(0.0);
   limits.targetSpp = spp ? uint32_t(*spp) : (time ? 0u : job->settings.sampleCount);
+  // Stratified and zsobol take the run's count, as render --spp does (a warning when they cannot).
+  if (std::string note = fitSampleCountToTarget(job->settings, limits.targetSpp); !note.empty())
+    if (PyErr_WarnEx(PyExc_RuntimeWarning, note.c_str(), 1) != 0) throw py::error_already_set();
 
   Engine engine;
   {
@@ -156,7 +160,9 @@ void bindRender(py::module_& m) {
             py::arg("threads") = py::none(), py::arg("progress") = py::none(),
             "Render progressively and return a RenderResult.\n\n"
             "spp: samples per pixel (default: the scene's sampleCount unless time is given); time: seconds "
-            "(whole passes); both: whichever comes first. seed: the random seed (the same seed gives the "
+            "(whole passes); both: whichever comes first. The stratified and zsobol samplers take spp as "
+            "their count, as `penumbra render --spp` does (a RuntimeWarning says what they do when they "
+            "cannot). seed: the random seed (the same seed gives the "
             "same image for any thread count). threads: worker threads (default: all cores). progress: a "
             "callable(spp, seconds) called after each pass, or True for a bar on stderr.\n\n"
             "The GIL is released while rendering. Ctrl-C abandons the pass and raises KeyboardInterrupt.");

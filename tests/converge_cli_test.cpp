@@ -38,7 +38,7 @@ TEST(ConvergeCli, ReportFilesExistAndParse) {
   std::string header;
   std::getline(csv, header);
   EXPECT_EQ(header,
-            "strategy,seconds,cpu_seconds,spp,samples,mse,rmse,rel_mse,mse_stderr,ref_variance,"
+            "strategy,sampler,seconds,cpu_seconds,spp,samples,mse,rmse,rel_mse,mse_stderr,ref_variance,"
             "mse_nolight,rmse_nolight,rel_mse_nolight,mse_stderr_nolight");
   std::set<std::string> strategies;
   int rows = 0;
@@ -47,14 +47,16 @@ TEST(ConvergeCli, ReportFilesExistAndParse) {
     std::string cell;
     std::getline(ss, cell, ',');
     strategies.insert(cell);
-    int cols = 1;
+    std::getline(ss, cell, ',');
+    EXPECT_EQ(cell, "independent") << line;
+    int cols = 2;
     for (; std::getline(ss, cell, ','); ++cols) {
       size_t used = 0;
       double v = std::stod(cell, &used);
       EXPECT_EQ(used, cell.size()) << line;
       EXPECT_TRUE(std::isfinite(v)) << line;
     }
-    EXPECT_EQ(cols, 14) << line;
+    EXPECT_EQ(cols, 15) << line;
   }
   EXPECT_GE(rows, 20 * 3);  // every direct strategy, three measurements or more each
   EXPECT_EQ(strategies, (std::set<std::string>{"uniform-hemisphere",
@@ -88,6 +90,40 @@ TEST(ConvergeCli, ReportFilesExistAndParse) {
   for (const char* s : {"| uniform-hemisphere |", "| cosine-hemisphere |", "| area |", "| solid-angle |",
                         "efficiency", "speed-up"})
     EXPECT_NE(summary.find(s), std::string::npos) << s << "\n" << summary;
+  fs::remove_all(dir);
+}
+
+// --samplers crosses samplers with strategies: every CSV row and summary row names both, and the
+// summary gives each pair's fitted slope.
+TEST(ConvergeCli, SamplersCrossStrategies) {
+  fs::path dir = fs::temp_directory_path() / ("penumbra-converge-samplers-" + std::to_string(::getpid()));
+  test::CommandResult r = penumbraCli("converge '" + analyticScene() +
+                                      "' --set camera.width=24 --set camera.height=16 --spp 16 --strategies "
+                                      "area,solid-angle --samplers independent,sobol,zsobol -o '" +
+                                      dir.string() + "'");
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  std::ifstream csv(dir / "convergence.csv");
+  std::string line;
+  std::getline(csv, line);
+  std::set<std::string> pairs;
+  while (std::getline(csv, line)) pairs.insert(line.substr(0, line.find(',', line.find(',') + 1)));
+  EXPECT_EQ(pairs,
+            (std::set<std::string>{"area,independent", "area,sobol", "area,zsobol", "solid-angle,independent",
+                                   "solid-angle,sobol", "solid-angle,zsobol"}));
+  std::ifstream md(dir / "summary.md");
+  std::string summary((std::istreambuf_iterator<char>(md)), std::istreambuf_iterator<char>());
+  for (const char* s : {"| area | independent |", "| area | sobol |", "| solid-angle | zsobol |", "slope"})
+    EXPECT_NE(summary.find(s), std::string::npos) << s << "\n" << summary;
+  fs::remove_all(dir);
+}
+
+TEST(ConvergeCli, RejectsUnknownSampler) {
+  fs::path dir =
+      fs::temp_directory_path() / ("penumbra-converge-bogus-sampler-" + std::to_string(::getpid()));
+  test::CommandResult r = penumbraCli("converge '" + analyticScene() +
+                                      "' --spp 2 --samplers sobol,halton -o '" + dir.string() + "'");
+  EXPECT_EQ(r.exitCode, 2) << r.out;
+  EXPECT_NE(r.out.find("unknown sampler 'halton'"), std::string::npos) << r.out;
   fs::remove_all(dir);
 }
 

@@ -1,6 +1,7 @@
 // penumbra bench: renderer throughput, measured the way users render (whole passes, all pixels).
 //   * camera samples/s for every direct-illumination strategy on the sphere scene
 //   (scenes/hw2/Tests/sphere-area.xml);
+//   * camera samples/s for every sampler on the same scene, at 1 thread, interleaved run by run;
 //   * AO rays/s on the stand-in rock mesh (1.3 M triangles, Embree);
 //   * a scaling series: 10 to 10,000 sphere lights over a floor (core/scene/scaling_scene.h), camera
 //     samples/s of each light selection at a fixed spp;
@@ -18,6 +19,7 @@
 #include "core/analysis/order_statistics.h"
 #include "core/image/atomic_file.h"
 #include "core/render/engine.h"
+#include "core/sampling/sampler_table.h"
 #include "core/scene/scaling_scene.h"
 
 namespace penumbra::cli {
@@ -149,6 +151,34 @@ int labelWidth() {
   return int(w);
 }
 
+// Every sampler at 1 thread, interleaved run by run (forward, then backward, ...), so each round's
+// ratio to the first sampler is measured within seconds; the median ratio and its range.
+struct SamplerFigure {
+  double rate = 0, ratio = 0, ratioMin = 0, ratioMax = 0;
+};
+std::vector<SamplerFigure> measureSamplers(const LoadedScene& s, const BenchOptions& o) {
+  const auto rows = samplerTable();
+  std::vector<std::vector<double>> rates(rows.size()), ratios(rows.size());
+  for (int r = 0; r < o.repeats; ++r) {
+    std::vector<double> round(rows.size());
+    for (size_t k = 0; k < rows.size(); ++k) {
+      size_t i = r % 2 == 0 ? k : rows.size() - 1 - k;
+      RenderSettings settings = s.settings;
+      settings.samplerKind = rows[i].kind;
+      round[i] = timedRun(s, settings, 1, o.seconds);
+    }
+    for (size_t i = 0; i < rows.size(); ++i) {
+      rates[i].push_back(round[i]);
+      ratios[i].push_back(round[i] / round[0]);
+    }
+  }
+  std::vector<SamplerFigure> out;
+  for (size_t i = 0; i < rows.size(); ++i)
+    out.push_back({median(rates[i]), median(ratios[i]), *std::min_element(ratios[i].begin(), ratios[i].end()),
+                   *std::max_element(ratios[i].begin(), ratios[i].end())});
+  return out;
+}
+
 void printHeader(const char* what) {
   std::printf("%-*s %12s %12s %20s %9s %6s\n", labelWidth(), what, "1 thread M/s", "all threads",
               "speed-up (range)", "CPU got", "steal");
@@ -210,6 +240,16 @@ int runBench(const BenchOptions& o) {
     Scaling m = measure(sphere, s, all, o);
     printRow(strategyLabel(s.integrator), m, 1e-6);
   }
+
+  std::printf("\n%-28s %12s %28s\n", ("sampler (" + strategyLabel(sphere.settings.integrator) + ")").c_str(),
+              "1 thread M/s", "time per sample vs first");
+  std::vector<SamplerFigure> samplers = measureSamplers(sphere, o);
+  for (size_t i = 0; i < samplers.size(); ++i)
+    std::printf("%-28s %12.2f %15.3fx (%.3f-%.3f)\n", std::string(samplerTable()[i].label).c_str(),
+                samplers[i].rate * 1e-6, 1.0 / samplers[i].ratio, 1.0 / samplers[i].ratioMax,
+                1.0 / samplers[i].ratioMin);
+  std::printf(
+      "(runs of all samplers alternate forward and backward; ratios are per round, then the median)\n");
 
   std::string aoPath = locateScene(o.aoScene, "scenes/standin/rock-ao.xml");
   if (aoPath.empty()) {

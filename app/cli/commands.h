@@ -25,6 +25,8 @@ struct WarpGuiArgs {
   float param = 0.f;
   int log2Points = 14;
   std::string pointSet = "independent";
+  std::string sampler = "sobol";  // --point-set sampler
+  int request = 0, pixelX = 0, pixelY = 0;
   bool mismatch = false, gridLines = false;
   uint64_t seed = 1;
   int res = 0;  // 0: automatic

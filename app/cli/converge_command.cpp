@@ -1,4 +1,5 @@
-// penumbra converge: error against run time (or spp) for every sampling strategy.
+// penumbra converge: error against run time (or spp) for every sampling strategy, crossed with the
+// samplers named by --samplers.
 #include <cstdio>
 #include <filesystem>
 
@@ -9,6 +10,7 @@
 #include "app/cli/scene_options.h"
 #include "core/analysis/convergence.h"
 #include "core/math/error.h"
+#include "core/sampling/sampler_table.h"
 
 namespace penumbra::cli {
 
@@ -17,6 +19,7 @@ namespace {
 struct ConvergeOptions {
   SceneOptions scene;
   std::string strategies = "all";
+  std::string samplers;  // empty: the scene's sampler
   double seconds = 0;
   uint32_t spp = 0;
   std::string reference;
@@ -38,6 +41,7 @@ int runConverge(const ConvergeOptions& o) {
   LoadedScene loaded = o.scene.load();
   if (o.spp == 0 && o.seconds <= 0) throw Error("converge: give --time SECONDS or --spp N");
   std::vector<IntegratorDesc> strategies = parseStrategies(loaded.settings.integrator, o.strategies);
+  std::vector<SamplerKind> samplers = parseSamplers(loaded.settings.samplerKind, o.samplers);
   if (o.seed == kReferenceSeed) throw Error("converge: --seed must differ from the reference's seed");
   std::unique_ptr<net::TevStreamer> tev = openStream(displayServer);  // each strategy's final image
   ReferenceRequest rq;
@@ -55,14 +59,17 @@ int runConverge(const ConvergeOptions& o) {
   co.threads = o.threads;
   co.seed = o.seed;
   std::vector<ConvergenceRun> runs;
-  for (const IntegratorDesc& s : strategies) {
-    runs.push_back(runConvergence(loaded, s, ref, mask, co));
-    const ConvergenceRun& r = runs.back();
-    std::printf("%-28s %6u spp  %7.2f s  RMSE %.4e  (no-light %.4e)  %zu points\n", r.strategy.c_str(), r.spp,
-                r.seconds, r.points.back().error.all.rmse, r.points.back().error.noLight.rmse,
-                r.points.size());
-    if (tev) tev->send(net::TevFrame{tevImageName(loaded.path, s, " converge"), r.finalImage, Image()});
-  }
+  for (const IntegratorDesc& s : strategies)
+    for (SamplerKind sampler : samplers) {
+      runs.push_back(runConvergence(loaded, s, sampler, ref, mask, co));
+      const ConvergenceRun& r = runs.back();
+      std::printf("%-28s %-12s %6u spp  %7.2f s  RMSE %.4e  (no-light %.4e)  %zu points\n",
+                  r.strategy.c_str(), samplerKindName(r.sampler), r.spp, r.seconds,
+                  r.points.back().error.all.rmse, r.points.back().error.noLight.rmse, r.points.size());
+      const std::string suffix =
+          samplers.size() > 1 ? std::string(" ") + samplerKindName(sampler) + " converge" : " converge";
+      if (tev) tev->send(net::TevFrame{tevImageName(loaded.path, s, suffix), r.finalImage, Image()});
+    }
 
   ReportInfo info;
   info.sceneName =
@@ -94,9 +101,12 @@ void addConvergeCommand(CLI::App& app, int& exitCode) {
   cmd->add_option(
       "--strategies", opts->strategies,
       "all, or a comma-separated list of the scene integrator's strategies (" + strategyNamesHelp() + ")");
-  cmd->add_option("--time", opts->seconds, "Seconds per strategy (error against time)")
+  cmd->add_option("--samplers", opts->samplers,
+                  "Comma-separated samplers to cross with the strategies, or all (" + acceptedSamplerNames() +
+                      "; default: the scene's sampler)");
+  cmd->add_option("--time", opts->seconds, "Seconds per strategy and sampler (error against time)")
       ->check(finitePositiveNumber());
-  cmd->add_option("--spp", opts->spp, "Samples per pixel per strategy (error against samples)")
+  cmd->add_option("--spp", opts->spp, "Samples per pixel per strategy and sampler (error against samples)")
       ->check(CLI::Range(1u, 1u << 24));
   cmd->add_option(
       "--reference", opts->reference,

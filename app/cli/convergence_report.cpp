@@ -10,6 +10,7 @@
 
 #include "core/image/tonemap.h"
 #include "core/math/error.h"
+#include "core/sampling/sampler_table.h"
 
 namespace penumbra::cli {
 
@@ -195,24 +196,60 @@ void drawScaled(cairo_t* cr, cairo_surface_t* img, int w, int h, double x, doubl
   cairo_restore(cr);
 }
 
-std::string strategyTitle(const ConvergenceRun& r) {
-  return strategyShortName(r.integrator);
+// Whether the runs cross several samplers (then every label names the sampler too).
+bool severalSamplers(const std::vector<ConvergenceRun>& runs) {
+  for (const ConvergenceRun& r : runs)
+    if (r.sampler != runs.front().sampler) return true;
+  return false;
+}
+
+std::string strategyTitle(const ConvergenceRun& r, bool withSampler) {
+  return strategyShortName(r.integrator) +
+         (withSampler ? std::string(" / ") + samplerKindName(r.sampler) : "");
+}
+
+// One colour per strategy, one line style per sampler, in order of first appearance.
+template <class Key>
+std::size_t indexOf(std::vector<Key>& seen, const Key& k) {
+  auto it = std::find(seen.begin(), seen.end(), k);
+  if (it != seen.end()) return std::size_t(it - seen.begin());
+  seen.push_back(k);
+  return seen.size() - 1;
+}
+struct RunStyles {
+  std::vector<std::size_t> colour, dash;
+  std::vector<Strategy> strategies;
+  std::vector<SamplerKind> samplers;
+};
+RunStyles runStyles(const std::vector<ConvergenceRun>& runs) {
+  RunStyles st;
+  for (const ConvergenceRun& r : runs) {
+    st.colour.push_back(indexOf(st.strategies, r.integrator.strategy));
+    st.dash.push_back(indexOf(st.samplers, r.sampler));
+  }
+  return st;
+}
+// Solid, dashed, dotted, dash-dotted.
+void setDash(cairo_t* cr, std::size_t style) {
+  static const double kDashes[][4] = {{0, 0, 0, 0}, {9, 5, 0, 0}, {2, 4, 0, 0}, {9, 4, 2, 4}};
+  static const int kCounts[] = {0, 2, 2, 4};
+  cairo_set_dash(cr, kDashes[style % 4], kCounts[style % 4], 0);
 }
 
 }  // namespace
 
 void writeConvergenceCsv(const std::string& path, const std::vector<ConvergenceRun>& runs) {
   std::ostringstream out;
-  out << "strategy,seconds,cpu_seconds,spp,samples,mse,rmse,rel_mse,mse_stderr,ref_variance,"
+  out << "strategy,sampler,seconds,cpu_seconds,spp,samples,mse,rmse,rel_mse,mse_stderr,ref_variance,"
          "mse_nolight,rmse_nolight,rel_mse_nolight,mse_stderr_nolight\n";
   out.precision(9);
   for (const ConvergenceRun& r : runs)
     for (const ConvergencePoint& p : r.points)
-      out << strategyShortName(r.integrator) << ',' << p.seconds << ',' << p.cpuSeconds << ',' << p.spp << ','
-          << p.samples << ',' << p.error.all.mse << ',' << p.error.all.rmse << ',' << p.error.all.relMse
-          << ',' << p.error.all.mseStdErr << ',' << p.error.all.refVariance << ',' << p.error.noLight.mse
-          << ',' << p.error.noLight.rmse << ',' << p.error.noLight.relMse << ',' << p.error.noLight.mseStdErr
-          << '\n';
+      out << strategyShortName(r.integrator) << ',' << samplerKindName(r.sampler) << ',' << p.seconds << ','
+          << p.cpuSeconds << ',' << p.spp << ',' << p.samples << ',' << p.error.all.mse << ','
+          << p.error.all.rmse << ',' << p.error.all.relMse << ',' << p.error.all.mseStdErr << ','
+          << p.error.all.refVariance << ',' << p.error.noLight.mse << ',' << p.error.noLight.rmse << ','
+          << p.error.noLight.relMse << ',' << p.error.noLight.mseStdErr << '\n';
   writeAtomically(path, out.str());
 }
 
@@ -224,6 +261,7 @@ void plotConvergence(const std::string& path, const std::vector<ConvergenceRun>&
   cairo_set_source_rgb(cr, 0.97, 0.97, 0.97);
   cairo_paint(cr);
 
+  const RunStyles styles = runStyles(runs);
   for (int panel = 0; panel < 2; ++panel) {
     bool noLight = panel == 1;
     auto rmseOf = [&](const ConvergencePoint& p) {
@@ -277,9 +315,10 @@ void plotConvergence(const std::string& path, const std::vector<ConvergenceRun>&
            0, 0);
     }
     for (std::size_t i = 0; i < runs.size(); ++i) {
-      const double* c = kColors[i % 6];
+      const double* c = kColors[styles.colour[i] % 6];
       cairo_set_source_rgb(cr, c[0], c[1], c[2]);
       cairo_set_line_width(cr, 2.2);
+      setDash(cr, styles.dash[i]);
       bool started = false;
       for (const ConvergencePoint& p : runs[i].points) {
         double x = xOf(p, info), y = rmseOf(p);
@@ -291,6 +330,7 @@ void plotConvergence(const std::string& path, const std::vector<ConvergenceRun>&
         started = true;
       }
       cairo_stroke(cr);
+      cairo_set_dash(cr, nullptr, 0, 0);
       // Markers with ±1 standard error bars (RMSE error from the MSE's: se/(2 RMSE)).
       cairo_set_line_width(cr, 1.2);
       for (const ConvergencePoint& p : runs[i].points) {
@@ -309,21 +349,33 @@ void plotConvergence(const std::string& path, const std::vector<ConvergenceRun>&
     }
     cairo_restore(cr);
   }
-  // Legend along the bottom.
+  // Legend along the bottom: a colour per strategy; with several samplers, a line style per sampler.
   double lx = 95, ly = H - 58;
-  for (std::size_t i = 0; i < runs.size(); ++i) {
-    const double* c = kColors[i % 6];
+  auto legendEntry = [&](const double* c, std::size_t dash, const std::string& label) {
     cairo_set_source_rgb(cr, c[0], c[1], c[2]);
     cairo_set_line_width(cr, 3);
+    setDash(cr, dash);
     cairo_move_to(cr, lx, ly);
-    cairo_line_to(cr, lx + 26, ly);
+    cairo_line_to(cr, lx + 30, ly);
     cairo_stroke(cr);
+    cairo_set_dash(cr, nullptr, 0, 0);
     cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
-    std::string label = runs[i].strategy;
-    text(cr, lx + 32, ly, label, 14, 0, 0.5);
+    text(cr, lx + 36, ly, label, 14, 0, 0.5);
     cairo_text_extents_t e;
     cairo_text_extents(cr, label.c_str(), &e);
-    lx += 32 + e.x_advance + 30;
+    lx += 36 + e.x_advance + 26;
+  };
+  for (std::size_t k = 0; k < styles.strategies.size(); ++k)
+    for (std::size_t i = 0; i < runs.size(); ++i)
+      if (styles.colour[i] == k) {
+        legendEntry(kColors[k % 6], 0, runs[i].strategy);
+        break;
+      }
+  if (styles.samplers.size() > 1) {
+    static const double kGrey[3] = {0.35, 0.35, 0.35};
+    lx += 20;
+    for (std::size_t k = 0; k < styles.samplers.size(); ++k)
+      legendEntry(kGrey, k, samplerKindName(styles.samplers[k]));
   }
   cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
   std::string caption = info.sceneName + ", " + std::to_string(info.width) + "x" +
@@ -389,7 +441,7 @@ void writeEqualTimeImage(const std::string& path, const std::vector<ConvergenceR
     }
     const ConvergenceRun& r = runs[i];
     const ConvergencePoint& last = r.points.back();
-    text(cr, x + tile / 2, top + tile + 6, strategyTitle(r), 14, 0.5, 0, true);
+    text(cr, x + tile / 2, top + tile + 6, strategyTitle(r, severalSamplers(runs)), 14, 0.5, 0, true);
     text(cr, x + tile / 2, top + tile + 26,
          std::to_string(r.spp) + " spp, " + fmt("%.2f s", r.seconds) + ", RMSE " +
              fmt("%.3g", last.error.all.rmse),
@@ -446,7 +498,7 @@ void writeSummary(const std::string& path, const std::vector<ConvergenceRun>& ru
   out << "- image: " << info.width << "x" << info.height << " (" << info.pixels << " px; "
       << info.noLightPixels << " see no light directly)\n";
   out << "- budget: " << (info.sppMode ? fmt("%.0f spp", info.budget) : fmt("%.3g s", info.budget))
-      << " per strategy, each from a cold start on "
+      << " per strategy and sampler, each from a cold start on "
       << (info.threads > 0 ? std::to_string(info.threads) : std::string("all"))
       << " threads, one after another\n";
   out << "- reference: " << info.referenceSource << "\n";
@@ -460,13 +512,21 @@ void writeSummary(const std::string& path, const std::vector<ConvergenceRun>& ru
   out << "- no-light: only pixels that see no emitter directly (the emitter's silhouette pixels have a large "
          "variance from the pixel filter alone, the same for every strategy, and dominate the all-pixel "
          "MSE).\n\n";
+  out << "- slope: least-squares slope of log MSE against log " << (info.sppMode ? "spp" : "time")
+      << " over each run's points from its 4th pass on. Independent samples give -1 (MSE ~ 1/N); a "
+         "sampler whose nets pay off gives a steeper slope (Owen-scrambled Sobol': down to -2 or -3 on "
+         "smooth pixels), until edges, occlusion and the pixel filter's discontinuities bring it back "
+         "towards -1. The all-pixel slope mixes both; the no-light one leaves out the emitter's "
+         "silhouette.\n\n";
+  // Speed-ups are against the baseline strategy with the first sampler listed.
   const ConvergenceRun* base = nullptr;
   for (const ConvergenceRun& r : runs)
-    if (strategyRow(r.integrator.strategy).baseline) base = &r;
-  out << "| strategy | spp | wall s | CPU s | MSE | RMSE | relMSE | efficiency (wall) | speed-up (wall) | "
-         "speed-up (CPU) | MSE no-light | efficiency no-light (wall) | speed-up no-light (wall) | "
-         "speed-up no-light (CPU) |\n";
-  out << "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+    if (strategyRow(r.integrator.strategy).baseline && r.sampler == runs.front().sampler) base = &r;
+  out << "| strategy | sampler | spp | wall s | CPU s | MSE | RMSE | relMSE | slope | slope (CPU) | "
+         "efficiency (wall) | speed-up (wall) | speed-up (CPU) | MSE no-light | slope no-light | "
+         "efficiency no-light (wall) | speed-up no-light (wall) | speed-up no-light (CPU) |\n";
+  out << "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+  auto slopeText = [](double v) { return std::isfinite(v) ? fmt("%.2f", v) : std::string("n/a"); };
   auto ratio = [&](double e, double eb) {
     return base && eb > 0 ? fmt("%.3gx", e / eb) : std::string("n/a");
   };
@@ -476,14 +536,18 @@ void writeSummary(const std::string& path, const std::vector<ConvergenceRun>& ru
            enc = efficiency(r, true, true);
     double b = base ? efficiency(*base) : 0, bn = base ? efficiency(*base, true) : 0;
     double bc = base ? efficiency(*base, false, true) : 0, bnc = base ? efficiency(*base, true, true) : 0;
-    out << "| " << strategyShortName(r.integrator) << " | " << r.spp << " | " << fmt("%.2f", r.seconds)
-        << " | " << fmt("%.2f", p.cpuSeconds) << " | " << fmt("%.3e", p.error.all.mse) << " | "
-        << fmt("%.3e", p.error.all.rmse) << " | " << fmt("%.3e", p.error.all.relMse) << " | "
-        << fmt("%.4g", e) << " | " << ratio(e, b) << " | " << ratio(ec, bc) << " | "
-        << fmt("%.3e", p.error.noLight.mse) << " | " << fmt("%.4g", en) << " | " << ratio(en, bn) << " | "
-        << ratio(enc, bnc) << " |\n";
+    out << "| " << strategyShortName(r.integrator) << " | " << samplerKindName(r.sampler) << " | " << r.spp
+        << " | " << fmt("%.2f", r.seconds) << " | " << fmt("%.2f", p.cpuSeconds) << " | "
+        << fmt("%.3e", p.error.all.mse) << " | " << fmt("%.3e", p.error.all.rmse) << " | "
+        << fmt("%.3e", p.error.all.relMse) << " | " << slopeText(mseSlope(r, info.sppMode)) << " | "
+        << slopeText(mseSlope(r, info.sppMode, false, true)) << " | " << fmt("%.4g", e) << " | "
+        << ratio(e, b) << " | " << ratio(ec, bc) << " | " << fmt("%.3e", p.error.noLight.mse) << " | "
+        << slopeText(mseSlope(r, info.sppMode, true)) << " | " << fmt("%.4g", en) << " | " << ratio(en, bn)
+        << " | " << ratio(enc, bnc) << " |\n";
   }
-  if (!base) out << "\n(uniform hemisphere sampling was not run, so there is no speed-up column.)\n";
+  if (!base && !runs.empty())
+    out << "\n(uniform hemisphere sampling was not run with " << samplerKindName(runs.front().sampler)
+        << ", so there is no speed-up column.)\n";
   out << "\nFiles: convergence.csv (every measurement), convergence.png (RMSE against "
       << (info.sppMode ? "spp" : "time") << ", log-log), equal-time.png (final images and error maps).\n";
   writeAtomically(path, out.str());

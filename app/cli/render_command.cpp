@@ -18,6 +18,7 @@
 #include "core/math/error.h"
 #include "core/render/engine.h"
 #include "core/render/memory_estimate.h"
+#include "core/render/sample_count_fit.h"
 #include "core/scene/light_selection_default.h"
 
 namespace penumbra::cli {
@@ -89,6 +90,8 @@ int runRender(const RenderOptions& o) {
   limits.seconds = o.seconds;
   uint32_t defaultSpp = o.reference ? 4096u : job->settings.sampleCount;
   limits.targetSpp = o.spp > 0 ? o.spp : (o.seconds > 0 ? 0 : defaultSpp);
+  if (std::string note = fitSampleCountToTarget(job->settings, limits.targetSpp); !note.empty())
+    std::fprintf(stderr, "warning: %s\n", note.c_str());
 
   std::snprintf(gNotWrittenMessage, sizeof gNotWrittenMessage,
                 "\ninterrupted again: stopped at once; %s not written (an existing file is unchanged)\n",

@@ -37,6 +37,7 @@ struct WarpArgs {
   bool gui = false;
   int points = 14;
   std::string pointSet = "independent";
+  std::string pixel = "0,0";
   bool gridLines = false;
   WarpGuiArgs view;
 };
@@ -230,8 +231,18 @@ void addWarpCommand(CLI::App& app, int& exitCode, WarpGuiRunner gui) {
   cmd->add_option("--points", args->points, "--gui: number of points as a power of two, 2^K")
       ->capture_default_str()
       ->check(CLI::Range(5, 20));
-  cmd->add_option("--point-set", args->pointSet, "--gui: independent, grid or stratified")
+  cmd->add_option("--point-set", args->pointSet,
+                  "--gui: independent, grid, stratified or sampler (the first 2^K samples of --sampler's "
+                  "--request at --pixel)")
       ->capture_default_str();
+  cmd->add_option("--sampler", args->view.sampler, "--gui --point-set sampler: the render sampler")
+      ->capture_default_str();
+  cmd->add_option("--request", args->view.request,
+                  "--gui --point-set sampler: which 2-D request (0: the pixel filter's, 1: the first "
+                  "light or direction pair)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 64));
+  cmd->add_option("--pixel", args->pixel, "--gui --point-set sampler: the pixel, X,Y")->capture_default_str();
   cmd->add_flag("--grid-lines", args->gridLines, "--gui: draw the warped grid lines");
   cmd->add_flag("--offscreen", args->view.offscreen, "--gui: render offscreen (OSMesa) instead of a window");
   cmd->add_option("--screenshot", args->view.screenshot, "--gui: write the last frame to this PNG");
@@ -255,11 +266,13 @@ void addWarpCommand(CLI::App& app, int& exitCode, WarpGuiRunner gui) {
       g.gridLines = a.gridLines;
       g.seed = a.seed;
       g.res = cmd->count("--res") ? a.res : 0;
+      if (std::sscanf(a.pixel.c_str(), "%d,%d", &g.pixelX, &g.pixelY) != 2)
+        throw Error("--pixel " + a.pixel + ": expected X,Y, e.g. 3,5");
       exitCode = gui(g);
       return;
     }
-    for (const char* o : {"--points", "--point-set", "--grid-lines", "--offscreen", "--screenshot",
-                          "--frames", "--window", "--no-wait"})
+    for (const char* o : {"--points", "--point-set", "--sampler", "--request", "--pixel", "--grid-lines",
+                          "--offscreen", "--screenshot", "--frames", "--window", "--no-wait"})
       if (cmd->count(o)) throw Error(std::string(o) + " is an option of the warp inspector: add --gui");
     if (a.all) {
       if (!a.type.empty() || cmd->count("--param"))

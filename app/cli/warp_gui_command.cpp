@@ -10,6 +10,7 @@
 #include "app/platform/platform.h"
 #include "app/ui/warp_inspector.h"
 #include "core/math/error.h"
+#include "core/sampling/sampler_table.h"
 
 namespace penumbra::cli {
 
@@ -31,6 +32,9 @@ std::vector<std::string> offscreenArgs(const WarpGuiArgs& g) {
                                    "--seed",
                                    std::to_string(g.seed)};
   if (warpHasParameter(g.type)) args.insert(args.end(), {"--param", param});
+  if (g.pointSet == "sampler")
+    args.insert(args.end(), {"--sampler", g.sampler, "--request", std::to_string(g.request), "--pixel",
+                             std::to_string(g.pixelX) + "," + std::to_string(g.pixelY)});
   if (g.mismatch) args.push_back("--mismatch");
   if (g.gridLines) args.push_back("--grid-lines");
   if (g.res > 0) args.insert(args.end(), {"--res", std::to_string(g.res)});
@@ -48,7 +52,12 @@ int runWarpGui(const WarpGuiArgs& in) {
   const WarpGuiArgs& g = in;
   ui::WarpGuiOptions o;
   if (!ui::parsePointSet(g.pointSet, o.settings.pointSet))
-    throw Error("--point-set " + g.pointSet + ": expected independent, grid or stratified");
+    throw Error("--point-set " + g.pointSet + ": expected independent, grid, stratified or sampler");
+  if (!parseSamplerKind(g.sampler, o.settings.sampler))
+    throw Error("--sampler " + g.sampler + ": expected one of " + acceptedSamplerNames());
+  o.settings.request = g.request;
+  o.settings.pixelX = g.pixelX;
+  o.settings.pixelY = g.pixelY;
   const bool offscreenBuild = platform::isOffscreenBuild();
   platform::runOffscreenUnlessWindowed("penumbra warp --gui", g.offscreen,
                                        g.screenshot.empty() ? kFallbackScreenshot : g.screenshot,

@@ -18,6 +18,7 @@
 #include "core/math/error.h"
 #include "core/render/cpu_clock.h"
 #include "core/render/engine.h"
+#include "core/render/sample_count_fit.h"
 
 namespace penumbra::mpi {
 
@@ -38,6 +39,7 @@ struct Loaded {
   LoadedScene scene;
   std::shared_ptr<RenderJob> job;
   std::string output;
+  std::string samplerNote;  // what a count-shaped sampler does with this run's count (render's warning)
 };
 
 // Everything that can fail before rendering; runs on every rank.
@@ -58,6 +60,11 @@ Loaded prepare(const Options& o) {
     if (l.output.empty()) l.output = referenceCachePath(l.scene);
   }
   if (l.output.empty()) throw Error("render: -o/--output is required (optional only with --reference)");
+  // Stratified and zsobol take the run's count, as in render: every rank the same, so the ranks'
+  // blocks of sample indices are blocks of one pattern.
+  const uint32_t target =
+      o.spp > 0 ? o.spp : (o.seconds > 0 ? 0 : (o.reference ? 4096u : l.job->settings.sampleCount));
+  l.samplerNote = fitSampleCountToTarget(l.job->settings, target);
   return l;
 }
 
@@ -116,6 +123,7 @@ int run(const Options& o, const Session& mpi) {
     return 2;
   }
 
+  if (rank == 0 && !l.samplerNote.empty()) std::fprintf(stderr, "warning: %s\n", l.samplerNote.c_str());
   const RenderSettings& s = l.job->settings;
   const uint32_t block = o.block;
   const uint64_t target = o.spp > 0 ? o.spp : (o.seconds > 0 ? 0 : (o.reference ? 4096u : s.sampleCount));

@@ -20,6 +20,7 @@ void drawSamplerPanel(ViewerController& c, PanelState&) {
     }
     ImGui::EndCombo();
   }
+  if (!c.samplerNote().empty()) ImGui::TextWrapped("%s", c.samplerNote().c_str());
   int count = int(s.sampleCount);
   if (ImGui::InputInt("sampleCount", &count, 1, 16, ImGuiInputTextFlags_EnterReturnsTrue))
     s.sampleCount = uint32_t(std::clamp(count, 1, 1 << 24));

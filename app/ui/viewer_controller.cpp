@@ -13,6 +13,8 @@
 #include "core/math/error.h"
 #include "core/math/frame.h"
 #include "core/render/light_selection_rows.h"
+#include "core/render/sample_count_fit.h"
+#include "core/sampling/sampler_table.h"
 #include "core/scene/light_selection_default.h"
 #include "core/scene/xml_parser.h"
 
@@ -147,6 +149,8 @@ void ViewerController::startLeft() {
   leftOutput_ = job->output;
   bool wasPaused = engine_.paused();
   RenderLimits limits = effectiveLimits();
+  // Compare runs at equal time: the final count is then unknown too.
+  samplerNote_ = fitSampleCountToTarget(job->settings, limits.seconds > 0 ? 0 : limits.targetSpp);
   limits.preview = true;  // a coarse first frame within milliseconds of any change
   engine_.start(std::move(job), limits, engineThreads());
   if (wasPaused) engine_.setPaused(true);
@@ -160,6 +164,7 @@ void ViewerController::startCompare() {
   job->settings.integrator = renderedCompareIntegrator();
   bool wasPaused = engine_.paused();
   RenderLimits limits = effectiveLimits();
+  fitSampleCountToTarget(job->settings, limits.seconds > 0 ? 0 : limits.targetSpp);
   limits.preview = true;
   compareEngine_.start(std::move(job), limits, engineThreads());
   if (wasPaused) compareEngine_.setPaused(true);
@@ -381,6 +386,8 @@ void ViewerController::setLimits(const RenderLimits& l) {
   if (l.targetSpp == limits_.targetSpp && l.seconds == limits_.seconds) return;
   limits_ = l;
   useTimeBudget_ = l.seconds > 0;
+  // A sampler shaped by the count (stratified, zsobol) needs a new pattern for a new target.
+  if (samplerRow(settings_.samplerKind).usesSampleCount) return start();
   const RenderLimits run = effectiveLimits();
   if (!engine_.extend(run)) startLeft();  // a new target continues the accumulation
   if (compare_ && !compareEngine_.extend(run)) startCompare();

@@ -65,6 +65,9 @@ class ViewerController {
   bool paused() const { return engine_.paused(); }
   RenderProgress progress() const { return engine_.progress(); }
   uint64_t restartCount() const { return restarts_; }
+  // What a count-shaped sampler (stratified, zsobol) does with the current target, when it is not
+  // simply stratified over it (empty otherwise); the sampler panel shows it.
+  const std::string& samplerNote() const { return samplerNote_; }
   Engine& engine() { return engine_; }
 
   // Called once per UI frame: fetches the newest published snapshot and, with requestNext, asks the
@@ -241,6 +244,7 @@ class ViewerController {
   int probeX_ = -1, probeY_ = -1;  // setProbePixel
   FilmSnapshot snapshot_;
   uint64_t restarts_ = 0;
+  std::string samplerNote_;
   uint64_t snapshotRestart_ = 0;
   uint64_t snapshotSerial_ = 0, compareSnapshotSerial_ = 0;
   bool lightShareView_ = false;

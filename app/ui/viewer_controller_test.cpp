@@ -156,6 +156,35 @@ TEST(ViewerController, CameraAndSamplerChangesRestartAndLiveXmlRoundTrips) {
   EXPECT_EQ(c.settings().camera.toWorld, before);
 }
 
+// The target spp stratifies stratified and zsobol: a new target restarts them with that count;
+// independent and sobol extend their accumulation; endless accumulation says what it does.
+TEST(ViewerController, TargetSppSetsTheSampleCountOfCountShapedSamplers) {
+  ui::ViewerController c(smallDefaultScene(), {}, 1);
+  RenderSettings s = c.settings();
+  s.samplerKind = SamplerKind::Sobol;
+  c.setSettings(s);
+  uint64_t r0 = c.restartCount();
+  RenderLimits l = c.limits();
+  l.targetSpp = 64;
+  c.setLimits(l);
+  EXPECT_EQ(c.restartCount(), r0);  // extended
+  EXPECT_EQ(c.samplerNote(), "");
+
+  s.samplerKind = SamplerKind::Stratified;
+  c.setSettings(s);
+  EXPECT_EQ(c.engine().job()->settings.sampleCount, 64u);
+  uint64_t r1 = c.restartCount();
+  l.targetSpp = 49;
+  c.setLimits(l);
+  EXPECT_EQ(c.restartCount(), r1 + 1);
+  EXPECT_EQ(c.engine().job()->settings.sampleCount, 49u);
+  EXPECT_EQ(c.samplerNote(), "");
+  l.targetSpp = 0;  // endless
+  c.setLimits(l);
+  EXPECT_NE(c.samplerNote().find("final sample count is not known"), std::string::npos) << c.samplerNote();
+  EXPECT_EQ(c.engine().job()->settings.sampleCount, 100000u);  // the scene's
+}
+
 TEST(ViewerController, InvalidSceneKeepsTheLastGoodOneAndShowsFileAndLine) {
   std::string bad =
       (fs::temp_directory_path() / ("penumbra-viewer-controller-" + std::to_string(::getpid()) + "-bad.xml"))

@@ -21,6 +21,7 @@
 #include "core/image/image_io.h"
 #include "core/image/tonemap.h"
 #include "core/math/error.h"
+#include "core/sampling/sampler_table.h"
 #include "penumbra_shaders.h"  // generated from shaders/
 
 namespace penumbra::ui {
@@ -280,6 +281,18 @@ void WarpInspector::drawControls() {
     return true;
   };
   if (ImGui::Combo("point set", &ps, psName, nullptr, kPointSetCount)) s.pointSet = static_cast<PointSet>(ps);
+  if (s.pointSet == PointSet::Sampler) {
+    // The first 2^k samples of one request of a render sampler at one pixel: its nets show as
+    // exactly one point per elementary interval.
+    if (ImGui::BeginCombo("sampler", std::string(samplerRow(s.sampler).label).c_str())) {
+      for (const SamplerRow& row : samplerTable())
+        if (ImGui::Selectable(std::string(row.label).c_str(), row.kind == s.sampler)) s.sampler = row.kind;
+      ImGui::EndCombo();
+    }
+    ImGui::SliderInt("2-D request", &s.request, 0, 7, s.request == 0 ? "%d (pixel filter)" : "%d");
+    int pixel[2] = {s.pixelX, s.pixelY};
+    if (ImGui::InputInt2("pixel", pixel)) s.pixelX = pixel[0], s.pixelY = pixel[1];
+  }
   ImGui::Checkbox("warped grid lines", &s.gridLines);
   ImGui::Checkbox("mismatched pdf", &s.mismatch);
   if (ImGui::IsItemHovered())
@@ -315,7 +328,8 @@ void WarpInspector::drawControls() {
   if (!r.message.empty()) ImGui::TextWrapped("%s", r.message.c_str());
   if (v.settings.pointSet != PointSet::Independent)
     ImGui::TextWrapped("(%s points are not independent: the test is only indicative)",
-                       pointSetName(v.settings.pointSet));
+                       v.settings.pointSet == PointSet::Sampler ? samplerKindName(v.settings.sampler)
+                                                                : pointSetName(v.settings.pointSet));
   if (!upToDate())
     ImGui::TextColored(ImVec4(1.f, 0.8f, 0.3f, 1.f), "computing...");
   else

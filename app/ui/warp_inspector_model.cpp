@@ -28,6 +28,8 @@ const char* pointSetName(PointSet s) {
       return "grid";
     case PointSet::Stratified:
       return "stratified";
+    case PointSet::Sampler:
+      return "sampler";
   }
   return "?";
 }
@@ -101,6 +103,25 @@ PdfFunction judgePdf(const WarpInspectorSettings& s) {
       return warpPdfFunction(WarpType::Beckmann, 2.f * p);
   }
   return warpPdfFunction(s.type, p);
+}
+
+std::vector<Vec2> makeSamplerPointSet(SamplerKind kind, int log2Points, uint64_t seed, int request,
+                                      IVec2 pixel) {
+  const int k = std::clamp(log2Points, 0, 30);
+  Sampler sampler(kind, 1u << k, seed);
+  std::vector<Vec2> pts(size_t(1) << k);
+  for (size_t i = 0; i < pts.size(); ++i) {
+    sampler.startPixelSample(pixel, uint32_t(i));
+    for (int r = 0; r < request; ++r) sampler.next2D();
+    pts[i] = sampler.next2D();
+  }
+  return pts;
+}
+
+std::vector<Vec2> makePointSet(const WarpInspectorSettings& s) {
+  if (s.pointSet == PointSet::Sampler)
+    return makeSamplerPointSet(s.sampler, s.log2Points, s.seed, s.request, IVec2(s.pixelX, s.pixelY));
+  return makePointSet(s.pointSet, s.log2Points, s.seed);
 }
 
 std::vector<Vec2> makePointSet(PointSet set, int log2Points, uint64_t seed) {
@@ -289,7 +310,7 @@ void WarpInspectorWorker::run() {
       // 1. points (and grid lines), published first so the 3-D view follows the controls at once
       auto pts = std::make_shared<WarpPoints>();
       pts->settings = s;
-      std::vector<Vec2> u = makePointSet(s.pointSet, s.log2Points, s.seed);
+      std::vector<Vec2> u = makePointSet(s);
       check();
       pts->points.resize(u.size());
       for (size_t i = 0; i < u.size(); ++i) {

@@ -15,13 +15,15 @@
 #include <vector>
 
 #include "core/sampling/chi2.h"
+#include "core/sampling/sampler.h"
 #include "core/sampling/warp.h"
 
 namespace penumbra::ui {
 
-enum class PointSet : uint8_t { Independent, Grid, Stratified };
-inline constexpr int kPointSetCount = 3;
-const char* pointSetName(PointSet s);  // independent, grid, stratified
+// Sampler: the first 2^k samples of one request (dimension pair) of a render sampler at one pixel.
+enum class PointSet : uint8_t { Independent, Grid, Stratified, Sampler };
+inline constexpr int kPointSetCount = 4;
+const char* pointSetName(PointSet s);  // independent, grid, stratified, sampler
 bool parsePointSet(const std::string& name, PointSet& out);
 
 inline constexpr int kMinLog2Points = 5, kMaxLog2Points = 20;
@@ -35,6 +37,10 @@ struct WarpInspectorSettings {
   bool gridLines = false;
   uint64_t seed = 1;
   int resolution = 0;  // chi-square grid (0: chosen from the point count)
+  // PointSet::Sampler: which sampler, which of its 2-D requests (0: the pixel filter's), which pixel.
+  SamplerKind sampler = SamplerKind::Sobol;
+  int request = 0;
+  int pixelX = 0, pixelY = 0;
   bool operator==(const WarpInspectorSettings&) const = default;
 };
 
@@ -52,6 +58,12 @@ PdfFunction judgePdf(const WarpInspectorSettings& s);
 // samples are the CLI's); grid: cell centres of a 2^ceil(k/2) x 2^floor(k/2) grid, row by row;
 // stratified: one jittered point per cell of that grid.
 std::vector<Vec2> makePointSet(PointSet set, int log2Points, uint64_t seed);
+// The first 2^log2 samples (sample indices 0, 1, ...) of 2-D request `request` of `sampler` at
+// `pixel`, the sampler set up for a run of 2^log2 samples per pixel.
+std::vector<Vec2> makeSamplerPointSet(SamplerKind sampler, int log2Points, uint64_t seed, int request,
+                                      IVec2 pixel);
+// Either of the above, as the settings ask.
+std::vector<Vec2> makePointSet(const WarpInspectorSettings& s);
 // Warped lines of the unit square (`lines` + 1 per direction, each cut into `segments` pieces) as
 // GL_LINES endpoint pairs.
 std::vector<Vec3> warpedGridLines(WarpType type, float param, int lines, int segments);

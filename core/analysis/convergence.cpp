@@ -9,6 +9,8 @@
 #include "core/math/error.h"
 #include "core/render/cpu_clock.h"
 #include "core/render/engine.h"
+#include "core/render/sample_count_fit.h"
+#include "core/sampling/sampler_table.h"
 
 namespace penumbra {
 
@@ -111,14 +113,42 @@ std::vector<IntegratorDesc> parseStrategies(const IntegratorDesc& base, const st
   return out;
 }
 
+std::vector<SamplerKind> parseSamplers(SamplerKind sceneSampler, const std::string& list) {
+  if (list.empty()) return {sceneSampler};
+  std::vector<SamplerKind> out;
+  if (list == "all") {
+    for (const SamplerRow& r : samplerTable()) out.push_back(r.kind);
+    return out;
+  }
+  std::stringstream ss(list);
+  for (std::string name; std::getline(ss, name, ',');) {
+    SamplerKind k;
+    if (!parseSamplerKind(name, k))
+      throw Error("converge: unknown sampler '" + name +
+                  "' (expected all, or some of: " + acceptedSamplerNames() + ")");
+    if (std::find(out.begin(), out.end(), k) == out.end()) out.push_back(k);
+  }
+  if (out.empty()) throw Error("converge: --samplers names no sampler");
+  return out;
+}
+
 ConvergenceRun runConvergence(const LoadedScene& scene, const IntegratorDesc& strategy, const Reference& ref,
                               const std::vector<uint8_t>& seesLight, const ConvergenceOptions& o) {
+  return runConvergence(scene, strategy, scene.settings.samplerKind, ref, seesLight, o);
+}
+
+ConvergenceRun runConvergence(const LoadedScene& scene, const IntegratorDesc& strategy, SamplerKind sampler,
+                              const Reference& ref, const std::vector<uint8_t>& seesLight,
+                              const ConvergenceOptions& o) {
   bool sppMode = o.spp > 0;
   if (!sppMode && !(o.seconds > 0)) throw Error("converge: give a time or an spp count");
   auto job = std::make_shared<RenderJob>();
   job->scene = scene.scene;
   job->settings = scene.settings;
   job->settings.integrator = strategy;
+  job->settings.samplerKind = sampler;
+  // A known final count shapes stratified's strata and zsobol's nets (as `render --spp` does).
+  fitSampleCountToTarget(job->settings, sppMode ? o.spp : 0);
   job->settings.seed = o.seed;
   const uint64_t pixels = uint64_t(job->settings.camera.width) * uint64_t(job->settings.camera.height);
 
@@ -137,6 +167,7 @@ ConvergenceRun runConvergence(const LoadedScene& scene, const IntegratorDesc& st
   ConvergenceRun run;
   run.strategy = strategyLabel(strategy);
   run.integrator = strategy;
+  run.sampler = sampler;
   // This polling thread's CPU (snapshot copies, metrics) is not part of the render's cost.
   double pollerCpuStart = 0;
   auto record = [&](const Image& mean, uint32_t spp, double seconds, double cpu) {
@@ -206,6 +237,28 @@ double efficiency(const ConvergenceRun& run, bool noLight, bool cpuTime) {
   }
   if (n == 0) return 0;
   return 1.0 / std::exp(sumLog / n);
+}
+
+}  // namespace penumbra
+
+namespace penumbra {
+
+double mseSlope(const ConvergenceRun& run, bool sppAxis, bool noLight, bool cpuTime) {
+  std::vector<double> x, y;
+  for (const ConvergencePoint& p : run.points) {
+    double t = sppAxis ? double(p.spp) : cpuTime ? p.cpuSeconds : p.seconds;
+    double mse = noLight ? p.error.noLight.mse : p.error.all.mse;
+    if (p.spp < 4 || !(t > 0) || !(mse > 0)) continue;
+    x.push_back(std::log(t));
+    y.push_back(std::log(mse));
+  }
+  if (x.size() < 3) return NAN;
+  double mx = 0, my = 0;
+  for (size_t i = 0; i < x.size(); ++i) mx += x[i], my += y[i];
+  mx /= double(x.size()), my /= double(y.size());
+  double sxy = 0, sxx = 0;
+  for (size_t i = 0; i < x.size(); ++i) sxy += (x[i] - mx) * (y[i] - my), sxx += (x[i] - mx) * (x[i] - mx);
+  return sxx > 0 ? sxy / sxx : NAN;
 }
 
 }  // namespace penumbra

@@ -30,6 +30,7 @@ struct ConvergencePoint {
 struct ConvergenceRun {
   std::string strategy;  // strategyLabel
   IntegratorDesc integrator;
+  SamplerKind sampler = SamplerKind::Independent;
   std::vector<ConvergencePoint> points;
   Image finalImage;  // the mean at the end (equal time or equal spp across strategies)
   double seconds = 0;
@@ -54,6 +55,13 @@ std::vector<IntegratorDesc> parseStrategies(const IntegratorDesc& base, const st
 // accepts for each integrator type with strategies to compare.
 std::string strategyNamesHelp();
 
+// The scene's samplers, or those named in `list` (comma separated sampler names, or "all" for every
+// row of the sampler table). Throws Error.
+std::vector<SamplerKind> parseSamplers(SamplerKind sceneSampler, const std::string& list);
+ConvergenceRun runConvergence(const LoadedScene& scene, const IntegratorDesc& strategy, SamplerKind sampler,
+                              const Reference& ref, const std::vector<uint8_t>& seesLight,
+                              const ConvergenceOptions& options);
+// With the scene's sampler.
 ConvergenceRun runConvergence(const LoadedScene& scene, const IntegratorDesc& strategy, const Reference& ref,
                               const std::vector<uint8_t>& seesLight, const ConvergenceOptions& options);
 
@@ -62,5 +70,9 @@ ConvergenceRun runConvergence(const LoadedScene& scene, const IntegratorDesc& st
 // damps the noise of a single one). noLight selects the metric over pixels that see no light.
 // cpuTime: use ConvergencePoint::cpuSeconds instead of wall seconds.
 double efficiency(const ConvergenceRun& run, bool noLight = false, bool cpuTime = false);
+// Least-squares slope of log MSE against log time (cpuTime: CPU seconds; spp mode: pass spp) over
+// the run's points from its fourth pass on (the first passes are mostly start-up): -1 for
+// independent samples, steeper where a sampler's nets pay off. NaN with fewer than 3 points.
+double mseSlope(const ConvergenceRun& run, bool sppAxis, bool noLight = false, bool cpuTime = false);
 
 }  // namespace penumbra

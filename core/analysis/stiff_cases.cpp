@@ -17,6 +17,7 @@
 #include "core/render/film.h"
 #include "core/render/strategy_table.h"
 #include "core/sampling/sampler.h"
+#include "core/sampling/sampler_table.h"
 #include "core/sampling/warp.h"
 #include "core/scene/scene_builder.h"
 
@@ -136,7 +137,7 @@ double directTruth(const Scene& scene, const Vec3& x, const Vec3& n = kUp) {
 // One strategy's estimate along `ray`, one shading sample per camera sample (the strategy table's
 // instance of its integrator).
 Estimate estimate(Strategy s, const Scene& scene, const Ray& ray, int n, uint64_t seed) {
-  return strategyRow(s).estimateRay(scene, ray, 1, n, seed);
+  return strategyRow(s).estimateRay(scene, ray, 1, n, seed, SamplerKind::Independent);
 }
 
 std::string nameOf(Strategy s) {
@@ -238,8 +239,8 @@ CaseResult warpExtremes(const CaseOptions& o) {
   const int n = count(o, 400000);
   double sum = 0;
   uint64_t draws = 0;
-  for (SamplerKind kind : {SamplerKind::Independent, SamplerKind::Stratified}) {
-    Sampler sampler(kind, 64, o.seed);
+  for (const SamplerRow& row : samplerTable()) {
+    Sampler sampler(row.kind, 64, o.seed);
     for (int i = 0; i < n / 8; ++i) {
       sampler.startPixelSample(IVec2(i % 13, i / 13), uint32_t(i * 2654435761u));
       for (int k = 0; k < 4; ++k) {

@@ -22,7 +22,7 @@ struct AoIntegrator {
     ShadingPoint sp(scene, ray, hit);
     float sum = 0.f;
     for (int i = 0; i < samples; ++i) {
-      Vec2 u = sampler.next2D();
+      Vec2 u = sampler.next2D(uint32_t(i), uint32_t(samples));  // one request: stratified among themselves
       Vec3 local = kStrategy == Strategy::AoCosine ? Warp::squareToCosineHemisphere(u)
                                                    : Warp::squareToUniformHemisphere(u);
       Vec3 w = sp.frame.toWorld(local);

@@ -62,7 +62,7 @@ struct DirectIntegrator {
   Color3 hemisphereIrradiance(const Scene& scene, const ShadingPoint& sp, Sampler& sampler) const {
     Color3 E(0.f);
     for (int i = 0; i < samples; ++i) {
-      Vec2 u = sampler.next2D();
+      Vec2 u = sampler.next2D(uint32_t(i), uint32_t(samples));  // one request: stratified among themselves
       Vec3 local;
       float cosOverPdf;  // cos θ / pdf, in closed form: π (cosine warp), 2π cos θ (uniform warp)
       if constexpr (kStrategy == Strategy::DirectCosineHemisphere) {
@@ -95,7 +95,8 @@ struct DirectIntegrator {
       const LightTechnique<kLightMeasure> technique(light, sp);
       float lightScale = maxAbsComponent(light.sphere.center) + light.sphere.radius;
       for (int i = 0; i < samples; ++i) {
-        Vec2 u = sampler.next2D();
+        // Drawn before the canSample() check: a light that cannot be sampled still takes its request.
+        Vec2 u = sampler.next2D(uint32_t(i), uint32_t(samples));  // one request per light
         if (!technique.canSample()) continue;
         LightSample s = technique.sample(u);
         if (!(s.pdf > 0.f) || isBlack(s.Le)) continue;
@@ -118,9 +119,10 @@ struct DirectIntegrator {
     Color3 E(0.f);
     for (int i = 0; i < samples; ++i) {
       // Two sampler dimensions give the choice 48 bits: a 24-bit float would quantise deep BVHs and
-      // large alias tables.
-      const Vec2 uPick = sampler.next2D();
-      const Vec2 u = sampler.next2D();
+      // large alias tables. Two interleaved requests (the choice, then the point on the light), each
+      // stratified over the n shading samples.
+      const Vec2 uPick = sampler.next2D(uint32_t(i), uint32_t(samples), 0, 2);
+      const Vec2 u = sampler.next2D(uint32_t(i), uint32_t(samples), 1, 2);
       const LightPick pick = selection.pick(sp.hit.p, sp.ns, double(uPick.x) + double(uPick.y) * 0x1p-24);
       if (!(pick.pmf > 0.0)) continue;
       const SphereLight& light = scene.sphereLights[pick.light];

@@ -129,12 +129,12 @@ const LightCase kUnoccluded[] = {
 
 // Projected-solid-angle sampling of an unoccluded light: every camera sample's estimate is the closed
 // form (albedo/π) Le Ω⊥ up to float rounding — zero variance — in every configuration, at 1e-4 and
-// 1e4 scale, with the independent and the stratified sampler.
+// 1e4 scale, with every sampler.
 TEST(DirectIntegrator, ProjectedSolidAngleHasZeroVarianceWhereUnoccluded) {
   const Vec3 x0(0.31f, 0.17f, 0.f);
   for (float scale : {1e-4f, 1.f, 1e4f})
     for (const LightCase& lc : kUnoccluded)
-      for (SamplerKind kind : {SamplerKind::Independent, SamplerKind::Stratified}) {
+      for (SamplerKind kind : test::everySampler()) {
         const Vec3 x = x0 * scale, c = (x0 + lc.offset) * scale;
         const float r = lc.r * scale;
         auto scene = test::planeScene({{c, r, lc.Le}}, 10.f * scale);

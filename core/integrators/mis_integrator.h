@@ -75,7 +75,8 @@ struct MisIntegrator {
       const LightTechnique<kMeasure> technique(light, sp);
       const float lightScale = maxAbsComponent(light.sphere.center) + light.sphere.radius;
       for (int i = 0; i < lightSamples; ++i) {
-        Vec2 u = sampler.next2D();
+        // One request per light, stratified over its lightSamples; drawn before canSample().
+        Vec2 u = sampler.next2D(uint32_t(i), uint32_t(lightSamples));
         if (!technique.canSample()) continue;
         LightSample s = technique.sample(u);
         if (!(s.pdf > 0.f) || isBlack(s.Le)) continue;
@@ -94,7 +95,7 @@ struct MisIntegrator {
     const float nL = float(lightSamples), nB = float(bsdfSamples);
     Color3 E(0.f);
     for (int i = 0; i < bsdfSamples; ++i) {
-      Vec2 u = sampler.next2D();
+      Vec2 u = sampler.next2D(uint32_t(i), uint32_t(bsdfSamples));  // one request after the lights'
       Vec3 local = Warp::squareToCosineHemisphere(u);
       if (!(local.z > 0.f)) continue;
       Vec3 w = sp.frame.toWorld(local);

@@ -64,7 +64,7 @@ void expectReductions(const Scene& scene, SamplerKind kind) {
 TEST(MisIntegrator, AZeroCountReducesExactlyToTheOtherTechnique) {
   for (int i = 0; i < kSceneCount; ++i) {
     auto scene = sceneNamed(i);
-    for (SamplerKind kind : {SamplerKind::Independent, SamplerKind::Stratified}) {
+    for (SamplerKind kind : test::everySampler()) {
       expectReductions<LightMeasure::Area, Strategy::DirectArea, MisHeuristic::Balance>(*scene, kind);
       expectReductions<LightMeasure::SolidAngle, Strategy::DirectSolidAngle, MisHeuristic::Power>(*scene,
                                                                                                   kind);
@@ -208,7 +208,7 @@ struct ClosedFormCase {
 template <LightMeasure kMeasure, MisHeuristic kHeuristic>
 void expectClosedForm(const Scene& scene, double truth, const char* name, const char* what) {
   for (auto [nL, nB] : {std::pair{1, 1}, std::pair{2, 1}, std::pair{1, 4}})
-    for (SamplerKind kind : {SamplerKind::Independent, SamplerKind::Stratified}) {
+    for (SamplerKind kind : test::everySampler()) {
       const MisIntegrator<kMeasure, kHeuristic> mis{nL, nB};
       const Estimate e = estimateAlong(scene, mis, test::shallowRayOnto(kX), 40000, 1 + nL + 7 * nB, kind);
       if (std::getenv("PENUMBRA_VERBOSE"))

@@ -18,6 +18,13 @@
 
 namespace penumbra::test {
 
+// Every sampler of the sampler table, in table order: the integrators' tests run with each.
+inline std::vector<SamplerKind> everySampler() {
+  std::vector<SamplerKind> kinds;
+  for (const SamplerRow& row : samplerTable()) kinds.push_back(row.kind);
+  return kinds;
+}
+
 // Object 0: the square [-half, half]² of the plane z = 0, normal +z.
 inline std::unique_ptr<Scene> planeScene(float half = 10.f, Color3 albedo = Color3(1.f)) {
   auto scene = std::make_unique<Scene>();
@@ -98,7 +105,8 @@ struct Estimate {
   uint64_t bad = 0;  // NaN / Inf / negative values (excluded)
 };
 
-// n independent (or stratified) camera samples of integrator.Li along one ray, red channel.
+// n camera samples of one sampler (independent unless told) of integrator.Li along one ray, red
+// channel; the standard error from their spread (conservative for the samplers that stratify).
 template <class Integrator>
 Estimate estimateAlong(const Scene& scene, const Integrator& integrator, const Ray& ray, int n, uint64_t seed,
                        SamplerKind kind = SamplerKind::Independent) {

@@ -1,5 +1,5 @@
-// An integrator's estimate along one ray: n camera samples with independent sample streams, their
-// mean and standard error. The strategy table instantiates it per strategy (StrategyRow::estimateRay)
+// An integrator's estimate along one ray: n camera samples of one sampler, their mean and standard
+// error. The strategy table instantiates it per strategy (StrategyRow::estimateRay)
 // for the closed-form tests and the stiff-case catalogue.
 #pragma once
 
@@ -16,25 +16,40 @@
 namespace penumbra {
 
 // Runs `integrator.Li(ray)` n times and returns the mean (of the red channel) and its standard error.
+// Independent samples: the standard error of the n samples. Other samplers' samples are not
+// independent (stratified, nets), so their spread says little about the mean's error: n is split
+// into kReplications independently seeded replications of n / kReplications samples (each a
+// complete stratification / net), and the standard error comes from the spread of their means.
 template <class Integrator>
 RayEstimate estimateRay(const Scene& scene, const Integrator& integrator, const Ray& ray, int n,
-                        uint64_t seed) {
-  Sampler sampler(SamplerKind::Independent, 1, seed);
+                        uint64_t seed, SamplerKind kind = SamplerKind::Independent) {
+  constexpr int kReplications = 32;
+  const bool replicate = kind != SamplerKind::Independent && n >= 2 * kReplications;
+  const int groups = replicate ? kReplications : n;
+  const int perGroup = replicate ? n / kReplications : 1;
   double sum = 0, sumSq = 0;
   RayEstimate e;
-  for (int i = 0; i < n; ++i) {
-    sampler.startPixelSample(IVec2(7, 11), uint32_t(i));
-    Color3 L = integrator.Li(scene, ray, sampler);
-    if (!isValidRadiance(L)) {
-      ++e.bad;
-      continue;
+  Sampler independent(SamplerKind::Independent, 1, seed);
+  for (int g = 0; g < groups; ++g) {
+    Sampler replication(kind, uint32_t(perGroup), hashCombine(seed, uint64_t(g)));
+    Sampler& sampler = replicate ? replication : independent;
+    double groupSum = 0;
+    for (int i = 0; i < perGroup; ++i) {
+      sampler.startPixelSample(IVec2(7, 11), uint32_t(replicate ? i : g));
+      Color3 L = integrator.Li(scene, ray, sampler);
+      if (!isValidRadiance(L)) {
+        ++e.bad;
+        continue;
+      }
+      groupSum += L.x;
     }
-    sum += L.x;
-    sumSq += double(L.x) * L.x;
+    const double m = groupSum / perGroup;
+    sum += m;
+    sumSq += m * m;
   }
-  e.mean = sum / n;
-  double var = std::max(0.0, sumSq / n - e.mean * e.mean) * n / (n - 1.0);
-  e.standardError = std::sqrt(var / n);
+  e.mean = sum / groups;
+  double var = std::max(0.0, sumSq / groups - e.mean * e.mean) * groups / (groups - 1.0);
+  e.standardError = std::sqrt(var / groups);
   return e;
 }
 

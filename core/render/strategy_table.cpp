@@ -28,8 +28,9 @@ RowRenderer rows(const RenderJob& job, const IntegratorDesc& desc) {
 }
 
 template <class Integrator>
-RayEstimate alongRay(const Scene& scene, const Ray& ray, int samples, int n, uint64_t seed) {
-  return estimateRay(scene, makeIntegrator<Integrator>(samples), ray, n, seed);
+RayEstimate alongRay(const Scene& scene, const Ray& ray, int samples, int n, uint64_t seed,
+                     SamplerKind sampler) {
+  return estimateRay(scene, makeIntegrator<Integrator>(samples), ray, n, seed, sampler);
 }
 
 // The MIS integrators take both counts from the description; the one-ray estimator's `samples` sets
@@ -45,8 +46,9 @@ RowRenderer misLightShareRows(const RenderJob& job, const IntegratorDesc& desc) 
 }
 
 template <LightMeasure kMeasure, MisHeuristic kHeuristic>
-RayEstimate misAlongRay(const Scene& scene, const Ray& ray, int samples, int n, uint64_t seed) {
-  return estimateRay(scene, MisIntegrator<kMeasure, kHeuristic>{samples, samples}, ray, n, seed);
+RayEstimate misAlongRay(const Scene& scene, const Ray& ray, int samples, int n, uint64_t seed,
+                        SamplerKind sampler) {
+  return estimateRay(scene, MisIntegrator<kMeasure, kHeuristic>{samples, samples}, ray, n, seed, sampler);
 }
 
 // Spellings the assignment's scenes use for each setting.

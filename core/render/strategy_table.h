@@ -14,6 +14,7 @@
 
 #include "core/integrators/integrator_desc.h"
 #include "core/math/spellings.h"
+#include "core/sampling/sampler.h"
 
 namespace penumbra {
 
@@ -72,7 +73,8 @@ struct StrategyRow {
   // The row loop and the one-ray estimator with this strategy's integrator: pointers to template
   // instances, so the per-sample code is resolved at compile time.
   RowRenderer (*makeRows)(const RenderJob& job, const IntegratorDesc& desc);
-  RayEstimate (*estimateRay)(const Scene& scene, const Ray& ray, int samples, int n, uint64_t seed);
+  RayEstimate (*estimateRay)(const Scene& scene, const Ray& ray, int samples, int n, uint64_t seed,
+                             SamplerKind sampler);
   // The row loop of the "MIS light share" output (RenderOutput::MisLightShare,
   // core/integrators/mis_light_share.h):
   // the mis rows only; null for every other row, which has no such output.

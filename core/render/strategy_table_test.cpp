@@ -142,7 +142,8 @@ TEST(StrategyTable, EachRowEstimatesWithItsOwnIntegrator) {
   const double projected = (double(r) * r / d2) * (c.z / std::sqrt(d2));  // sin²α cos θ
   for (const StrategyRow& row : strategyTable()) {
     bool hemisphere = row.needs == SceneNeed::Nothing;
-    RayEstimate e = row.estimateRay(*scene, test::rayDownOnto(0.f, 0.f), 1, hemisphere ? 100000 : 20000, 9);
+    RayEstimate e = row.estimateRay(*scene, test::rayDownOnto(0.f, 0.f), 1, hemisphere ? 100000 : 20000, 9,
+                                    SamplerKind::Independent);
     double truth = row.xmlType == "direct" ? L * projected : row.xmlType == "ao" ? 1.0 - projected : 0.0;
     EXPECT_EQ(e.bad, 0u) << row.label;
     EXPECT_NEAR(e.mean, truth, 4.0 * e.standardError + 1e-6) << row.label << " ± " << e.standardError;

@@ -52,10 +52,14 @@ Sampler::Sampler(SamplerKind kind, uint32_t sampleCount, uint64_t seed)
   while (side * side > sampleCount_) --side;
   while ((side + 1) * (side + 1) <= sampleCount_) ++side;
   gridSide_ = std::max<uint32_t>(side, 1);
+  zsobolLog2Samples_ = zsobolLog2Samples(sampleCount_);
   startPixelSample(IVec2(0, 0), 0);
 }
 
 void Sampler::startPixelSample(IVec2 pixel, uint32_t sampleIndex) {
+  if (kind_ == SamplerKind::Sobol) return sobol_.startSobol(seedHash_, pixel, sampleIndex);
+  if (kind_ == SamplerKind::ZSobol)
+    return sobol_.startZSobol(seedHash_, zsobolLog2Samples_, pixel, sampleIndex);
   uint64_t packed =
       (static_cast<uint64_t>(static_cast<uint32_t>(pixel.x)) << 32) | static_cast<uint32_t>(pixel.y);
   pixelKey_ = hashCombine(seedHash_, packed);
@@ -63,6 +67,19 @@ void Sampler::startPixelSample(IVec2 pixel, uint32_t sampleIndex) {
   dimension_ = 0;
   // The sequence (stream) is chosen by the pixel; the starting state by the sample index.
   rng_.seed(hashCombine(pixelKey_, sampleIndex), pixelKey_);
+}
+
+float Sampler::sobol1D() {
+  return sobol_.next1D();
+}
+Vec2 Sampler::sobol2D() {
+  return sobol_.next2D();
+}
+Vec2 Sampler::sobolArray2D(uint32_t j, uint32_t n) {
+  return sobol_.next2D(j, n);
+}
+Vec2 Sampler::sobolInterleaved2D(uint32_t j, uint32_t n, uint32_t k, uint32_t m) {
+  return sobol_.next2D(j, n, k, m);
 }
 
 uint64_t Sampler::dimensionKey(uint32_t epoch) const {

@@ -25,6 +25,24 @@ constexpr std::array kRows = {
             "sampleCount.",
         .usesSampleCount = true,
     },
+    SamplerRow{
+        .kind = SamplerKind::Sobol,
+        .name = {{"sobol"}},
+        .label = "sobol",
+        .description = "Owen-scrambled Sobol' (Burley 2020), every pair of dimensions its own shuffled "
+                       "(0,2)-sequence per pixel: each power-of-two prefix of a pixel's samples is a net, "
+                       "whatever the final count.",
+        .usesSampleCount = false,
+    },
+    SamplerRow{
+        .kind = SamplerKind::ZSobol,
+        .name = {{"zsobol"}},
+        .label = "zsobol",
+        .description = "Owen-scrambled Sobol' in Morton order of the pixels (Ahmed and Wonka 2020): at "
+                       "sampleCount (rounded up to a power of two) samples, neighbouring pixels share one "
+                       "net and their errors cancel (blue noise); progressive like sobol.",
+        .usesSampleCount = true,
+    },
 };
 static_assert(kRows.size() == size_t(kSamplerKindCount));
 static_assert([] {

@@ -48,9 +48,11 @@ TEST(SamplerTable, UnknownNameFailsAndTheMessageListsEveryRow) {
     EXPECT_NE(accepted.find(std::string(r.name.canonical())), std::string::npos) << accepted;
 }
 
-TEST(SamplerTable, OnlyStratifiedShapesItsPatternBySampleCount) {
+TEST(SamplerTable, StratifiedAndZSobolShapeTheirPatternBySampleCount) {
   EXPECT_FALSE(samplerRow(SamplerKind::Independent).usesSampleCount);
   EXPECT_TRUE(samplerRow(SamplerKind::Stratified).usesSampleCount);
+  EXPECT_FALSE(samplerRow(SamplerKind::Sobol).usesSampleCount);
+  EXPECT_TRUE(samplerRow(SamplerKind::ZSobol).usesSampleCount);
 }
 
 }  // namespace

@@ -45,7 +45,8 @@ TEST(Sampler, ValuesInUnitIntervalNeverOne) {
 }
 
 TEST(Sampler, DeterministicRegardlessOfCallOrder) {
-  for (SamplerKind k : {SamplerKind::Independent, SamplerKind::Stratified}) {
+  for (SamplerKind k :
+       {SamplerKind::Independent, SamplerKind::Stratified, SamplerKind::Sobol, SamplerKind::ZSobol}) {
     Sampler a(k, 16, 1234), b(k, 16, 1234);
     std::vector<float> first = draw(a, IVec2(17, 4), 5, 7);
     // b visits other pixels and samples first, in a different order

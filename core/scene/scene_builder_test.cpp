@@ -124,7 +124,7 @@ TEST(SceneBuilder, UnknownStrategiesAreRejectedWithWhatIsAccepted) {
       "<integrator type=\"direct\"><string name=\"measure\" value=\"hemisphere\"/>\n"
       "<string name=\"warp\" value=\"beckmann\"/></integrator>",
       3, "unknown warp-type \"beckmann\"");
-  expectError("<sampler type=\"halton\"/>", 2, "(expected one of: independent, stratified)");
+  expectError("<sampler type=\"halton\"/>", 2, "(expected one of: independent, stratified, sobol, zsobol)");
 }
 
 TEST(SceneBuilder, BadCountsAreRejectedWithTheirLine) {
