@@ -121,8 +121,8 @@ bool ProjectedSphereCap::init(const SphereLight& light, const Vec3& x, const Vec
     const double s1 = sqrtNonNeg((1.0 - yTangent) * (1.0 + yTangent));
     // The inversion runs in the ellipse's angle φ, y = b sin φ; it ends at the tangent (a < 0) or at
     // the ellipse's top φ = π/2 (a > 0).
-    phiTangent = std::asin(u);
     cosPhiTangent = sqrtNonNeg((1.0 - u) * (1.0 + u));
+    phiTangent = std::asin(u);
     phiMax = a > 0.0 ? 0.5 * kPiD : phiTangent;
     gTangent = 0.5 * (u * cosPhiTangent + phiTangent);
     areaBelowTangent = circleExcessArea(yTangent, s1) + yTangent * circleGap(yTangent, s1) + a * b * gTangent;
@@ -131,6 +131,15 @@ bool ProjectedSphereCap::init(const SphereLight& light, const Vec3& x, const Vec
     // Ω⊥ is the area the map covers, so the pdf is the density it samples; it equals the closed form of
     // sphere_cap.h to rounding (ProjectedSphereCap.MappedAreaEqualsTheClosedForm).
     projectedSolidAngle = 2.0 * halfArea;
+    // M₃ ≥ |A'''| on [0, phiMax] (y = b sin φ, A = C(y) + E(φ), C(y) = ∫₀ʸ g, g(t) = √(1 − t²) − xc ∈
+    // [0, 1 − xc] below the tangent, E = a b (φ + sin φ cos φ) / 2): |E'''| ≤ 2|a|b and, by the chain
+    // rule (C''' = g'' y'³ + 3 g' y' y'' + g y''', |y' y''| ≤ b²/2) with |g'| ≤ Y/s₁, |g''| ≤ 1/s₁³ for
+    // y ≤ Y = yTangent ≤ b (s₁ = √(1 − Y²) ≤ 1), |C'''| ≤ b³/s₁³ + 1.5 b²Y/s₁ + b(1 − xc) ≤
+    // b (2.5 b²/s₁³ + 1 − xc); above the tangent (a > 0, then a < b² as cos θ < sin α) A = const + 2E,
+    // |A'''| ≤ 4ab < 2ab + 2b³, also below the bound. A is C² across the tangent (the slice width is C¹
+    // there: the circle and the ellipse touch), so Taylor's bound holds across it.
+    areaThirdDerivativeBound =
+        b * (2.0 * std::fabs(a) + (1.0 - xc) + 2.5 * b * b / std::max(s1 * s1 * s1, 1e-290));
     inversionTolerance = std::max(kAreaTolerance * halfArea, 32 * 0x1p-52 * yMax * (k + std::fabs(a) * b));
     // The inversion's first guess inverts A(y) ≈ w₀ y − g y³ (A is odd in y: the slices are even), g
     // from A(yMax) = halfArea, kept where the model stays increasing on [0, yMax].
@@ -180,7 +189,10 @@ double ProjectedSphereCap::areaBelow(double y) const {
 // The area below y = b sin φ and its first two derivatives in φ, from sin φ and cos φ (no inverse
 // trigonometry: the ellipse's part a b G(sin φ) is a b (φ + sin φ cos φ) / 2). With w the slice width,
 // dA/dφ = w b cos φ and d²A/dφ² = b (cos φ dw/dφ − sin φ w), dw/dφ = −b cos φ y / √(1 − y²) − a sin φ.
-ProjectedSphereCap::ArcSlice ProjectedSphereCap::arcSlice(double phi, double sinPhi, double cosPhi) const {
+// Inlined into the inversion loop (the compiler would otherwise call it there).
+[[gnu::always_inline]] inline ProjectedSphereCap::ArcSlice ProjectedSphereCap::arcSlice(double phi,
+                                                                                        double sinPhi,
+                                                                                        double cosPhi) const {
   const double y = b * sinPhi;
   const double ellipse = 0.5 * a * b * (phi + sinPhi * cosPhi);
   if (y > yTangent) {
@@ -200,9 +212,9 @@ ProjectedSphereCap::ArcSlice ProjectedSphereCap::arcSlice(double phi, double sin
 
 // Halley's method on the monotone area in φ, kept inside a shrinking bracket: a step that leaves it
 // (flat slices near yMax) is replaced by bisection. sin φ and cos φ follow the steps by rotation (a
-// short Taylor polynomial of the step). A step whose predicted residual (the Newton remainder
-// |A''| δ² / 2, which the Halley step undercuts) is below a quarter of the tolerance is taken without
-// evaluating the area again.
+// short Taylor polynomial of the step). A step whose residual bound (Taylor: the quadratic model's
+// residual, f³A''²/(2A'² − fA'')² for Halley's step, plus M₃|δ|³/6) is below half the tolerance is
+// taken without evaluating the area again.
 ProjectedSphereCap::Inversion ProjectedSphereCap::invertArea(double target) const {
   if (!(target > 0.0)) return {0.0, 0, 1.0};
   if (!(target < halfArea)) return {yMax, 0, a > 0.0 ? 0.0 : cosPhiTangent};
@@ -228,9 +240,18 @@ ProjectedSphereCap::Inversion ProjectedSphereCap::invertArea(double target) cons
     (f < 0.0 ? lo : hi) = phi;
     // Halley's step −2 f A' / (2 A'² − f A'') in one division; Newton's where the correction would more
     // than double the step.
+    // The residual the step leaves by Taylor: its quadratic model's, plus M₃|δ|³/6.
     const double halleyDenominator = 2.0 * s.dArea * s.dArea - f * s.d2Area;
-    double delta =
-        halleyDenominator > s.dArea * s.dArea ? -2.0 * f * s.dArea / halleyDenominator : -f / s.dArea;
+    double delta, quadraticResidual;
+    if (halleyDenominator > s.dArea * s.dArea) {
+      const double inv = 1.0 / halleyDenominator;
+      delta = -2.0 * f * s.dArea * inv;
+      const double q = f * s.d2Area * inv;
+      quadraticResidual = std::fabs(f) * q * q;
+    } else {
+      delta = -f / s.dArea;
+      quadraticResidual = 0.5 * std::fabs(s.d2Area) * delta * delta;
+    }
     bool bisected = false;
     if (!(phi + delta > lo && phi + delta < hi)) {
       delta = 0.5 * (lo + hi) - phi;
@@ -243,8 +264,10 @@ ProjectedSphereCap::Inversion ProjectedSphereCap::invertArea(double target) cons
     sinPhi = std::clamp(nextSin, 0.0, 1.0);
     phi += delta;
     if (bisected ? hi - lo <= ulps
-                 : std::fabs(delta) <= ulps ||
-                       0.5 * std::fabs(s.d2Area) * delta * delta <= 0.25 * inversionTolerance)
+                 : std::fabs(delta) <= ulps || quadraticResidual + areaThirdDerivativeBound *
+                                                                       std::fabs(delta * delta * delta) *
+                                                                       (1.0 / 6.0) <=
+                                                   0.5 * inversionTolerance)
       break;
   }
   return {std::min(b * sinPhi, yMax), step, cosPhi};

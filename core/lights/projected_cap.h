@@ -16,8 +16,8 @@
 // The map of the unit square onto the region is a bijection that keeps stratification (no rejection):
 //   above the horizon: the concentric disk map scaled onto the ellipse, in closed form;
 //   straddling: u.x sets y by inverting the region's area below height |y| (Halley's method in the
-//   ellipse's angle φ, y = b sin φ, from a cubic model's root, with a bisection fallback, to 1e-12 of
-//   the half area (see kAreaTolerance), at most 40 steps, about 2 area evaluations on average),
+//   ellipse's angle φ, y = b sin φ, from a cubic model's root, with a bisection fallback, to 1e-10 of
+//   the half area (see kAreaTolerance), at most 40 steps, 1.5–2.3 area evaluations on average),
 //   u.y places x uniformly on the slice at y (the parallel map of Ureña & Georgiev).
 // Plain data, built once per (shading point, light) and reused for every sample there.
 #pragma once
@@ -30,14 +30,15 @@ namespace penumbra {
 struct ProjectedSphereCap {
   // Stop rule of the straddling map's inversion: |area below y − target| ≤ inversionTolerance =
   // max(kAreaTolerance · halfArea, 32 ε yMax (k + |a| b), an estimate of the area's rounding) — the
-  // sampled y's CDF is then off by at most 1e-12, far below the noise of any number of samples a
-  // render takes. Only for the thin lenses of a cap just below the horizon, whose area cancels (as
-  // does Ω⊥'s closed form), is the rounding floor larger: 6e-8 of the half area at cos θ = −0.999 sin α
-  // (Ω⊥ ≈ 1e-8 sin²α), 2e-3 at −0.999995 sin α (Ω⊥ < 1e-13 sin²α). Stops also where a Halley step's
-  // predicted residual (the Newton remainder |A''| δ² / 2, which the Halley step undercuts) is below a
-  // quarter of the tolerance, where the step or the bracket shrinks to a few ulps, or after
-  // kMaxInversionSteps steps.
-  static constexpr double kAreaTolerance = 1e-12;
+  // sampled y's CDF is then off by at most 1e-10: 600 times finer than the CDF's own quantisation by a
+  // float u (2^-24), and a bias that 10^20 samples could not resolve. Only for the thin lenses of a cap just
+  // below the horizon, whose area cancels (as does Ω⊥'s closed form), is the rounding floor larger: 6e-8 of
+  // the half area at cos θ = −0.999 sin α (Ω⊥ ≈ 1e-8 sin²α), 2e-3 at −0.999995 sin α (Ω⊥ < 1e-13 sin²α). A
+  // Halley step is accepted without evaluating the area again where Taylor's bound on its residual is below
+  // half the tolerance: the quadratic model's residual f³A''²/(2A'² − fA'')² (exact for the step) plus
+  // M₃|δ|³/6, M₃ a bound on |A'''| over the whole range (areaThirdDerivativeBound). Stops also where the step
+  // or the bracket shrinks to a few ulps, or after kMaxInversionSteps steps.
+  static constexpr double kAreaTolerance = 1e-10;
   static constexpr int kMaxInversionSteps = 40;
 
   // Plain data without default values (a cap is constructed per shading point and light; default
@@ -66,6 +67,7 @@ struct ProjectedSphereCap {
   double inversionTolerance;
   double invB;
   double phiTangent, cosPhiTangent, phiMax;  // the ellipse's angle: y = b sin φ
+  double areaThirdDerivativeBound;           // M₃ ≥ |d³A/dφ³| on [0, phiMax]
   double startWidth, invStartWidth,
       startCubic;  // the inversion's first guess: sliceWidth(0), its cubic model
   // Ω⊥, the pdf's normalisation: π a b above the horizon, the map's own area 2 halfArea straddling

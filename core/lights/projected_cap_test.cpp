@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -127,6 +128,37 @@ TEST(ProjectedSphereCap, SliceWidthIsTheDerivativeOfTheArea) {
       EXPECT_NEAR(numeric, cap.sliceWidth(y), 1e-6 * cap.sliceWidth(0.0)) << c.name << " y/yMax " << f;
     }
   }
+}
+
+// The inversion accepts a Halley step by Taylor's bound with M₃ = areaThirdDerivativeBound: it must
+// bound |d³A/dφ³| (A(φ) = areaBelow(b sin φ)) everywhere on [0, phiMax], across the tangent too. Third
+// differences, in the configurations where their rounding stays below a tenth of M₃ (the bound is
+// within a factor 1.6 of the largest third difference for the small caps straddling above the horizon,
+// so an M₃ too small by half fails).
+TEST(ProjectedSphereCap, AreaThirdDerivativeBoundHolds) {
+  int checked = 0;
+  for (const Config& c : kConfigs) {
+    const LightView s = makeView(c);
+    ProjectedSphereCap cap;
+    ASSERT_TRUE(cap.init(s.light, s.x, s.n));
+    if (!cap.straddling) continue;
+    const double h = 1e-2 * cap.phiMax;
+    const double noise = 64 * 0x1p-52 * cap.halfArea / (h * h * h);
+    if (noise > 0.1 * cap.areaThirdDerivativeBound) continue;
+    auto area = [&](double phi) { return cap.areaBelow(cap.b * std::sin(std::clamp(phi, 0.0, cap.phiMax))); };
+    double worst = 0.0;
+    for (int i = 0; i <= 200; ++i) {
+      const double phi = 2 * h + (cap.phiMax - 4 * h) * i / 200;
+      const double third =
+          (area(phi + 2 * h) - 2 * area(phi + h) + 2 * area(phi - h) - area(phi - 2 * h)) / (2 * h * h * h);
+      worst = std::max(worst, std::fabs(third));
+      EXPECT_LE(std::fabs(third), 1.01 * cap.areaThirdDerivativeBound + noise) << c.name << " phi " << phi;
+    }
+    if (std::getenv("PENUMBRA_VERBOSE"))
+      std::printf("%-26s max |A'''| / M3 = %.3f\n", c.name, worst / cap.areaThirdDerivativeBound);
+    ++checked;
+  }
+  EXPECT_GE(checked, 6);
 }
 
 // Every sample: a unit direction inside the visible cap, the point where it meets the light facing x,
