@@ -253,6 +253,11 @@ Reference obtainReference(const LoadedScene& scene, const ReferenceRequest& requ
     return ref;
   }
   if (!request.renderIfMissing) throw Error("no reference for this scene (expected " + cache + ")");
+  // Make the cache's directory before minutes of rendering, so a missing one loses no work.
+  const fs::path cacheDir = fs::path(cache).parent_path();
+  std::error_code ec;
+  if (!cacheDir.empty()) fs::create_directories(cacheDir, ec);
+  if (ec) throw Error(cache + ": cannot create the reference cache's directory: " + ec.message());
   say("reference: rendering " + std::to_string(request.referenceSpp) + " spp of " +
       strategyLabel(referenceEstimator(scene.settings.integrator)) + " into " + cache);
   Reference ref =

@@ -76,5 +76,17 @@ TEST(Reference, CacheRoundTripAndMask) {
   fs::remove_all(dir);
 }
 
+TEST(Reference, MissingCacheDirectoryIsCreatedSoTheRenderIsKept) {
+  fs::path dir = fs::temp_directory_path() / ("penumbra-ref-new-" + std::to_string(::getpid())) / "a" / "b";
+  fs::remove_all(dir.parent_path().parent_path());
+  LoadedScene scene = loadSmall(sphereScene(), 8);
+  ReferenceRequest rq;
+  rq.cacheDir = dir.string();
+  rq.referenceSpp = 4;
+  obtainReference(scene, rq);
+  EXPECT_TRUE(fs::exists(referenceCachePath(scene, dir.string())));
+  fs::remove_all(dir.parent_path().parent_path());
+}
+
 }  // namespace
 }  // namespace penumbra
