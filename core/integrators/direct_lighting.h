@@ -13,7 +13,8 @@ inline bool leavesSurface(const ShadingPoint& sp, const Vec3& w, float cosTheta)
 }
 
 // Irradiance from the point and directional lights, each traced once (they are deltas: no sampling).
-inline Color3 deltaIrradiance(const Scene& scene, const ShadingPoint& sp) {
+// Always inlined: once per shading point, and GCC stops inlining it into the larger integrators.
+[[gnu::always_inline]] inline Color3 deltaIrradiance(const Scene& scene, const ShadingPoint& sp) {
   Color3 E(0.f);
   for (const PointLight& light : scene.pointLights) {
     DeltaLightSample s = light.sample(sp.hit.p);

@@ -17,7 +17,10 @@ struct ShadingPoint {
   const SurfaceMaterial* material;
 
   // withFrame = false skips the shading frame for estimators that never sample around the normal.
-  ShadingPoint(const Scene& scene, const Ray& ray, const SurfaceHit& h, bool withFrame = true) : hit(h) {
+  // Always inlined (once per camera sample; GCC stops inlining it into the larger integrators).
+  [[gnu::always_inline]] ShadingPoint(const Scene& scene, const Ray& ray, const SurfaceHit& h,
+                                      bool withFrame = true)
+      : hit(h) {
     material = &scene.materials[h.objectId];
     bool backFacing = glm::dot(h.ng, ray.d) > 0.f;
     ng = backFacing ? -h.ng : h.ng;

@@ -20,7 +20,7 @@ class Film {
   void clear();
 
   // Adds one weighted sample to a pixel (the caller has already rejected non-finite values).
-  void add(int x, int y, const Color3& value) {
+  [[gnu::always_inline]] void add(int x, int y, const Color3& value) {  // once per camera sample
     double* s = &sums_[(size_t(y) * width_ + x) * 6];
     s[0] += value.x;
     s[1] += value.y;

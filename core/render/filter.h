@@ -35,7 +35,8 @@ class FilterSampler {
   explicit FilterSampler(const FilterDesc& desc = {});
 
   // Offset from the pixel centre in [-r, r]^2 and the sample's weight f / (pdf * integral of f).
-  Vec2 sample(Vec2 u, float& weight) const {
+  // Inlined into the row loop: it runs once per camera sample, and GCC stops inlining it there.
+  [[gnu::always_inline]] Vec2 sample(Vec2 u, float& weight) const {
     float wx, wy;
     Vec2 offset(sample1D(u.x, wx), sample1D(u.y, wy));
     weight = wx * wy;
