@@ -393,7 +393,9 @@ std::vector<double> summedParts(std::shared_ptr<RenderJob> job, uint32_t spp, ui
     if (total.empty()) total.assign(sums.size(), 0.0);
     for (size_t i = 0; i < sums.size(); ++i) total[i] += sums[i];
   }
-  if (!overlapping) EXPECT_EQ(totalPasses, spp);
+  if (!overlapping) {
+    EXPECT_EQ(totalPasses, spp);
+  }
   for (double& v : total) v /= double(totalPasses);
   return total;
 }
