@@ -824,9 +824,11 @@ std::vector<StiffCase> makeCases() {
   const std::pair<Strategy, const char*> misScales[] = {{kMisRows[0], "scale-mis-solid-angle"},
                                                         {kMisRows[3], "scale-mis-area"},
                                                         {kMisRows[4], "scale-mis-projected"}};
-  for (auto [mis, name] : misScales)
+  for (const auto& [row, name] : misScales) {
+    const Strategy mis = row;  // a plain copy: clang before 16 cannot capture a structured binding
     add(name, "scale", "direct image at scales 1e-4 and 1e4 vs 1, " + std::string(strategyRow(mis).label),
         [mis](const CaseOptions& o) { return scaleCase(o, "direct", mis); });
+  }
   add("ao-sphere-near-contact", "contact", "AO on a resting sphere near its contact point",
       aoOnSphereNearContact);
   add("ao-plane-near-contact", "contact", "AO on the plane next to the contact point", aoOnPlaneNearContact);
