@@ -195,7 +195,8 @@ void checkExrHeader(const std::string& path) {
           box[i] = int32_t(uint32_t(raw[4 * i]) | uint32_t(raw[4 * i + 1]) << 8 |
                            uint32_t(raw[4 * i + 2]) << 16 | uint32_t(raw[4 * i + 3]) << 24);
         const int64_t w = int64_t(box[2]) - box[0] + 1, h = int64_t(box[3]) - box[1] + 1;
-        if (w <= 0 || h <= 0 || w * h > kMaxReadPixels)
+        // w and h may each be near 2^32: compare by division, since w * h can overflow int64.
+        if (w <= 0 || h <= 0 || w > kMaxReadPixels || h > kMaxReadPixels / w)
           fail("data window " + std::to_string(w) + "x" + std::to_string(h) + " is empty or larger than " +
                std::to_string(kMaxReadPixels) + " pixels");
       } else {

@@ -293,5 +293,16 @@ TEST_F(ImageIoTest, ExrDataWindowFarFromTheOriginIsReadWithoutUndefinedBehaviour
   }
 }
 
+// A data window whose width and height are each near 2^32: their product overflows 64-bit integers,
+// so the size check must not multiply them (UBSan reports the overflow in the sanitizer job).
+TEST_F(ImageIoTest, ExrDataWindowWhoseAreaOverflowsIsRefused) {
+  try {
+    readExr(std::string(PENUMBRA_SOURCE_DIR) + "/fuzz/regressions/exr-data-window-area-overflows.exr");
+    FAIL() << "an EXR with a 3430119579 x 3580943328 data window was read";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("data window"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace penumbra
