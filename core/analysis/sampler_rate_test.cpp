@@ -6,6 +6,7 @@
 #include <cmath>
 #include <vector>
 
+#include "core/analysis/error_metrics.h"
 #include "core/analysis/reference.h"
 #include "core/analysis/test_scenes_fixture.h"
 #include "core/render/camera.h"
@@ -74,7 +75,7 @@ double renderMseSlope(const std::string& sampler, int seeds, int* pixelCount = n
   Reference truth = closedFormReference(s, 64);
   std::vector<int> pixels = unoccludedFloorPixels(s);
   if (pixelCount) *pixelCount = static_cast<int>(pixels.size());
-  std::vector<double> x, y;
+  std::vector<double> sppValues, mseValues;
   for (uint32_t spp : {4u, 16u, 64u, 256u}) {
     double mse = 0;
     for (int seed = 0; seed < seeds; ++seed) {
@@ -88,16 +89,11 @@ double renderMseSlope(const std::string& sampler, int seeds, int* pixelCount = n
       engine.wait();
       mse += maskedMse(engine.film().mean(spp), truth.mean, pixels) / seeds;
     }
-    x.push_back(std::log(double(spp)));
-    y.push_back(std::log(mse));
+    sppValues.push_back(double(spp));
+    mseValues.push_back(mse);
     std::printf("  %s %u spp: MSE %.3e\n", sampler.c_str(), spp, mse);
   }
-  double mx = 0, my = 0;
-  for (size_t i = 0; i < x.size(); ++i) mx += x[i], my += y[i];
-  mx /= x.size(), my /= y.size();
-  double sxy = 0, sxx = 0;
-  for (size_t i = 0; i < x.size(); ++i) sxy += (x[i] - mx) * (y[i] - my), sxx += (x[i] - mx) * (x[i] - mx);
-  return sxy / sxx;
+  return logLogSlope(sppValues, mseValues);
 }
 
 TEST(SamplerRenderRate, IndependentSamplingConvergesAsOneOverN) {
