@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/lights/sphere_cap.h"
+#include "core/math/circular_segment.h"
 #include "core/math/frame.h"
 #include "core/math/vec.h"
 #include "core/sampling/warp.h"
@@ -47,9 +48,6 @@ double circleExcessArea(double y, double s) {
 }
 
 // sin and cos of |δ| ≤ 1/8 by their Taylor polynomials (truncated below 2^-55 of the value).
-struct SinCosD {
-  double sin, cos;
-};
 SinCosD sinCosSmall(double d) {
   const double d2 = d * d;
   const double s =
@@ -72,6 +70,7 @@ double ProjectedSphereCap::circleGap(double y, double s1) const {
 bool ProjectedSphereCap::init(const SphereLight& light, const Vec3& x, const Vec3& n) {
   // What a caller may read after a false return: nothing to sample, Ω⊥ = 0.
   projectedSolidAngle = invProjectedSolidAngle = 0.0;
+  map = Map::Ellipse;
   straddling = false;
   const double r = light.sphere.radius;
   origin = DVec3(x);
@@ -116,59 +115,76 @@ bool ProjectedSphereCap::init(const SphereLight& light, const Vec3& x, const Vec
     const double yt =
         sinCentre > 0.0 ? sqrtNonNeg((sinAlpha - cosCentre) * (sinAlpha + cosCentre)) * d * invSideLength : b;
     yTangent = std::min(yt, b);
-    yMax = a > 0.0 ? b : yTangent;
-    const double u = std::min(1.0, yTangent * invB);
-    const double s1 = sqrtNonNeg((1.0 - yTangent) * (1.0 + yTangent));
-    // The inversion runs in the ellipse's angle φ, y = b sin φ; it ends at the tangent (a < 0) or at
-    // the ellipse's top φ = π/2 (a > 0).
-    cosPhiTangent = sqrtNonNeg((1.0 - u) * (1.0 + u));
-    phiTangent = std::asin(u);
-    phiMax = a > 0.0 ? 0.5 * kPiD : phiTangent;
-    gTangent = 0.5 * (u * cosPhiTangent + phiTangent);
-    areaBelowTangent = circleExcessArea(yTangent, s1) + yTangent * circleGap(yTangent, s1) + a * b * gTangent;
-    // Centre above the horizon: the ellipse's part with |y| > yTangent lies inside the disk.
-    halfArea = a > 0.0 ? areaBelowTangent + 2.0 * a * b * (kQuarterPi - gTangent) : areaBelowTangent;
-    // Ω⊥ is the area the map covers, so the pdf is the density it samples; it equals the closed form of
-    // sphere_cap.h to rounding (ProjectedSphereCap.MappedAreaEqualsTheClosedForm).
-    projectedSolidAngle = 2.0 * halfArea;
-    // M₃ ≥ |A'''| on [0, phiMax] (y = b sin φ, A = C(y) + E(φ), C(y) = ∫₀ʸ g, g(t) = √(1 − t²) − xc ∈
-    // [0, 1 − xc] below the tangent, E = a b (φ + sin φ cos φ) / 2): |E'''| ≤ 2|a|b and, by the chain
-    // rule (C''' = g'' y'³ + 3 g' y' y'' + g y''', |y' y''| ≤ b²/2) with |g'| ≤ Y/s₁, |g''| ≤ 1/s₁³ for
-    // y ≤ Y = yTangent ≤ b (s₁ = √(1 − Y²) ≤ 1), |C'''| ≤ b³/s₁³ + 1.5 b²Y/s₁ + b(1 − xc) ≤
-    // b (2.5 b²/s₁³ + 1 − xc); above the tangent (a > 0, then a < b² as cos θ < sin α) A = const + 2E,
-    // |A'''| ≤ 4ab < 2ab + 2b³, also below the bound. A is C² across the tangent (the slice width is C¹
-    // there: the circle and the ellipse touch), so Taylor's bound holds across it.
-    areaThirdDerivativeBound =
-        b * (2.0 * std::fabs(a) + (1.0 - xc) + 2.5 * b * b / std::max(s1 * s1 * s1, 1e-290));
-    inversionTolerance = std::max(kAreaTolerance * halfArea, 32 * 0x1p-52 * yMax * (k + std::fabs(a) * b));
-    // The inversion's first guess inverts A(y) ≈ w₀ y − g y³ (A is odd in y: the slices are even), g
-    // from A(yMax) = halfArea, kept where the model stays increasing on [0, yMax].
-    startWidth = std::max(0.0, k / (1.0 + xc) + a);  // sliceWidth(0)
-    invStartWidth = 1.0 / startWidth;
-    const double invYMax3 = 1.0 / (yMax * yMax * yMax);
-    startCubic =
-        std::clamp((startWidth * yMax - halfArea) * invYMax3, 0.0, startWidth * yMax * invYMax3 / 3.0);
+    if (a >= 0.0)
+      initCutDisks();
+    else
+      initLens();
   }
   if (!(projectedSolidAngle >= kMinProjectedSolidAngle)) return false;
   invProjectedSolidAngle = 1.0 / projectedSolidAngle;
   return true;
 }
 
-// Slices of the straddling region at height y ≥ 0, in x = xc + δx (δx measured from the ellipse centre):
-//   |y| ≤ yTangent:  δx from −a √(1 − y²/b²) (the ellipse's arc above the horizon: its inner arc for
-//                    a > 0, its outer one for a < 0) to √(1 − y²) − xc (the unit circle);
-//   |y| > yTangent:  (a > 0 only) the ellipse's chord, δx ∈ ±a √(1 − y²/b²).
+// Straddling with the centre on or above the horizon: the ellipse's part left of the tangent points'
+// x (a disk cut by a chord, in the ellipse's own unit disk: X = (x − xc) / a = −cos β, Y = y / b =
+// sin β at βt) and the unit disk's segment right of it (x = cos γ, y = sin γ at γt). Each arcsine
+// is taken where it is well conditioned (argument ≤ 1/√2).
+void ProjectedSphereCap::initCutDisks() {
+  map = Map::CutDisks;
+  const double yt = yTangent, xt = std::min(1.0, cosAlpha / sinCentre);
+  const double gammaT = yt <= xt ? std::asin(yt) : 0.5 * kPiD - std::asin(xt);
+  const double circlePiece = segmentArea(gammaT, SinCosD{yt, xt});
+  // X_t = (xt − xc) / a = cot θ cot α (no cancellation), Y_t = yt / b.
+  const double bigX = std::min(1.0, (cosAlpha * cosCentre) / (sinAlpha * sinCentre));
+  const double bigY = std::min(1.0, yt * invB);
+  const double betaT = bigX <= bigY ? 0.5 * kPiD + std::asin(bigX) : kPiD - std::asin(bigY);
+  invAB = 1.0 / (a * b);
+  ellipsePieceArea = a * b * segmentArea(betaT, SinCosD{bigY, -bigX});
+  projectedSolidAngle = ellipsePieceArea + circlePiece;
+}
+
+// Straddling with the centre below the horizon: the lens between the ellipse's outer arc and the
+// circle, mapped by slices of constant y (see invertArea).
+void ProjectedSphereCap::initLens() {
+  map = Map::Lens;
+  yMax = yTangent;
+  const double u = std::min(1.0, yTangent * invB);
+  const double s1 = sqrtNonNeg((1.0 - yTangent) * (1.0 + yTangent));
+  // The inversion runs in the ellipse's angle φ, y = b sin φ, up to the tangent.
+  cosPhiTangent = sqrtNonNeg((1.0 - u) * (1.0 + u));
+  phiTangent = std::asin(u);
+  phiMax = phiTangent;
+  gTangent = 0.5 * (u * cosPhiTangent + phiTangent);
+  areaBelowTangent = circleExcessArea(yTangent, s1) + yTangent * circleGap(yTangent, s1) + a * b * gTangent;
+  halfArea = areaBelowTangent;
+  // Ω⊥ is the area the map covers, so the pdf is the density it samples; it equals the closed form of
+  // sphere_cap.h to rounding (ProjectedSphereCap.MappedAreaEqualsTheClosedForm).
+  projectedSolidAngle = 2.0 * halfArea;
+  // M₃ ≥ |A'''| on [0, phiMax] (y = b sin φ, A = C(y) + E(φ), C(y) = ∫₀ʸ g, g(t) = √(1 − t²) − xc ∈
+  // [0, 1 − xc] below the tangent, E = a b (φ + sin φ cos φ) / 2): |E'''| ≤ 2|a|b and, by the chain
+  // rule (C''' = g'' y'³ + 3 g' y' y'' + g y''', |y' y''| ≤ b²/2) with |g'| ≤ Y/s₁, |g''| ≤ 1/s₁³ for
+  // y ≤ Y = yTangent ≤ b (s₁ = √(1 − Y²) ≤ 1), |C'''| ≤ b³/s₁³ + 1.5 b²Y/s₁ + b(1 − xc) ≤
+  // b (2.5 b²/s₁³ + 1 − xc).
+  areaThirdDerivativeBound =
+      b * (2.0 * std::fabs(a) + (1.0 - xc) + 2.5 * b * b / std::max(s1 * s1 * s1, 1e-290));
+  inversionTolerance = std::max(kAreaTolerance * halfArea, 32 * 0x1p-52 * yMax * (k + std::fabs(a) * b));
+  // The inversion's first guess inverts A(y) ≈ w₀ y − g y³ (A is odd in y: the slices are even), g
+  // from A(yMax) = halfArea, kept where the model stays increasing on [0, yMax].
+  startWidth = std::max(0.0, k / (1.0 + xc) + a);  // sliceWidth(0)
+  invStartWidth = 1.0 / startWidth;
+  const double invYMax3 = 1.0 / (yMax * yMax * yMax);
+  startCubic = std::clamp((startWidth * yMax - halfArea) * invYMax3, 0.0, startWidth * yMax * invYMax3 / 3.0);
+}
+
+// Slices of the lens at height 0 ≤ y ≤ yTangent, in x = xc + δx (δx measured from the ellipse centre):
+// δx from −a √(1 − y²/b²) (the ellipse's outer arc, a < 0) to √(1 − y²) − xc (the unit circle).
 // √(1 − y²) − xc is evaluated as (k − y²) / (√(1 − y²) + xc), so no width cancels for small caps.
 // The area below y, ∫₀ʸ width: with ∫₀ʸ (√(1 − t²) − xc) dt = H(y) + y (√(1 − y²) − xc) and
-// ∫₀ʸ √(1 − t²/b²) dt = b G(y/b), it is H(y) + y (k − y²)/(√(1 − y²) + xc) + a b G(y/b) below the
-// tangent height. slope: d width / dy (for the inversion's stop rule), −y/√(1 − y²) − a (y/b²)/√(1 − y²/b²).
+// ∫₀ʸ √(1 − t²/b²) dt = b G(y/b), it is H(y) + y (k − y²)/(√(1 − y²) + xc) + a b G(y/b). slope: d width / dy
+// (for the inversion's stop rule), −y/√(1 − y²) − a (y/b²)/√(1 − y²/b²).
 ProjectedSphereCap::Slice ProjectedSphereCap::slice(double y) const {
   const double u = std::min(1.0, y * invB);
   const double s2 = sqrtNonNeg((1.0 - u) * (1.0 + u));
-  if (y > yTangent) {
-    return {areaBelowTangent + 2.0 * a * b * (quarterDiskArea(u, s2) - gTangent), 2.0 * a * s2,
-            -2.0 * a * u / std::max(b * s2, 0x1p-1000)};
-  }
   const double s1 = sqrtNonNeg((1.0 - y) * (1.0 + y));
   const double circle = circleGap(y, s1);
   return {circleExcessArea(y, s1) + y * circle + a * b * quarterDiskArea(u, s2),
@@ -178,7 +194,6 @@ ProjectedSphereCap::Slice ProjectedSphereCap::slice(double y) const {
 double ProjectedSphereCap::sliceWidth(double y) const {
   const double u = std::min(1.0, y * invB);
   const double s2 = sqrtNonNeg((1.0 - u) * (1.0 + u));
-  if (y > yTangent) return 2.0 * a * s2;
   return std::max(0.0, circleGap(y, sqrtNonNeg((1.0 - y) * (1.0 + y))) + a * s2);
 }
 
@@ -195,11 +210,6 @@ double ProjectedSphereCap::areaBelow(double y) const {
                                                                                         double cosPhi) const {
   const double y = b * sinPhi;
   const double ellipse = 0.5 * a * b * (phi + sinPhi * cosPhi);
-  if (y > yTangent) {
-    const double w = 2.0 * a * cosPhi;
-    return {areaBelowTangent + 2.0 * (ellipse - a * b * gTangent), w * b * cosPhi,
-            b * (-2.0 * a * sinPhi * cosPhi - sinPhi * w)};
-  }
   const double s1 = sqrtNonNeg((1.0 - y) * (1.0 + y));
   // One division for both 1 / (√(1 − y²) + xc) (the circle's gap, as in circleGap) and 1 / √(1 − y²).
   const double sum = s1 + xc;
@@ -217,7 +227,7 @@ double ProjectedSphereCap::areaBelow(double y) const {
 // taken without evaluating the area again.
 ProjectedSphereCap::Inversion ProjectedSphereCap::invertArea(double target) const {
   if (!(target > 0.0)) return {0.0, 0, 1.0};
-  if (!(target < halfArea)) return {yMax, 0, a > 0.0 ? 0.0 : cosPhiTangent};
+  if (!(target < halfArea)) return {yMax, 0, cosPhiTangent};
   // First guess: two Newton steps on the cubic model from its root's lower bound target / w₀ (the
   // model is concave, so they stay below its root).
   double y = target * invStartWidth;
@@ -275,19 +285,33 @@ ProjectedSphereCap::Inversion ProjectedSphereCap::invertArea(double target) cons
 
 ProjectedSphereCap::Direction ProjectedSphereCap::sampleDirection(Vec2 u) const {
   double dx, y;
-  if (!straddling) {
+  if (map == Map::Ellipse) {
     // Peters & Dachsbacher (I3D 2019): the unclipped ellipse is an affine image of the disk.
     const Vec2 disk = Warp::squareToConcentricDisk(u);
     dx = a * double(disk.x);
     y = b * double(disk.y);
+  } else if (map == Map::CutDisks) {
+    // Ureña & Georgiev's parallel map across x: u.x cuts off the area left of x, u.y places y on the
+    // chord there. Left of the tangent points: the ellipse's chord at X = −cos β.
+    const double area = double(u.x) * projectedSolidAngle;
+    const double v = 2.0 * double(u.y) - 1.0;
+    if (area < ellipsePieceArea) {
+      const SinCosD beta = segmentAngle(area * invAB);
+      dx = -a * beta.cos;
+      y = v * b * beta.sin;
+    } else {
+      // The unit disk's segment beyond x = cos γ, measured from its far end x = 1; there the lift is
+      // z = sin γ √(1 − v²) exactly.
+      const SinCosD gamma = segmentAngle((1.0 - double(u.x)) * projectedSolidAngle);
+      const double z = gamma.sin * sqrtNonNeg((1.0 - v) * (1.0 + v));
+      return {gamma.cos * ex + (v * gamma.sin) * ey + z * ez, z};
+    }
   } else {
-    // Ureña & Georgiev (EGSR 2018), parallel map: y from the inverted marginal area, x on its slice.
+    // Ureña & Georgiev's parallel map across y: y from the inverted marginal area, x on its slice.
     const double v = 2.0 * double(u.x) - 1.0;
     const Inversion inv = invertArea(std::fabs(v) * halfArea);
     const double yAbs = inv.y, s2 = inv.cosPhi;
-    const double width =
-        yAbs > yTangent ? 2.0 * a * s2
-                        : std::max(0.0, circleGap(yAbs, sqrtNonNeg((1.0 - yAbs) * (1.0 + yAbs))) + a * s2);
+    const double width = std::max(0.0, circleGap(yAbs, sqrtNonNeg((1.0 - yAbs) * (1.0 + yAbs))) + a * s2);
     dx = -a * s2 + double(u.y) * width;
     y = std::copysign(yAbs, v);
   }

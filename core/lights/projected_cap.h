@@ -15,10 +15,17 @@
 //
 // The map of the unit square onto the region is a bijection that keeps stratification (no rejection):
 //   above the horizon: the concentric disk map scaled onto the ellipse, in closed form;
-//   straddling: u.x sets y by inverting the region's area below height |y| (Halley's method in the
-//   ellipse's angle φ, y = b sin φ, from a cubic model's root, with a bisection fallback, to 1e-10 of
-//   the half area (see kAreaTolerance), at most 40 steps, 1.5–2.3 area evaluations on average),
-//   u.y places x uniformly on the slice at y (the parallel map of Ureña & Georgiev).
+//   straddling, centre on or above the horizon: the region is two cut disks side by side, the
+//   ellipse's part with x ≤ cos α / sin θ and the unit disk's segment beyond it (their x-slices are the
+//   ellipse's and the circle's chords, of equal length 2 yTangent where they meet). u.x sets x by
+//   inverting the area left of it, which on either piece is a circular segment's area, inverted
+//   without iteration (circular_segment.h: to 5e-13 of it); u.y places y uniformly on the chord at x;
+//   straddling, centre below the horizon (a lens between the ellipse's outer arc and the circle, whose
+//   x-slices would be two intervals): u.x sets y by inverting the region's area below height |y|
+//   (Halley's method in the ellipse's angle φ, y = b sin φ, from a cubic model's root, with a
+//   bisection fallback, to 1e-10 of the half area (see kAreaTolerance), at most 40 steps, 1.5–2.3 area
+//   evaluations on average), u.y places x uniformly on the slice at y.
+// Both straddling maps are parallel maps (Ureña & Georgiev, EGSR 2018), along x and along y.
 // Plain data, built once per (shading point, light) and reused for every sample there.
 #pragma once
 
@@ -28,7 +35,7 @@
 namespace penumbra {
 
 struct ProjectedSphereCap {
-  // Stop rule of the straddling map's inversion: |area below y − target| ≤ inversionTolerance =
+  // Stop rule of the lens map's inversion: |area below y − target| ≤ inversionTolerance =
   // max(kAreaTolerance · halfArea, 32 ε yMax (k + |a| b), an estimate of the area's rounding) — the
   // sampled y's CDF is then off by at most 1e-10: 600 times finer than the CDF's own quantisation by a
   // float u (2^-24), and a bias that 10^20 samples could not resolve. Only for the thin lenses of a cap just
@@ -42,9 +49,9 @@ struct ProjectedSphereCap {
   static constexpr int kMaxInversionSteps = 40;
 
   // Plain data without default values (a cap is constructed per shading point and light; default
-  // values would fill it twice): init() sets every field when it returns true (the straddling map's
-  // fields, yTangent to startCubic, only when straddling); after false only projectedSolidAngle =
-  // invProjectedSolidAngle = 0 and straddling = false.
+  // values would fill it twice): init() sets the fields of the map it chooses when it returns true
+  // (the cut-disk fields only for Map::CutDisks, yMax to startCubic only for Map::Lens); after false only
+  // projectedSolidAngle = invProjectedSolidAngle = 0, map = Map::Ellipse and straddling = false.
   // The light as seen from the shading point.
   DVec3 origin;    // the shading point x
   DVec3 toCenter;  // c − x
@@ -58,9 +65,15 @@ struct ProjectedSphereCap {
   // centre is below the horizon) and b = sin α along y; k = 1 − xc² (= sin²α + cos²α cos²θ, computed
   // so: the lift z² = k − y² − δx (2 xc + δx) at x = xc + δx has no cancellation for small caps).
   double xc, a, b, k;
-  bool straddling;
-  double yTangent;          // |y| of the tangent points (straddling)
-  double yMax;              // the region's largest |y| (straddling)
+  enum class Map : unsigned char { Ellipse, CutDisks, Lens };
+  Map map;
+  bool straddling;  // map != Ellipse
+  double yTangent;  // |y| of the tangent points (straddling)
+  // Map::CutDisks: the ellipse piece's area a b g(βt) and 1 / (a b) (g, βt: circular_segment.h, the
+  // angle in the ellipse's own unit disk at which the tangent points lie).
+  double ellipsePieceArea, invAB;
+  // Map::Lens:
+  double yMax;              // the region's largest |y|
   double gTangent;          // G(yTangent / b) (see areaBelow)
   double areaBelowTangent;  // areaBelow(yTangent)
   double halfArea;  // areaBelow(yMax): the area of the region's y ≥ 0 half, as the map integrates it
@@ -70,8 +83,8 @@ struct ProjectedSphereCap {
   double areaThirdDerivativeBound;           // M₃ ≥ |d³A/dφ³| on [0, phiMax]
   double startWidth, invStartWidth,
       startCubic;  // the inversion's first guess: sliceWidth(0), its cubic model
-  // Ω⊥, the pdf's normalisation: π a b above the horizon, the map's own area 2 halfArea straddling
-  // (both sphere_cap.h's closed form to rounding).
+  // Ω⊥, the pdf's normalisation: the map's own area (π a b above the horizon, the two pieces' areas
+  // for cut disks, 2 halfArea for the lens), sphere_cap.h's closed form to rounding.
   double projectedSolidAngle;
   double invProjectedSolidAngle;
 
@@ -96,7 +109,7 @@ struct ProjectedSphereCap {
   // sin α + 2^-22 (a float direction's rounding), as SphereLight::pdfSolidAngle does.
   float pdf(const Vec3& w) const;
 
-  // The straddling map's parts (straddling only; 0 ≤ y ≤ yMax). areaBelow(y): the area of the
+  // The lens map's parts (Map::Lens only; 0 ≤ y ≤ yMax). areaBelow(y): the area of the
   // region's part with 0 ≤ y' ≤ y, in closed form; sliceWidth(y): its derivative.
   struct Slice {
     double area, width, slope;  // areaBelow(y), sliceWidth(y), d sliceWidth / dy
@@ -113,6 +126,8 @@ struct ProjectedSphereCap {
   Inversion invertArea(double target) const;
 
  private:
+  void initCutDisks();
+  void initLens();
   struct ArcSlice {
     double area, dArea, d2Area;  // areaBelow(b sin φ) and its derivatives in φ
   };
