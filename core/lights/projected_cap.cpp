@@ -133,13 +133,13 @@ void ProjectedSphereCap::initCutDisks() {
   map = Map::CutDisks;
   const double yt = yTangent, xt = std::min(1.0, cosAlpha / sinCentre);
   const double gammaT = yt <= xt ? std::asin(yt) : 0.5 * kPiD - std::asin(xt);
-  const double circlePiece = segmentArea(gammaT, SinCosD{yt, xt});
+  const double circlePiece = segmentArea(gammaT, SinCosD{yt, xt});  // small for small caps: the series
   // X_t = (xt − xc) / a = cot θ cot α (no cancellation), Y_t = yt / b.
   const double bigX = std::min(1.0, (cosAlpha * cosCentre) / (sinAlpha * sinCentre));
   const double bigY = std::min(1.0, yt * invB);
   const double betaT = bigX <= bigY ? 0.5 * kPiD + std::asin(bigX) : kPiD - std::asin(bigY);
   invAB = 1.0 / (a * b);
-  ellipsePieceArea = a * b * segmentArea(betaT, SinCosD{bigY, -bigX});
+  ellipsePieceArea = a * b * (betaT + bigX * bigY);  // g(βt), βt ≥ π/2: no cancellation
   projectedSolidAngle = ellipsePieceArea + circlePiece;
 }
 
@@ -292,20 +292,20 @@ ProjectedSphereCap::Direction ProjectedSphereCap::sampleDirection(Vec2 u) const 
     y = b * double(disk.y);
   } else if (map == Map::CutDisks) {
     // Ureña & Georgiev's parallel map across x: u.x cuts off the area left of x, u.y places y on the
-    // chord there. Left of the tangent points: the ellipse's chord at X = −cos β.
+    // chord there. Left of the tangent points the ellipse's chord at X = −cos β; right of them the unit
+    // disk's segment beyond x = cos γ, its area measured from the far end x = 1.
     const double area = double(u.x) * projectedSolidAngle;
     const double v = 2.0 * double(u.y) - 1.0;
-    if (area < ellipsePieceArea) {
-      const SinCosD beta = segmentAngle(area * invAB);
-      dx = -a * beta.cos;
-      y = v * b * beta.sin;
-    } else {
-      // The unit disk's segment beyond x = cos γ, measured from its far end x = 1; there the lift is
-      // z = sin γ √(1 − v²) exactly.
-      const SinCosD gamma = segmentAngle((1.0 - double(u.x)) * projectedSolidAngle);
-      const double z = gamma.sin * sqrtNonNeg((1.0 - v) * (1.0 + v));
-      return {gamma.cos * ex + (v * gamma.sin) * ey + z * ez, z};
+    const bool ellipsePiece = area < ellipsePieceArea;
+    const SinCosD angle =
+        segmentAngle(ellipsePiece ? area * invAB : (1.0 - double(u.x)) * projectedSolidAngle);
+    if (!ellipsePiece) {
+      // The lift z = sin γ √(1 − v²), exactly (no cancellation next to the horizon).
+      const double z = angle.sin * sqrtNonNeg((1.0 - v) * (1.0 + v));
+      return {angle.cos * ex + (v * angle.sin) * ey + z * ez, z};
     }
+    dx = -a * angle.cos;
+    y = v * b * angle.sin;
   } else {
     // Ureña & Georgiev's parallel map across y: y from the inverted marginal area, x on its slice.
     const double v = 2.0 * double(u.x) - 1.0;
