@@ -16,10 +16,11 @@ constexpr int kCount = 1 << 12;
 
 // Shading points on the plane z = −1 (normal +z) of the hw2 sphere scene's size. Above: the scene's
 // light, well above every point's horizon. Straddling: a light whose cap straddles every point's
-// horizon (centre 0.05 above or below it at distance 3–5, sin α 0.1–0.17). Tiny: the scene's light
-// shrunk to sin²α ≈ 1e-6 (0.6e-6–1.4e-6), above the horizon. Grazing: the straddling light with its
-// centre 0.007 above every point's horizon (0.08°–0.13°).
-enum class Setup { Above, Straddling, Tiny, Grazing };
+// horizon, its centre 0.05 above it at distance 3–5 (sin α 0.1–0.17; the cut-disk map). Lens: the
+// same light 0.05 below every point's horizon (the lens map). Tiny: the scene's light shrunk to
+// sin²α ≈ 1e-6 (0.6e-6–1.4e-6), above the horizon. Grazing: the straddling light with its centre
+// 0.007 above every point's horizon (0.08°–0.13°).
+enum class Setup { Above, Straddling, Lens, Tiny, Grazing };
 
 struct Fixture {
   SphereLight light{Sphere{Vec3(1, -1.5f, 1.75f), 0.1f}, Color3(300)};
@@ -32,10 +33,10 @@ struct Fixture {
       points.push_back(Vec3(2 * d(rng) - 1, 2 * d(rng) - 1, -1.f));
       u.push_back(Vec2(d(rng), d(rng)));
     }
-    if (setup == Setup::Straddling) {
+    if (setup == Setup::Straddling || setup == Setup::Lens)
       light.sphere = Sphere{Vec3(4.f, 0.f, -0.95f), 0.5f};
-      for (size_t i = 1; i < points.size(); i += 2) points[i].z = -0.9f;  // half see the centre below
-    }
+    if (setup == Setup::Lens)
+      for (Vec3& p : points) p.z = -0.9f;
     if (setup == Setup::Tiny) light.sphere.radius = 0.0032f;
     if (setup == Setup::Grazing) light.sphere = Sphere{Vec3(4.f, 0.f, -0.993f), 0.5f};
   }
@@ -73,6 +74,9 @@ BENCHMARK(BM_SphereLight_SampleSolidAngle<Setup::Straddling>)
     ->Name("BM_SphereLight_SampleSolidAngleStraddling");
 BENCHMARK(BM_SphereLight_SampleProjectedSolidAngle<Setup::Straddling>)
     ->Name("BM_SphereLight_SampleProjectedSolidAngleStraddling");
+BENCHMARK(BM_SphereLight_SampleSolidAngle<Setup::Lens>)->Name("BM_SphereLight_SampleSolidAngleLens");
+BENCHMARK(BM_SphereLight_SampleProjectedSolidAngle<Setup::Lens>)
+    ->Name("BM_SphereLight_SampleProjectedSolidAngleLens");
 BENCHMARK(BM_SphereLight_SampleSolidAngle<Setup::Tiny>)->Name("BM_SphereLight_SampleSolidAngleTiny");
 BENCHMARK(BM_SphereLight_SampleProjectedSolidAngle<Setup::Tiny>)
     ->Name("BM_SphereLight_SampleProjectedSolidAngleTiny");
