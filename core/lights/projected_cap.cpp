@@ -16,7 +16,6 @@ namespace {
 constexpr double kMinProjectedSolidAngle = 0x1p-120;
 // Float directions carry ~2^-24 relative error per component (see SphereLight::pdfSolidAngle).
 constexpr double kDirectionSlack = 0x1p-22;
-constexpr double kQuarterPi = 0.78539816339744830962;
 
 double sqrtNonNeg(double v) {
   return std::sqrt(std::max(v, 0.0));
