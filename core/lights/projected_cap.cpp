@@ -92,7 +92,7 @@ bool ProjectedSphereCap::init(const SphereLight& light, const Vec3& x, const Vec
   cosCentre = glm::dot(toCenter, ez) * invD;
   if (cosCentre <= -sinAlpha) return false;  // entirely below the horizon
   sinCentre = sideLength * invD;
-  const double invSideLength = 1.0 / sideLength;  // d / sin θ
+  const double invSideLength = 1.0 / sideLength;  // 1 / (d sin θ)
   if (sideLength > 0.0) {
     ey = side * invSideLength;
     ex = glm::cross(ey, ez);  // = (wc − cos θ ez) / sin θ
@@ -115,7 +115,7 @@ bool ProjectedSphereCap::init(const SphereLight& light, const Vec3& x, const Vec
         sinCentre > 0.0 ? sqrtNonNeg((sinAlpha - cosCentre) * (sinAlpha + cosCentre)) * d * invSideLength : b;
     yTangent = std::min(yt, b);
     if (a >= 0.0)
-      initCutDisks();
+      initCutDisks(d * invSideLength);
     else
       initLens();
   }
@@ -128,17 +128,23 @@ bool ProjectedSphereCap::init(const SphereLight& light, const Vec3& x, const Vec
 // x (a disk cut by a chord, in the ellipse's own unit disk: X = (x − xc) / a = −cos β, Y = y / b =
 // sin β at βt) and the unit disk's segment right of it (x = cos γ, y = sin γ at γt). Each arcsine
 // is taken where it is well conditioned (argument ≤ 1/√2).
-void ProjectedSphereCap::initCutDisks() {
+void ProjectedSphereCap::initCutDisks(double invSinCentre) {
   map = Map::CutDisks;
-  const double yt = yTangent, xt = std::min(1.0, cosAlpha / sinCentre);
-  const double gammaT = yt <= xt ? std::asin(yt) : 0.5 * kPiD - std::asin(xt);
-  const double circlePiece = segmentArea(gammaT, SinCosD{yt, xt});  // small for small caps: the series
-  // X_t = (xt − xc) / a = cot θ cot α (no cancellation), Y_t = yt / b.
-  const double bigX = std::min(1.0, (cosAlpha * cosCentre) / (sinAlpha * sinCentre));
+  const double yt = yTangent, xt = std::min(1.0, cosAlpha * invSinCentre);
+  // The pieces' areas g(γt) and a b g(βt), each through its smaller leg, so that an arcsine's argument
+  // is at most 1/√2 (well conditioned): g(γ) = 2 H(sin γ) for γ ≤ π/4 (H = circleExcessArea, a
+  // polynomial below sin γ = 1/4 and the arcsine above), γ = π/2 − asin(cos γ) beyond.
+  const double circlePiece =
+      yt <= xt ? 2.0 * circleExcessArea(yt, xt) : segmentArea(0.5 * kPiD - std::asin(xt), SinCosD{yt, xt});
+  // X_t = (xt − xc) / a = cot θ cot α (no cancellation), Y_t = yt / b; βt ∈ [π/2, π), cos βt = −X_t:
+  // g(βt) = π − g(π − βt) = π − 2 H(Y_t), or with βt = π/2 + asin X_t, asin X_t = 2 H(X_t) + X_t Y_t,
+  // g(βt) = π/2 + 2 H(X_t) + 2 X_t Y_t.
+  const double bigX = std::min(1.0, cosAlpha * cosCentre * invB * invSinCentre);
   const double bigY = std::min(1.0, yt * invB);
-  const double betaT = bigX <= bigY ? 0.5 * kPiD + std::asin(bigX) : kPiD - std::asin(bigY);
+  const double ellipseG = bigY <= bigX ? kPiD - 2.0 * circleExcessArea(bigY, bigX)
+                                       : 0.5 * kPiD + 2.0 * (circleExcessArea(bigX, bigY) + bigX * bigY);
   invAB = 1.0 / (a * b);
-  ellipsePieceArea = a * b * (betaT + bigX * bigY);  // g(βt), βt ≥ π/2: no cancellation
+  ellipsePieceArea = a * b * ellipseG;
   projectedSolidAngle = ellipsePieceArea + circlePiece;
 }
 

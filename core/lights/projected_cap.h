@@ -126,7 +126,7 @@ struct ProjectedSphereCap {
   Inversion invertArea(double target) const;
 
  private:
-  void initCutDisks();
+  void initCutDisks(double invSinCentre);  // 1 / sin θ
   void initLens();
   struct ArcSlice {
     double area, dArea, d2Area;  // areaBelow(b sin φ) and its derivatives in φ
