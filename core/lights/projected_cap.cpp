@@ -21,11 +21,6 @@ double sqrtNonNeg(double v) {
   return std::sqrt(std::max(v, 0.0));
 }
 
-// G(u) = ∫₀ᵘ √(1 − t²) dt = (u √(1 − u²) + asin u) / 2, given s = √(1 − u²).
-double quarterDiskArea(double u, double s) {
-  return 0.5 * (u * s + std::asin(u));
-}
-
 // Below this y, H(y) by a polynomial (closed form above: it cancels to 3ε/y² ≤ 5e-15 of H there).
 constexpr double kCircleSeriesLimit = 0.25;
 
@@ -44,6 +39,18 @@ double circleExcessArea(double y, double s) {
   const double p67 = 0.0150619292492544180941 + z * 0.0119682154926360764567;
   const double p8 = 0.0132162705503589562782;
   return y * z * ((p01 + z2 * p23) + z4 * ((p45 + z2 * p67) + z4 * p8));
+}
+
+// asin s given c = √(1 − s²) (s, c ≥ 0) through the smaller leg: asin s = 2 H(s) + s c, or π/2 minus
+// that of c, so H's polynomial serves where the smaller leg is below 1/4, and an arcsine of at most
+// 1/√2 (well conditioned) elsewhere.
+double arcsine(double s, double c) {
+  return s <= c ? 2.0 * circleExcessArea(s, c) + s * c : 0.5 * kPiD - (2.0 * circleExcessArea(c, s) + s * c);
+}
+
+// G(u) = ∫₀ᵘ √(1 − t²) dt = (u √(1 − u²) + asin u) / 2, given s = √(1 − u²).
+double quarterDiskArea(double u, double s) {
+  return 0.5 * (u * s + arcsine(u, s));
 }
 
 // sin and cos of |δ| ≤ 1/8 by their Taylor polynomials (truncated below 2^-55 of the value).
@@ -135,7 +142,7 @@ void ProjectedSphereCap::initCutDisks(double invSinCentre) {
   // is at most 1/√2 (well conditioned): g(γ) = 2 H(sin γ) for γ ≤ π/4 (H = circleExcessArea, a
   // polynomial below sin γ = 1/4 and the arcsine above), γ = π/2 − asin(cos γ) beyond.
   const double circlePiece =
-      yt <= xt ? 2.0 * circleExcessArea(yt, xt) : segmentArea(0.5 * kPiD - std::asin(xt), SinCosD{yt, xt});
+      yt <= xt ? 2.0 * circleExcessArea(yt, xt) : segmentArea(arcsine(yt, xt), SinCosD{yt, xt});
   // X_t = (xt − xc) / a = cot θ cot α (no cancellation), Y_t = yt / b; βt ∈ [π/2, π), cos βt = −X_t:
   // g(βt) = π − g(π − βt) = π − 2 H(Y_t), or with βt = π/2 + asin X_t, asin X_t = 2 H(X_t) + X_t Y_t,
   // g(βt) = π/2 + 2 H(X_t) + 2 X_t Y_t.
@@ -157,7 +164,7 @@ void ProjectedSphereCap::initLens() {
   const double s1 = sqrtNonNeg((1.0 - yTangent) * (1.0 + yTangent));
   // The inversion runs in the ellipse's angle φ, y = b sin φ, up to the tangent.
   cosPhiTangent = sqrtNonNeg((1.0 - u) * (1.0 + u));
-  phiTangent = std::asin(u);
+  phiTangent = arcsine(u, cosPhiTangent);
   phiMax = phiTangent;
   gTangent = 0.5 * (u * cosPhiTangent + phiTangent);
   areaBelowTangent = circleExcessArea(yTangent, s1) + yTangent * circleGap(yTangent, s1) + a * b * gTangent;
@@ -243,7 +250,7 @@ ProjectedSphereCap::Inversion ProjectedSphereCap::invertArea(double target) cons
   if (!(y > 0.0 && y < yMax)) y = 0.5 * yMax;
   double sinPhi = std::min(1.0, y * invB);
   double cosPhi = sqrtNonNeg((1.0 - sinPhi) * (1.0 + sinPhi));
-  double phi = std::asin(sinPhi);
+  double phi = arcsine(sinPhi, cosPhi);
   double lo = 0.0, hi = phiMax;
   const double ulps = 4 * 0x1p-52 * phiMax;
   int step = 0;
