@@ -217,7 +217,7 @@ int run(const Options& o, const Session& mpi) {
       if (signals.interrupted()) engine.stopNow();
       if (tty)
         drawProgress(uint64_t(engine.progress().spp) * ranks, target, mpi.wallSeconds() - t0, o.seconds);
-      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));  // an interrupt is seen within 5 ms
     }
     engine.wait();
   }
@@ -273,8 +273,7 @@ int run(const Options& o, const Session& mpi) {
   uint64_t samples = 0;
   for (uint32_t n : rowSpp) samples += uint64_t(n) * uint64_t(cam.width);
   const double seconds = mpi.wallSeconds() - t0;
-  Film film(cam.width, cam.height);
-  film.sums() = std::move(total);
+  const Film film(cam.width, cam.height, std::move(total));  // no copy, no zeroing of 100 MB at 1080p
   ImageMetadata meta;
   for (auto& [k, v] : describeSettings(s)) meta.add(k, v);
   meta.add("spp", std::to_string(spp));

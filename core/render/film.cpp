@@ -2,6 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+#include <utility>
+
+#include "core/math/error.h"
 
 namespace penumbra {
 
@@ -9,6 +13,13 @@ void Film::reset(int width, int height) {
   width_ = width;
   height_ = height;
   sums_.assign(size_t(width) * height * 6, 0.0);
+}
+
+Film::Film(int width, int height, std::vector<double> sums)
+    : width_(width), height_(height), sums_(std::move(sums)) {
+  if (sums_.size() != size_t(std::max(width, 0)) * size_t(std::max(height, 0)) * 6)
+    throw Error("film sums of " + std::to_string(sums_.size()) + " values for " + std::to_string(width) +
+                "x" + std::to_string(height) + " pixels");
 }
 
 void Film::clear() {

@@ -15,6 +15,9 @@ class Film {
  public:
   Film() = default;
   Film(int width, int height) { reset(width, height); }
+  // A film holding `sums` (width * height * 6 values, as sums() gives them; e.g. the total of
+  // processes that shared a render), taken without a copy.
+  Film(int width, int height, std::vector<double> sums);
 
   void reset(int width, int height);
   void clear();
