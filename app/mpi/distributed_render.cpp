@@ -212,10 +212,10 @@ int run(const Options& o, const Session& mpi) {
     } else if (!engine.extend(limits)) {
       throw Error("the engine could not continue the accumulation");
     }
-    while (!engine.progress().finished) {
+    for (unsigned poll = 0; !engine.progress().finished; ++poll) {
       // Ends within a pixel, keeping the rows that completed the running pass (Engine::stopNow).
       if (signals.interrupted()) engine.stopNow();
-      if (tty)
+      if (tty && poll % 4 == 0)
         drawProgress(uint64_t(engine.progress().spp) * ranks, target, mpi.wallSeconds() - t0, o.seconds);
       std::this_thread::sleep_for(std::chrono::milliseconds(5));  // an interrupt is seen within 5 ms
     }
