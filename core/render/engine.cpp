@@ -30,6 +30,7 @@ void Engine::start(std::shared_ptr<const RenderJob> job, RenderLimits limits, in
   stopNow_ = false;
   abandonRows_ = false;
   rowsAhead_ = false;
+  rollBackRows_ = rollbackMode_ != RowRollback::Never;
   rowPasses_.assign(size_t(std::max(cam.height, 0)), 0);
   finished_ = false;
   spp_ = 0;
@@ -66,6 +67,7 @@ bool Engine::extend(RenderLimits limits) {
   stopRequested_ = false;
   stopNow_ = false;
   abandonRows_ = false;
+  if (rollbackMode_ != RowRollback::Auto) rollBackRows_ = rollbackMode_ == RowRollback::Always;
   clock_.resume();
   nextRow_ = 0;
   finished_ = false;
@@ -151,7 +153,12 @@ bool Engine::passBoundary() {
       return true;
     }
   }
-  passSeconds_ = clock_.elapsed();
+  const double now = clock_.elapsed();
+  if (rollbackMode_ == RowRollback::Auto) {
+    const double rowSeconds = (now - passSeconds_) * workers_.size() / std::max(1, film_.height());
+    rollBackRows_ = rowSeconds > kRollBackRowSeconds;
+  }
+  passSeconds_ = now;
   spp_ = spp_ + 1;
   nextRow_ = 0;
   const bool stop = stopRequested_ || stopNow_ || (limits_.targetSpp > 0 && spp_ >= limits_.targetSpp) ||
@@ -197,18 +204,21 @@ void Engine::workerLoop(bool preview) {
   for (;;) {
     const uint32_t sampleIndex = uint32_t(schedule_.sampleIndex(pass));
     uint64_t bad = 0;
+    const bool rollback = rollBackRows_.load(std::memory_order_relaxed);
     for (int y; !abandonRows_.load(std::memory_order_relaxed) && (y = nextRow_.fetch_add(1)) < height;) {
       double* sums = film_.sums().data() + size_t(y) * rowValues;
-      std::copy(sums, sums + rowValues, rowBefore.begin());
+      if (rollback) std::copy(sums, sums + rowValues, rowBefore.begin());
       const uint64_t badBefore = bad;
-      renderRow.row(y, sampleIndex, sampler, film_, bad, abandonRows_);
-      // The row returns early only once the flag is set, so a row seen unflagged here is complete;
-      // a flagged one is rolled back whether or not it completed.
-      if (abandonRows_.load(std::memory_order_relaxed)) {
+      renderRow.row(y, sampleIndex, sampler, film_, bad, rollback ? abandonRows_ : cancel_);
+      // A row returns early only once its flag is set, so a row seen unflagged here is complete; a
+      // flagged one is rolled back whether or not it completed. Without the copy only cancel() leaves
+      // a row unfinished (and the pass with it).
+      if (rollback && abandonRows_.load(std::memory_order_relaxed)) {
         std::copy(rowBefore.begin(), rowBefore.end(), sums);
         bad = badBefore;
         break;
       }
+      if (cancel_.load(std::memory_order_relaxed)) break;
       rowPasses_[size_t(y)] = pass + 1;
       // This worker owns row y until the pass ends: resolve it now, from sums still in cache.
       if (meanRows) film_.resolveMean(pass + 1, *meanRows, y, y + 1);

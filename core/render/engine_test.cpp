@@ -457,14 +457,16 @@ bool stopInsideAPass(Engine& engine, std::shared_ptr<RenderJob> job, SampleSched
 
 // Stopped now, every row of the film holds whole passes: rows that completed the interrupted pass equal,
 // bit for bit, a render of spp + 1 passes, the others (the ones being rendered, rolled back, and the ones
-// not reached) a render of spp passes; rowPasses() says which is which.
-TEST(Engine, StopNowKeepsExactlyTheRowsThatCompletedThePass) {
+// not reached) a render of spp passes; rowPasses() says which is which. Both ways of stopping the rows
+// being rendered: rolled back from the worker's copy (Always), finished (Never).
+void expectStopNowKeepsWholeRows(Engine::RowRollback mode) {
   auto job = smallJob();
   job->settings.camera.width = 64;
   job->settings.camera.height = 96;
   job->settings.integrator.samples = 24;  // passes of a few milliseconds: a stop lands inside one
   const SampleSchedule schedule = SampleSchedule::blocks(4, 1, 2);
   Engine engine;
+  engine.setRowRollback(mode);
   ASSERT_TRUE(stopInsideAPass(engine, job, schedule)) << "no stop landed inside a pass";
   const uint32_t spp = engine.progress().spp;
   const std::vector<uint32_t> rows = engine.rowPasses();
@@ -493,6 +495,34 @@ TEST(Engine, StopNowKeepsExactlyTheRowsThatCompletedThePass) {
       ASSERT_EQ(mean.at(x, y), (rows[size_t(y)] == spp ? meanWhole : meanAhead).at(x, y));
   // The rows ahead would get the next pass twice: the render cannot be continued.
   EXPECT_FALSE(engine.extend(RenderLimits{spp + 4, 0.0}));
+}
+
+TEST(Engine, StopNowKeepsExactlyTheRowsThatCompletedThePass) {
+  expectStopNowKeepsWholeRows(Engine::RowRollback::Always);
+}
+
+TEST(Engine, StopNowWithoutRollbackFinishesTheRowsBeingRendered) {
+  expectStopNowKeepsWholeRows(Engine::RowRollback::Never);
+}
+
+// A row of expensive pixels (tens of seconds) is abandoned within a pixel and rolled back: Auto copies
+// rows in the first pass and in passes after slow rows.
+TEST(Engine, StopNowAbandonsAnExpensiveRowAndRollsItBack) {
+  auto job = smallJob();
+  job->settings.camera.width = 4096;
+  job->settings.camera.height = 1;
+  job->settings.integrator.samples = 65536;
+  Engine engine;
+  engine.start(job, RenderLimits{}, 1);
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));  // let the worker enter the row
+  const auto t0 = std::chrono::steady_clock::now();
+  engine.stopNow();
+  engine.wait();
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  EXPECT_LT(seconds, 5.0);  // generous (a pixel takes milliseconds): this catches finishing the row
+  EXPECT_EQ(engine.progress().spp, 0u);
+  EXPECT_EQ(engine.rowPasses(), std::vector<uint32_t>(1, 0u));
+  EXPECT_EQ(engine.film().sums(), std::vector<double>(4096 * 6, 0.0));  // the partial row was undone
 }
 
 TEST(Engine, StopNowAtRestKeepsEveryRowAtTheSamePasses) {
