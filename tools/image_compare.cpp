@@ -1,6 +1,8 @@
 // For the end-to-end tests of penumbra-mpi:
-//   penumbra_image_compare A B REL   exit 0 when every channel of every pixel agrees within REL
-//                                    relative (|a - b| <= REL * max(|a|, |b|)), else 1; prints the worst
+//   penumbra_image_compare A B REL [Y0 Y1]
+//                                    exit 0 when every channel of every pixel (of the rows [Y0, Y1)
+//                                    only, if given) agrees within REL relative
+//                                    (|a - b| <= REL * max(|a|, |b|)), else 1; prints the worst
 //   penumbra_image_compare --info A  prints the metadata (key=value lines) and "valid=1" when every
 //                                    value is finite and non-negative
 #include <algorithm>
@@ -25,8 +27,8 @@ int main(int argc, char** argv) {
       std::printf("valid=%d\n", valid ? 1 : 0);
       return 0;
     }
-    if (argc != 4) {
-      std::fprintf(stderr, "usage: penumbra_image_compare A B REL | --info A\n");
+    if (argc != 4 && argc != 6) {
+      std::fprintf(stderr, "usage: penumbra_image_compare A B REL [Y0 Y1] | --info A\n");
       return 2;
     }
     const Image a = readImage(argv[1]), b = readImage(argv[2]);
@@ -35,16 +37,22 @@ int main(int argc, char** argv) {
       std::printf("sizes differ: %dx%d vs %dx%d\n", a.width, a.height, b.width, b.height);
       return 1;
     }
+    const int y0 = argc == 6 ? std::atoi(argv[4]) : 0, y1 = argc == 6 ? std::atoi(argv[5]) : a.height;
+    if (y0 < 0 || y1 > a.height || y0 >= y1) {
+      std::fprintf(stderr, "error: rows [%d, %d) are not within the image's %d rows\n", y0, y1, a.height);
+      return 2;
+    }
     double worst = 0;
     size_t bad = 0;
-    for (size_t i = 0; i < a.rgb.size(); ++i) {
+    const size_t begin = size_t(y0) * size_t(a.width) * 3, end = size_t(y1) * size_t(a.width) * 3;
+    for (size_t i = begin; i < end; ++i) {
       const double x = a.rgb[i], y = b.rgb[i], scale = std::max(std::abs(x), std::abs(y));
       const double d = scale > 0 ? std::abs(x - y) / scale : 0.0;
       if (!(d <= rel)) ++bad;
       if (!(d <= worst)) worst = d;
     }
     std::printf("worst relative difference %.3g over %zu pixels, %zu values beyond %g\n", worst,
-                a.rgb.size() / 3, bad, rel);
+                (end - begin) / 3, bad, rel);
     return bad == 0 ? 0 : 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s\n", e.what());

@@ -119,11 +119,16 @@ Reference renderReference(const LoadedScene& scene, RenderLimits limits, int thr
   return ref;
 }
 
-void writeReference(const std::string& path, const Reference& ref, const ImageMetadata& metadata) {
+void writeReference(const std::string& path, const Reference& ref, const ImageMetadata& metadata,
+                    ExrCompression compression) {
   ImageMetadata meta = metadata;
   meta.add("reference", ref.source);
-  writeImage(path, ref.mean, meta);
-  if (!ref.standardError.empty()) writeExr(standardErrorPath(path), ref.standardError, meta);
+  if (imageFormatFromPath(path) == ImageFormat::Exr)
+    writeExr(path, ref.mean, meta, ExrPixelType::Float, compression);
+  else
+    writeImage(path, ref.mean, meta);
+  if (!ref.standardError.empty())
+    writeExr(standardErrorPath(path), ref.standardError, meta, ExrPixelType::Float, compression);
 }
 
 Reference readReference(const std::string& path) {

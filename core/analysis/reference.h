@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "core/image/image.h"
+#include "core/image/image_io.h"
 #include "core/integrators/integrator_desc.h"
 #include "core/render/engine.h"
 #include "core/scene/scene_builder.h"
@@ -53,7 +54,10 @@ inline constexpr uint64_t kReferenceSeed = 0x5EEDF00D12345678ull;
 // (a) Renders a reference (limits as in Engine::start; at least one of them must be set).
 Reference renderReference(const LoadedScene& scene, RenderLimits limits, int threads = 0,
                           uint64_t seed = kReferenceSeed);
-void writeReference(const std::string& path, const Reference& ref, const ImageMetadata& metadata = {});
+// Writes the mean to `path` and the standard error (if any) to standardErrorPath(path), both atomically,
+// the mean first; `compression` applies to every EXR written.
+void writeReference(const std::string& path, const Reference& ref, const ImageMetadata& metadata = {},
+                    ExrCompression compression = ExrCompression::Zip);
 // (b) Reads a reference image and, if present, its sibling standard error. Throws Error.
 Reference readReference(const std::string& path);
 

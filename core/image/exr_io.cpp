@@ -35,11 +35,11 @@ ImageMetadata stringAttributes(const Imf::Header& header) {
 }  // namespace
 
 void writeExr(const std::string& path, const Image& image, const ImageMetadata& metadata,
-              ExrPixelType pixelType) {
+              ExrPixelType pixelType, ExrCompression compression) {
   if (image.width <= 0 || image.height <= 0 || image.rgb.size() != image.pixelCount() * 3)
     throw Error(path, 0, "cannot write an empty or inconsistent image");
   Imf::Header header(image.width, image.height);
-  header.compression() = Imf::ZIP_COMPRESSION;
+  header.compression() = compression == ExrCompression::None ? Imf::NO_COMPRESSION : Imf::ZIP_COMPRESSION;
   const Imf::PixelType fileType = pixelType == ExrPixelType::Half ? Imf::HALF : Imf::FLOAT;
   header.channels().insert("R", Imf::Channel(fileType));
   header.channels().insert("G", Imf::Channel(fileType));

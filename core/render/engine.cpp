@@ -27,6 +27,11 @@ void Engine::start(std::shared_ptr<const RenderJob> job, RenderLimits limits, in
   nextRow_ = 0;
   cancel_ = false;
   stopRequested_ = false;
+  stopNow_ = false;
+  abandonRows_ = false;
+  rowsAhead_ = false;
+  rollBackRows_ = rollbackMode_ != RowRollback::Never;
+  rowPasses_.assign(size_t(std::max(cam.height, 0)), 0);
   finished_ = false;
   spp_ = 0;
   passSeconds_ = 0.0;
@@ -53,12 +58,16 @@ bool Engine::extend(RenderLimits limits) {
     limits_ = limits;  // read by passBoundary() under the barrier's lock
     return true;
   }
-  if (cancel_ || spp_ == 0) return false;  // a cancelled pass left the film incomplete
+  // A cancelled pass left the film incomplete; rows ahead of the others would get a pass twice.
+  if (cancel_ || rowsAhead_ || spp_ == 0) return false;
   lk.unlock();
   wait();  // join the idle workers
   limits_ = limits;
   if (limits_.targetSpp > 0 && spp_ >= limits_.targetSpp) return true;  // nothing more to do
   stopRequested_ = false;
+  stopNow_ = false;
+  abandonRows_ = false;
+  if (rollbackMode_ != RowRollback::Auto) rollBackRows_ = rollbackMode_ == RowRollback::Always;
   clock_.resume();
   nextRow_ = 0;
   finished_ = false;
@@ -72,6 +81,7 @@ void Engine::finish() {
 
 void Engine::cancel() {
   cancel_ = true;
+  abandonRows_ = true;
   {
     PassBarrier::Lock lk = barrier_.lock();
     barrier_.notifyAll();
@@ -82,6 +92,13 @@ void Engine::cancel() {
 
 void Engine::requestStop() {
   stopRequested_ = true;
+  PassBarrier::Lock lk = barrier_.lock();
+  barrier_.notifyAll();
+}
+
+void Engine::stopNow() {
+  stopNow_ = true;
+  abandonRows_ = true;
   PassBarrier::Lock lk = barrier_.lock();
   barrier_.notifyAll();
 }
@@ -128,10 +145,23 @@ bool Engine::publishAtRest() {
 // Runs in the last worker to finish a pass, with the barrier's lock held and every other worker waiting.
 bool Engine::passBoundary() {
   if (cancel_) return true;
-  passSeconds_ = clock_.elapsed();
+  if (stopNow_) {
+    // The pass counts only if every row completed it; otherwise the rows that did are ahead.
+    const size_t completed = size_t(std::count(rowPasses_.begin(), rowPasses_.end(), spp_ + 1));
+    if (completed < rowPasses_.size()) {
+      rowsAhead_ = completed > 0;
+      return true;
+    }
+  }
+  const double now = clock_.elapsed();
+  if (rollbackMode_ == RowRollback::Auto) {
+    const double rowSeconds = (now - passSeconds_) * workers_.size() / std::max(1, film_.height());
+    rollBackRows_ = rowSeconds > kRollBackRowSeconds;
+  }
+  passSeconds_ = now;
   spp_ = spp_ + 1;
   nextRow_ = 0;
-  const bool stop = stopRequested_ || (limits_.targetSpp > 0 && spp_ >= limits_.targetSpp) ||
+  const bool stop = stopRequested_ || stopNow_ || (limits_.targetSpp > 0 && spp_ >= limits_.targetSpp) ||
                     (limits_.seconds > 0 && clock_.elapsed() >= limits_.seconds);
   // The last pass is always published, so viewers see the finished image.
   const bool published = publisher_.atPassBoundary(film_, spp_, stop);
@@ -144,7 +174,8 @@ bool Engine::passBoundary() {
 void Engine::renderPreview(const RowRenderer& renderRow, Sampler& sampler) {
   const int height = film_.height();
   const int blockRows = (height + kPreviewBlock - 1) / kPreviewBlock;
-  for (int b; !cancel_.load(std::memory_order_relaxed) && (b = nextPreviewRow_.fetch_add(1)) < blockRows;)
+  for (int b;
+       !abandonRows_.load(std::memory_order_relaxed) && (b = nextPreviewRow_.fetch_add(1)) < blockRows;)
     renderRow.preview(b * kPreviewBlock, kPreviewBlock, sampler, preview_);
   PassBarrier::Lock lk = barrier_.lock();
   if (barrier_.arrive(lk, [&] { return cancel_.load(); })) {
@@ -162,6 +193,8 @@ void Engine::workerLoop(bool preview) {
   RowRenderer renderRow = makeRowRenderer(job);
   Sampler sampler(s.samplerKind, s.sampleCount, s.seed);
   const int height = s.camera.height;
+  const size_t rowValues = size_t(s.camera.width) * 6;
+  std::vector<double> rowBefore(rowValues);  // the sums of this worker's row before its pass
 
   if (preview) renderPreview(renderRow, sampler);
 
@@ -171,8 +204,22 @@ void Engine::workerLoop(bool preview) {
   for (;;) {
     const uint32_t sampleIndex = uint32_t(schedule_.sampleIndex(pass));
     uint64_t bad = 0;
-    for (int y; !cancel_.load(std::memory_order_relaxed) && (y = nextRow_.fetch_add(1)) < height;) {
-      renderRow.row(y, sampleIndex, sampler, film_, bad, cancel_);
+    const bool rollback = rollBackRows_.load(std::memory_order_relaxed);
+    for (int y; !abandonRows_.load(std::memory_order_relaxed) && (y = nextRow_.fetch_add(1)) < height;) {
+      double* sums = film_.sums().data() + size_t(y) * rowValues;
+      if (rollback) std::copy(sums, sums + rowValues, rowBefore.begin());
+      const uint64_t badBefore = bad;
+      renderRow.row(y, sampleIndex, sampler, film_, bad, rollback ? abandonRows_ : cancel_);
+      // A row returns early only once its flag is set, so a row seen unflagged here is complete; a
+      // flagged one is rolled back whether or not it completed. Without the copy only cancel() leaves
+      // a row unfinished (and the pass with it).
+      if (rollback && abandonRows_.load(std::memory_order_relaxed)) {
+        std::copy(rowBefore.begin(), rowBefore.end(), sums);
+        bad = badBefore;
+        break;
+      }
+      if (cancel_.load(std::memory_order_relaxed)) break;
+      rowPasses_[size_t(y)] = pass + 1;
       // This worker owns row y until the pass ends: resolve it now, from sums still in cache.
       if (meanRows) film_.resolveMean(pass + 1, *meanRows, y, y + 1);
       if (errorRows) film_.resolveStandardError(pass + 1, *errorRows, y, y + 1);
@@ -183,9 +230,9 @@ void Engine::workerLoop(bool preview) {
     if (barrier_.arrive(lk)) {
       bool stop = passBoundary();
       restingAtBoundary_ = true;  // the film is at rest while this worker waits (probeAtRest)
-      if (!stop) barrier_.wait(lk, [&] { return !clock_.paused() || cancel_ || stopRequested_; });
+      if (!stop) barrier_.wait(lk, [&] { return !clock_.paused() || cancel_ || stopRequested_ || stopNow_; });
       restingAtBoundary_ = false;
-      if (!stop && (cancel_ || stopRequested_)) stop = true;
+      if (!stop && (cancel_ || stopRequested_ || stopNow_)) stop = true;
       if (stop) finish();
       if (signal_ && stop) signal_->notify();  // after `finished`, which viewers read
       stopAll_ = stop;

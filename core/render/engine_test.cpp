@@ -428,3 +428,121 @@ TEST(Engine, BlockSchedulePartsSumToTheWholeRender) {
 
 }  // namespace
 }  // namespace penumbra
+
+namespace penumbra {
+namespace {
+
+// The film sums of row y (6 doubles per pixel).
+std::vector<double> rowSums(const Film& film, int y) {
+  const size_t n = size_t(film.width()) * 6;
+  const auto begin = film.sums().begin() + std::ptrdiff_t(size_t(y) * n);
+  return std::vector<double>(begin, begin + std::ptrdiff_t(n));
+}
+
+// Stops a render of `job` inside a pass (some rows ahead), retrying a few times in case a stop lands on
+// a pass boundary; returns false if none landed inside one.
+bool stopInsideAPass(Engine& engine, std::shared_ptr<RenderJob> job, SampleSchedule schedule) {
+  for (int attempt = 0; attempt < 8; ++attempt) {
+    engine.start(job, RenderLimits{}, 3, schedule);
+    if (!eventually([&] { return engine.progress().spp >= 2; })) continue;
+    std::this_thread::sleep_for(std::chrono::milliseconds(3 + 7 * attempt));
+    engine.stopNow();
+    engine.wait();
+    const std::vector<uint32_t>& rows = engine.rowPasses();
+    const uint32_t spp = engine.progress().spp;
+    if (std::count(rows.begin(), rows.end(), spp + 1) > 0) return true;
+  }
+  return false;
+}
+
+// Stopped now, every row of the film holds whole passes: rows that completed the interrupted pass equal,
+// bit for bit, a render of spp + 1 passes, the others (the ones being rendered, rolled back, and the ones
+// not reached) a render of spp passes; rowPasses() says which is which. Both ways of stopping the rows
+// being rendered: rolled back from the worker's copy (Always), finished (Never).
+void expectStopNowKeepsWholeRows(Engine::RowRollback mode) {
+  auto job = smallJob();
+  job->settings.camera.width = 64;
+  job->settings.camera.height = 96;
+  job->settings.integrator.samples = 24;  // passes of a few milliseconds: a stop lands inside one
+  const SampleSchedule schedule = SampleSchedule::blocks(4, 1, 2);
+  Engine engine;
+  engine.setRowRollback(mode);
+  ASSERT_TRUE(stopInsideAPass(engine, job, schedule)) << "no stop landed inside a pass";
+  const uint32_t spp = engine.progress().spp;
+  const std::vector<uint32_t> rows = engine.rowPasses();
+  ASSERT_EQ(rows.size(), 96u);
+  Engine whole, ahead;
+  whole.start(job, RenderLimits{spp, 0.0}, 2, schedule);
+  ahead.start(job, RenderLimits{spp + 1, 0.0}, 2, schedule);
+  whole.wait();
+  ahead.wait();
+  int rowsAhead = 0;
+  for (int y = 0; y < 96; ++y) {
+    ASSERT_TRUE(rows[size_t(y)] == spp || rows[size_t(y)] == spp + 1) << "row " << y;
+    const bool isAhead = rows[size_t(y)] == spp + 1;
+    rowsAhead += isAhead;
+    EXPECT_EQ(rowSums(engine.film(), y), rowSums((isAhead ? ahead : whole).film(), y))
+        << "row " << y << " (" << rows[size_t(y)] << " passes)";
+  }
+  EXPECT_GT(rowsAhead, 0);
+  EXPECT_LT(rowsAhead, 96);
+  // Resolved with its own count, each row is the mean of its passes.
+  Image mean(64, 96);
+  engine.film().resolveMean(rows, mean, 0, 96);
+  const Image meanWhole = whole.film().mean(spp), meanAhead = ahead.film().mean(spp + 1);
+  for (int y = 0; y < 96; ++y)
+    for (int x = 0; x < 64; ++x)
+      ASSERT_EQ(mean.at(x, y), (rows[size_t(y)] == spp ? meanWhole : meanAhead).at(x, y));
+  // The rows ahead would get the next pass twice: the render cannot be continued.
+  EXPECT_FALSE(engine.extend(RenderLimits{spp + 4, 0.0}));
+}
+
+TEST(Engine, StopNowKeepsExactlyTheRowsThatCompletedThePass) {
+  expectStopNowKeepsWholeRows(Engine::RowRollback::Always);
+}
+
+TEST(Engine, StopNowWithoutRollbackFinishesTheRowsBeingRendered) {
+  expectStopNowKeepsWholeRows(Engine::RowRollback::Never);
+}
+
+// A row of expensive pixels (tens of seconds) is abandoned within a pixel and rolled back: Auto copies
+// rows in the first pass and in passes after slow rows.
+TEST(Engine, StopNowAbandonsAnExpensiveRowAndRollsItBack) {
+  auto job = smallJob();
+  job->settings.camera.width = 4096;
+  job->settings.camera.height = 1;
+  job->settings.integrator.samples = 65536;
+  Engine engine;
+  engine.start(job, RenderLimits{}, 1);
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));  // let the worker enter the row
+  const auto t0 = std::chrono::steady_clock::now();
+  engine.stopNow();
+  engine.wait();
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  EXPECT_LT(seconds, 5.0);  // generous (a pixel takes milliseconds): this catches finishing the row
+  EXPECT_EQ(engine.progress().spp, 0u);
+  EXPECT_EQ(engine.rowPasses(), std::vector<uint32_t>(1, 0u));
+  EXPECT_EQ(engine.film().sums(), std::vector<double>(4096 * 6, 0.0));  // the partial row was undone
+}
+
+TEST(Engine, StopNowAtRestKeepsEveryRowAtTheSamePasses) {
+  auto job = smallJob();
+  Engine engine;
+  engine.start(job, RenderLimits{5, 0.0}, 2);
+  engine.wait();
+  engine.stopNow();  // after the render: nothing changes
+  EXPECT_EQ(engine.progress().spp, 5u);
+  EXPECT_EQ(engine.rowPasses(), std::vector<uint32_t>(32, 5u));
+  ASSERT_TRUE(engine.extend(RenderLimits{7, 0.0}));
+  engine.wait();
+  EXPECT_EQ(engine.rowPasses(), std::vector<uint32_t>(32, 7u));
+  EXPECT_EQ(engine.film().sums(), [&] {
+    Engine fresh;
+    fresh.start(job, RenderLimits{7, 0.0}, 1);
+    fresh.wait();
+    return fresh.film().sums();
+  }());
+}
+
+}  // namespace
+}  // namespace penumbra

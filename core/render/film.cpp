@@ -2,6 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+#include <utility>
+
+#include "core/math/error.h"
 
 namespace penumbra {
 
@@ -11,20 +15,33 @@ void Film::reset(int width, int height) {
   sums_.assign(size_t(width) * height * 6, 0.0);
 }
 
+Film::Film(int width, int height, std::vector<double> sums)
+    : width_(width), height_(height), sums_(std::move(sums)) {
+  if (sums_.size() != size_t(std::max(width, 0)) * size_t(std::max(height, 0)) * 6)
+    throw Error("film sums of " + std::to_string(sums_.size()) + " values for " + std::to_string(width) +
+                "x" + std::to_string(height) + " pixels");
+}
+
 void Film::clear() {
   std::fill(sums_.begin(), sums_.end(), 0.0);
 }
 
-void Film::resolveMean(uint32_t spp, Image& out, int y0, int y1) const {
-  double inv = spp > 0 ? 1.0 / spp : 0.0;
-  for (int y = y0; y < y1; ++y) {
-    for (int x = 0; x < width_; ++x) {
-      size_t i = size_t(y) * width_ + x;
-      const double* s = &sums_[i * 6];
-      float* o = &out.rgb[i * 3];
-      for (int c = 0; c < 3; ++c) o[c] = float(s[c] * inv);
-    }
+void Film::resolveMeanRow(uint32_t spp, Image& out, int y) const {
+  const double inv = spp > 0 ? 1.0 / spp : 0.0;
+  for (int x = 0; x < width_; ++x) {
+    size_t i = size_t(y) * width_ + x;
+    const double* s = &sums_[i * 6];
+    float* o = &out.rgb[i * 3];
+    for (int c = 0; c < 3; ++c) o[c] = float(s[c] * inv);
   }
+}
+
+void Film::resolveMean(uint32_t spp, Image& out, int y0, int y1) const {
+  for (int y = y0; y < y1; ++y) resolveMeanRow(spp, out, y);
+}
+
+void Film::resolveMean(const std::vector<uint32_t>& rowSpp, Image& out, int y0, int y1) const {
+  for (int y = y0; y < y1; ++y) resolveMeanRow(rowSpp[size_t(y)], out, y);
 }
 
 Image Film::mean(uint32_t spp) const {
@@ -46,15 +63,21 @@ float standardErrorOf(double s, double s2, uint32_t spp) {
 
 }  // namespace
 
-void Film::resolveStandardError(uint32_t spp, Image& out, int y0, int y1) const {
-  for (int y = y0; y < y1; ++y) {
-    for (int x = 0; x < width_; ++x) {
-      size_t i = size_t(y) * width_ + x;
-      const double* s = &sums_[i * 6];
-      float* o = &out.rgb[i * 3];
-      for (int c = 0; c < 3; ++c) o[c] = standardErrorOf(s[c], s[c + 3], spp);
-    }
+void Film::resolveStandardErrorRow(uint32_t spp, Image& out, int y) const {
+  for (int x = 0; x < width_; ++x) {
+    size_t i = size_t(y) * width_ + x;
+    const double* s = &sums_[i * 6];
+    float* o = &out.rgb[i * 3];
+    for (int c = 0; c < 3; ++c) o[c] = standardErrorOf(s[c], s[c + 3], spp);
   }
+}
+
+void Film::resolveStandardError(uint32_t spp, Image& out, int y0, int y1) const {
+  for (int y = y0; y < y1; ++y) resolveStandardErrorRow(spp, out, y);
+}
+
+void Film::resolveStandardError(const std::vector<uint32_t>& rowSpp, Image& out, int y0, int y1) const {
+  for (int y = y0; y < y1; ++y) resolveStandardErrorRow(rowSpp[size_t(y)], out, y);
 }
 
 void Film::pixelStatistics(uint32_t spp, int x, int y, Color3& mean, Color3& standardError) const {

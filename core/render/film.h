@@ -15,6 +15,9 @@ class Film {
  public:
   Film() = default;
   Film(int width, int height) { reset(width, height); }
+  // A film holding `sums` (width * height * 6 values, as sums() gives them; e.g. the total of
+  // processes that shared a render), taken without a copy.
+  Film(int width, int height, std::vector<double> sums);
 
   void reset(int width, int height);
   void clear();
@@ -40,14 +43,20 @@ class Film {
 
   // Mean of `spp` samples per pixel, for rows [y0, y1).
   void resolveMean(uint32_t spp, Image& out, int y0, int y1) const;
+  // The same with rowSpp[y] samples in each pixel of row y (a render stopped inside a pass).
+  void resolveMean(const std::vector<uint32_t>& rowSpp, Image& out, int y0, int y1) const;
   Image mean(uint32_t spp) const;
   // Standard error of the mean (per channel) for rows [y0, y1); zero below 2 samples.
   void resolveStandardError(uint32_t spp, Image& out, int y0, int y1) const;
+  void resolveStandardError(const std::vector<uint32_t>& rowSpp, Image& out, int y0, int y1) const;
   Image standardError(uint32_t spp) const;
   // Mean and standard error of one pixel (as resolveMean / resolveStandardError would give them).
   void pixelStatistics(uint32_t spp, int x, int y, Color3& mean, Color3& standardError) const;
 
  private:
+  void resolveMeanRow(uint32_t spp, Image& out, int y) const;
+  void resolveStandardErrorRow(uint32_t spp, Image& out, int y) const;
+
   int width_ = 0, height_ = 0;
   std::vector<double> sums_;  // per pixel: sum r, g, b, sum r^2, g^2, b^2
 };
