@@ -10,8 +10,11 @@
 //    pass boundary minus the polling thread's own), which does not advance while other processes
 //    hold the cores. It fits from 20 ms (and >= 8 passes: start-up and per-pass overheads make the
 //    very first passes slower per sample) to 2 s, two decades, on an image large enough that a pass
-//    takes milliseconds. Slopes observed: -0.98 .. -1.03; the accepted range is
-//    [-1.15, -0.85]. The wall-time slope is printed for information, not asserted.
+//    takes milliseconds. Slopes observed: -0.98 .. -1.05 alone, down to -1.19 in the sanitizer
+//    build beside another test (CPU time per sample drifts too while a neighbour shares the cores'
+//    caches); the accepted range is [-1.3, -0.75], which still fails a time axis that is not the
+//    render's. The estimator's own slope, against spp (deterministic given the seed: -0.98 .. -1.004
+//    observed), is held to [-1.05, -0.95]. The wall-time slope is printed for information, not asserted.
 //  - The ranking test compares strategies at equal CPU time: each renders the same spp
 //    (deterministic given the seed) and the equal-time MSE is MSE(N) * cpu(N) / budget, i.e. the
 //    ranking is by MSE * CPU seconds = 1/efficiency. (MSE at equal time scales as MSE * cost for an
@@ -57,12 +60,14 @@ TEST(Convergence, MseSlopeAgainstTimeOnAnalyticScene) {
         t.push_back(p.seconds), cpu.push_back(p.cpuSeconds), mse.push_back(p.error.all.mse),
             spp.push_back(p.spp);
     ASSERT_GE(t.size(), 5u) << run.strategy;
-    double slope = logLogSlope(cpu, mse);
-    EXPECT_GE(slope, -1.15) << run.strategy;
-    EXPECT_LE(slope, -0.85) << run.strategy;
+    const double slope = logLogSlope(cpu, mse), sppSlope = logLogSlope(spp, mse);
+    EXPECT_GE(slope, -1.3) << run.strategy;
+    EXPECT_LE(slope, -0.75) << run.strategy;
+    EXPECT_GE(sppSlope, -1.05) << run.strategy;
+    EXPECT_LE(sppSlope, -0.95) << run.strategy;
     // Against wall time and spp for diagnosis: spp separates sampling noise from throughput drift.
     std::printf("%-28s slope %.3f against CPU time over %zu points (wall time %.3f, spp %.3f), %u spp\n",
-                run.strategy.c_str(), slope, t.size(), logLogSlope(t, mse), logLogSlope(spp, mse), run.spp);
+                run.strategy.c_str(), slope, t.size(), logLogSlope(t, mse), sppSlope, run.spp);
   }
 }
 
