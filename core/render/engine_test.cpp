@@ -61,6 +61,16 @@ std::shared_ptr<RenderJob> smallJob() {
   return job;
 }
 
+// One row whose 4096 pixels each take 65536 light samples: tens of seconds for the row, milliseconds
+// per pixel.
+std::shared_ptr<RenderJob> expensiveRowJob() {
+  auto job = smallJob();
+  job->settings.camera.width = 4096;
+  job->settings.camera.height = 1;
+  job->settings.integrator.samples = 65536;
+  return job;
+}
+
 Image render(std::shared_ptr<RenderJob> job, uint32_t spp, int threads) {
   Engine engine;
   engine.start(job, RenderLimits{spp, 0.0}, threads);
@@ -179,12 +189,8 @@ TEST(Engine, CancelStopsQuicklyAndRestartBeginsAtZero) {
 }
 
 TEST(Engine, CancelReachesInsideARowOfExpensivePixels) {
-  // One row whose pixels each take 65536 light samples: tens of seconds for the row, milliseconds
-  // per pixel. Cancelling must not wait for the row.
-  auto job = smallJob();
-  job->settings.camera.width = 4096;
-  job->settings.camera.height = 1;
-  job->settings.integrator.samples = 65536;
+  // Cancelling must not wait for the row (tens of seconds).
+  auto job = expensiveRowJob();
   Engine engine;
   engine.start(job, RenderLimits{}, 1);
   std::this_thread::sleep_for(std::chrono::milliseconds(200));  // let the worker enter the row
@@ -508,10 +514,7 @@ TEST(Engine, StopNowWithoutRollbackFinishesTheRowsBeingRendered) {
 // A row of expensive pixels (tens of seconds) is abandoned within a pixel and rolled back: Auto copies
 // rows in the first pass and in passes after slow rows.
 TEST(Engine, StopNowAbandonsAnExpensiveRowAndRollsItBack) {
-  auto job = smallJob();
-  job->settings.camera.width = 4096;
-  job->settings.camera.height = 1;
-  job->settings.integrator.samples = 65536;
+  auto job = expensiveRowJob();
   Engine engine;
   engine.start(job, RenderLimits{}, 1);
   std::this_thread::sleep_for(std::chrono::milliseconds(200));  // let the worker enter the row
