@@ -133,8 +133,7 @@ bool ProjectedSphereCap::init(const SphereLight& light, const Vec3& x, const Vec
 
 // Straddling with the centre on or above the horizon: the ellipse's part left of the tangent points'
 // x (a disk cut by a chord, in the ellipse's own unit disk: X = (x − xc) / a = −cos β, Y = y / b =
-// sin β at βt) and the unit disk's segment right of it (x = cos γ, y = sin γ at γt). Each arcsine
-// is taken where it is well conditioned (argument ≤ 1/√2).
+// sin β at βt) and the unit disk's segment right of it (x = cos γ, y = sin γ at γt).
 void ProjectedSphereCap::initCutDisks(double invSinCentre) {
   map = Map::CutDisks;
   const double yt = yTangent, xt = std::min(1.0, cosAlpha * invSinCentre);
