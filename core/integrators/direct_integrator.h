@@ -36,8 +36,7 @@ struct DirectIntegrator {
     SurfaceHit hit;
     if (!scene.geometry.intersect(ray, hit)) return Color3(0.f);
     const SurfaceMaterial& material = scene.materials[hit.objectId];
-    Color3 L(0.f);
-    if (material.sphereLight >= 0) L += scene.sphereLights[material.sphereLight].eval(hit.p, hit.ng, ray.d);
+    const Color3 L = emittedAt(scene, material, hit, ray);
     if (isBlack(material.albedo)) return L;
 
     constexpr bool kSamplesHemisphere =

@@ -37,8 +37,7 @@ struct MisIntegrator {
     SurfaceHit hit;
     if (!scene.geometry.intersect(ray, hit)) return Color3(0.f);
     const SurfaceMaterial& material = scene.materials[hit.objectId];
-    Color3 L(0.f);
-    if (material.sphereLight >= 0) L += scene.sphereLights[material.sphereLight].eval(hit.p, hit.ng, ray.d);
+    const Color3 L = emittedAt(scene, material, hit, ray);
     if (isBlack(material.albedo)) return L;
 
     ShadingPoint sp(scene, ray, hit);

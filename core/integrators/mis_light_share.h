@@ -10,6 +10,7 @@
 #include <algorithm>
 
 #include "core/integrators/mis_integrator.h"
+#include "core/integrators/shading_point.h"
 
 namespace penumbra {
 
@@ -23,8 +24,7 @@ struct MisLightShareIntegrator {
     SurfaceHit hit;
     if (!scene.geometry.intersect(ray, hit)) return Color3(0.f);
     const SurfaceMaterial& material = scene.materials[hit.objectId];
-    Color3 L(0.f);
-    if (material.sphereLight >= 0) L += scene.sphereLights[material.sphereLight].eval(hit.p, hit.ng, ray.d);
+    const Color3 L = emittedAt(scene, material, hit, ray);
     if (isBlack(material.albedo)) return Color3(0.f, 0.f, luminance(L));
 
     ShadingPoint sp(scene, ray, hit);

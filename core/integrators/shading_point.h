@@ -10,6 +10,13 @@
 
 namespace penumbra {
 
+// The emission seen along `ray` at its hit: the sphere light's radiance there, 0 on other surfaces.
+[[gnu::always_inline]] inline Color3 emittedAt(const Scene& scene, const SurfaceMaterial& material,
+                                               const SurfaceHit& hit, const Ray& ray) {
+  if (material.sphereLight < 0) return Color3(0.f);
+  return scene.sphereLights[material.sphereLight].eval(hit.p, hit.ng, ray.d);
+}
+
 struct ShadingPoint {
   SurfaceHit hit;
   Vec3 ng, ns;  // flipped to the side the ray came from
