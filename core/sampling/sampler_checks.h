@@ -59,6 +59,18 @@ std::vector<Vec2> pixelPoints(S& sampler, IVec2 pixel, int request, uint32_t fir
   return out;
 }
 
+// The first `draws` pairs of requests (next2D, then next1D) of a pixel's sample, in order.
+template <class S>
+std::vector<float> sampleValues(S& s, IVec2 pixel, uint32_t index, int draws) {
+  s.startPixelSample(pixel, index);
+  std::vector<float> v;
+  for (int d = 0; d < draws; ++d) {
+    const Vec2 u = s.next2D();
+    v.insert(v.end(), {u.x, u.y, s.next1D()});
+  }
+  return v;
+}
+
 // Where the arrays of n points (next2D(j, n), after one plain 2-D request) of a pixel's first 2^k
 // samples fail to be nets: each sample's n points, all n 2^k points, and the plain request after
 // the array. Empty when all are nets; n must be a power of two.

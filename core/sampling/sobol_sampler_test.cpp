@@ -78,15 +78,7 @@ TEST(SobolSampler, EveryAlignedBlockOfSamplesIsANet) {
 
 TEST(SobolSampler, ValuesInUnitIntervalAndAPureFunctionOfSeedPixelAndIndex) {
   SobolSampler a(42), b(42), c(43);
-  auto draw = [](SobolSampler& s, IVec2 p, uint32_t i) {
-    s.startPixelSample(p, i);
-    std::vector<float> v;
-    for (int d = 0; d < 6; ++d) {
-      Vec2 u = s.next2D();
-      v.insert(v.end(), {u.x, u.y, s.next1D()});
-    }
-    return v;
-  };
+  auto draw = [](SobolSampler& s, IVec2 p, uint32_t i) { return sampleValues(s, p, i, 6); };
   std::vector<float> first = draw(a, IVec2(17, 4), 5);
   for (float u : first) {
     EXPECT_GE(u, 0.f);

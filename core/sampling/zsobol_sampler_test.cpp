@@ -185,15 +185,7 @@ TEST(ZSobolSampler, APixelBlindStreamIsCorrelated) {
 
 TEST(ZSobolSampler, APureFunctionOfSeedPixelAndIndex) {
   ZSobolSampler a(16, 42), b(16, 42), c(16, 43);
-  auto draw = [](ZSobolSampler& s, IVec2 p, uint32_t i) {
-    s.startPixelSample(p, i);
-    std::vector<float> v;
-    for (int d = 0; d < 4; ++d) {
-      Vec2 u = s.next2D();
-      v.insert(v.end(), {u.x, u.y, s.next1D()});
-    }
-    return v;
-  };
+  auto draw = [](ZSobolSampler& s, IVec2 p, uint32_t i) { return sampleValues(s, p, i, 4); };
   // (81, 4) lies in the second 64 x 64 tile of the first row of tiles.
   std::vector<float> first = draw(a, IVec2(81, 4), 21);
   // b visits the first tile, another row of tiles, other pixels of the tile and other indices first
