@@ -12,7 +12,7 @@
 
 namespace penumbra::cli {
 
-// Process exit codes (README "Exit codes").
+// Process exit codes (docs/commands.md, "Exit codes").
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitCheckFailed = 1;
 inline constexpr int kExitBadInput = 2;

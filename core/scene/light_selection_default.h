@@ -11,7 +11,7 @@
 
 namespace penumbra {
 
-// Measured crossover of equal-time efficiency (README, "Many lights": the crossover table).
+// Measured crossover of equal-time efficiency (docs/estimators.md, "Many lights": the crossover table).
 inline constexpr size_t kAllLightsUpTo = 256;
 // The selection that wins above kAllLightsUpTo at every light count measured.
 inline constexpr LightSelection kManyLightsSelection = LightSelection::Bvh;

@@ -24,7 +24,7 @@ RenderSettings settingsFor(int lights, const std::vector<std::pair<std::string, 
   return buildSettings(desc);
 }
 
-// The figures that set the threshold (README, "Many lights": the crossover table): `all` is at
+// The figures that set the threshold (docs/estimators.md, "Many lights": the crossover table): `all` is at
 // least as efficient as `bvh` through 256 lights with every light measure, `bvh` wins at 512.
 TEST(LightSelectionDefault, FollowsTheMeasuredCrossover) {
   EXPECT_EQ(kAllLightsUpTo, 256u);
