@@ -13,38 +13,47 @@
 #include "app/cli/option_checks.h"
 #include "app/cli/scene_options.h"
 #include "app/mpi/interrupt_signals.h"
+#include "app/mpi/rank_agreement.h"
+#include "app/mpi/run_description.h"
 #include "core/analysis/reference.h"
 #include "core/image/atomic_file.h"
 #include "core/image/image_io.h"
 #include "core/math/error.h"
 #include "core/render/cpu_clock.h"
 #include "core/render/engine.h"
+#include "core/render/memory_estimate.h"
 #include "core/render/sample_count_fit.h"
 
 namespace penumbra::mpi {
 
 namespace {
 
-struct Options {
-  cli::SceneOptions scene;
-  std::string output;
-  uint32_t spp = 0;
-  double seconds = 0;
-  int64_t seed = -1;
-  int threads = 0;
-  uint32_t block = 16;
-  bool reference = false;
-};
+using Options = DistributedRenderOptions;
 
 struct Loaded {
   LoadedScene scene;
   std::shared_ptr<RenderJob> job;
   std::string output;
-  std::string samplerNote;  // what a count-shaped sampler does with this run's count (render's warning)
+  uint64_t target = 0;         // samples per pixel over all ranks; 0: until the time limit
+  std::string samplerNote;     // what a count-shaped sampler does with this run's count (render's warning)
+  RunDescription description;  // what this rank would render, compared between the ranks
 };
 
-// Everything that can fail before rendering; runs on every rank.
-Loaded prepare(const Options& o) {
+const char* formatName(ImageFormat format) {
+  switch (format) {
+    case ImageFormat::Exr:
+      return "exr";
+    case ImageFormat::Pfm:
+      return "pfm";
+    case ImageFormat::Png:
+      return "png";
+  }
+  return "?";
+}
+
+// Everything that can fail before rendering; runs on every rank. Only rank 0 writes, so only it
+// checks the output paths.
+Loaded prepare(const Options& o, int rank) {
   if ((o.block & (o.block - 1)) != 0)
     throw Error("--block must be a power of two, not " + std::to_string(o.block));
   if (!o.output.empty()) imageFormatFromPath(o.output);  // a bad extension fails before rendering
@@ -61,11 +70,19 @@ Loaded prepare(const Options& o) {
     if (l.output.empty()) l.output = referenceCachePath(l.scene);
   }
   if (l.output.empty()) throw Error("render: -o/--output is required (optional only with --reference)");
+  if (rank == 0) {
+    checkOutputPath(l.output);
+    checkOutputPath(standardErrorPath(l.output));
+  }
+  const CameraDesc& cam = l.job->settings.camera;
+  checkRenderFitsInMemory(cam.width, cam.height, l.scene.path.empty() ? "render" : l.scene.path);
   // Stratified and zsobol take the run's count, as in render: every rank the same, so the ranks'
   // blocks of sample indices are blocks of one pattern.
-  const uint32_t target =
-      o.spp > 0 ? o.spp : (o.seconds > 0 ? 0 : (o.reference ? 4096u : l.job->settings.sampleCount));
-  l.samplerNote = fitSampleCountToTarget(l.job->settings, target);
+  l.target = o.spp > 0 ? o.spp : (o.seconds > 0 ? 0 : (o.reference ? 4096u : l.job->settings.sampleCount));
+  l.samplerNote = fitSampleCountToTarget(l.job->settings, uint32_t(l.target));
+  const RunChoices choices{l.target, o.seconds, o.block, o.reference,
+                           formatName(imageFormatFromPath(l.output))};
+  l.description = describeRun(l.job->settings, choices, l.scene.desc);
   return l;
 }
 
@@ -134,25 +151,21 @@ void drawProgress(uint64_t spp, uint64_t target, double seconds, double limit) {
   std::fflush(stderr);
 }
 
-int run(const Options& o, const Session& mpi) {
+}  // namespace
+
+int runDistributedRender(const Options& o, const Session& mpi) {
   const int rank = mpi.rank(), ranks = mpi.size();
-  // Every rank loads and checks; the lowest failing rank reports, and no rank renders.
+  // Every rank loads and checks, then the ranks compare what they would render: on a failure or a
+  // disagreement rank 0 says what and where, and no rank renders.
   Loaded l;
   std::string failure;
   try {
-    l = prepare(o);
+    l = prepare(o, rank);
   } catch (const std::exception& e) {
     failure = e.what();
   }
-  const int firstFailed = mpi.minOf(failure.empty() ? ranks : rank);
-  if (firstFailed < ranks) {
-    if (rank == firstFailed)
-      std::fprintf(stderr, "error (rank %d of %d): %s\n", rank, ranks, failure.c_str());
-    if (rank == 0 && firstFailed != 0)
-      std::fprintf(stderr, "error: rank %d could not prepare the render; nothing was rendered or written\n",
-                   firstFailed);
-    return 2;
-  }
+  if (!everyRankSucceeded(mpi, failure)) return kExitBadInput;
+  if (!everyRankAgrees(mpi, l.description)) return kExitBadInput;
 
   if (rank == 0 && !l.samplerNote.empty()) std::fprintf(stderr, "warning: %s\n", l.samplerNote.c_str());
   // Temporaries of this output left by a process killed while writing (a SIGKILL mid-write).
@@ -162,7 +175,7 @@ int run(const Options& o, const Session& mpi) {
   }
   const RenderSettings& s = l.job->settings;
   const uint32_t block = o.block;
-  const uint64_t target = o.spp > 0 ? o.spp : (o.seconds > 0 ? 0 : (o.reference ? 4096u : s.sampleCount));
+  const uint64_t target = l.target;
   const SampleSchedule schedule = SampleSchedule::blocks(block, uint32_t(rank), uint32_t(ranks));
   RenderLimits limits;
   const uint64_t myPasses = target > 0 ? schedule.passesBelow(target) : std::numeric_limits<uint32_t>::max();
@@ -324,10 +337,8 @@ int run(const Options& o, const Session& mpi) {
   return interrupted ? kExitInterrupted : 0;
 }
 
-}  // namespace
-
-void addDistributedRenderCommand(CLI::App& app, const Session& session, int& exitCode) {
-  auto opts = std::make_shared<Options>();
+CLI::App* addDistributedRenderCommand(CLI::App& app, Options& options) {
+  Options* opts = &options;
   CLI::App* cmd = app.add_subcommand(
       "render", "Render a scene over the ranks of an MPI job; rank 0 writes OUT and OUT.stderr.exr");
   opts->scene.addTo(*cmd);
@@ -350,7 +361,7 @@ void addDistributedRenderCommand(CLI::App& app, const Session& session, int& exi
          "--block", opts->block,
          "Sample indices per block, a power of two: rank r renders blocks r, r+K, r+2K, ... (default 16)")
       ->check(CLI::Range(1u, 1u << 20));
-  cmd->callback([opts, &session, &exitCode] { exitCode = run(*opts, session); });
+  return cmd;
 }
 
 }  // namespace penumbra::mpi

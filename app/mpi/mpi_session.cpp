@@ -9,9 +9,12 @@
 #include <cstdlib>
 #include <thread>
 
+#include "app/mpi/start_watchdog.h"
+
 namespace penumbra::mpi {
 
 Session::Session(int& argc, char**& argv) {
+  const StartWatchdog watchdog;  // MPI_Init and the split below wait for every process of the job
   int provided = 0;
   MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
   MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
@@ -65,8 +68,48 @@ int Session::maxOf(int value) const {
   return allreduce(value, MPI_MAX);
 }
 
-int Session::minOf(int value) const {
-  return allreduce(value, MPI_MIN);
+int Session::sumOf(int value) const {
+  return allreduce(value, MPI_SUM);
+}
+
+std::vector<uint64_t> Session::allGather(uint64_t value) const {
+  std::vector<uint64_t> all(size_t(size_), 0);
+  MPI_Request request;
+  MPI_Iallgather(&value, 1, MPI_UINT64_T, all.data(), 1, MPI_UINT64_T, MPI_COMM_WORLD, &request);
+  waitSleeping(request);
+  return all;
+}
+
+std::string Session::broadcastFromRoot(const std::string& text) const {
+  uint64_t length = rank_ == 0 ? text.size() : 0;
+  MPI_Request request;
+  MPI_Ibcast(&length, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD, &request);
+  waitSleeping(request);
+  if (length > uint64_t(INT_MAX)) abort(2);  // a run description of over 2 GB: not a real scene
+  std::string out = rank_ == 0 ? text : std::string(length, '\0');
+  MPI_Ibcast(out.data(), int(length), MPI_CHAR, 0, MPI_COMM_WORLD, &request);
+  waitSleeping(request);
+  return out;
+}
+
+std::vector<std::string> Session::gatherToRoot(const std::string& text) const {
+  const int length = int(std::min<size_t>(text.size(), INT_MAX / size_t(size_)));
+  std::vector<int> lengths(rank_ == 0 ? size_t(size_) : 0), offsets(lengths.size());
+  MPI_Request request;
+  MPI_Igather(&length, 1, MPI_INT, lengths.data(), 1, MPI_INT, 0, MPI_COMM_WORLD, &request);
+  waitSleeping(request);
+  std::string all;
+  if (rank_ == 0) {
+    for (size_t r = 1; r < lengths.size(); ++r) offsets[r] = offsets[r - 1] + lengths[r - 1];
+    all.resize(size_t(offsets.back() + lengths.back()));
+  }
+  MPI_Igatherv(text.data(), length, MPI_CHAR, all.data(), lengths.data(), offsets.data(), MPI_CHAR, 0,
+               MPI_COMM_WORLD, &request);
+  waitSleeping(request);
+  std::vector<std::string> out;
+  for (size_t r = 0; r < lengths.size(); ++r)
+    out.push_back(all.substr(size_t(offsets[r]), size_t(lengths[r])));
+  return out;
 }
 
 void Session::barrier() const {

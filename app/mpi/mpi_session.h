@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace penumbra::mpi {
@@ -21,8 +22,14 @@ class Session {
 
   // Collectives: every rank must call them in the same order. The small ones sleep while they wait.
   int maxOf(int value) const;
-  int minOf(int value) const;
+  int sumOf(int value) const;
   void barrier() const;
+  // Every rank's value, in rank order, on every rank.
+  std::vector<uint64_t> allGather(uint64_t value) const;
+  // Rank 0's `text` on every rank (other ranks' `text` is not used).
+  std::string broadcastFromRoot(const std::string& text) const;
+  // Every rank's `text`, in rank order, on rank 0; empty on the other ranks.
+  std::vector<std::string> gatherToRoot(const std::string& text) const;
   // Element-wise sums onto rank 0 (MPI_Reduce, in chunks below MPI's int count; blocking: call it
   // after a barrier so that no rank waits in it). The first form sends `values` as they are and
   // writes the sums into rank 0's `total` (of the same size, allocated beforehand so that the

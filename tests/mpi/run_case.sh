@@ -12,7 +12,16 @@
 #   stop_continue  Ctrl-Z and fg (SIGTSTP, SIGCONT to mpirun) do not end the render; a SIGCONT alone does
 #   killed_rank  a rank killed mid-render ends the job; the existing output is untouched
 #   reference    --reference writes a reference (metadata name the ranks) that `converge --reference` reads
-#   scene_error  one rank's scene fails to load: nothing renders, the existing output is untouched
+#   scene_error  one rank's scene fails to load, or rank 0's output cannot be written: exit 2 before
+#                rendering, the existing output is untouched
+#   disagreement ranks given different image sizes, scene content (--set, an OBJ file), spp, block,
+#                seed, sampler or integrator: exit 2 naming each rank's first differing setting, nothing
+#                rendered or written; the same scene under another path agrees
+#   argument_error  bad arguments on rank 0 only, rank 1 only, every rank, --help on one rank only:
+#                every rank ends with exit 2, the message printed once
+#   start_failure  an MPMD job whose second program is missing, fails, or exits 0 without starting
+#                MPI; Ctrl-C while a rank has not started: the job ends, the existing output is untouched
+# The fault cases print how long each job took to end ("... in S s").
 set -u
 case_=$1 MPIRUN=$2 PMPI=$3 PENUMBRA=$4 COMPARE=$5 SRC=$6
 export OMPI_MCA_btl=self,vader           # no network beyond this machine
@@ -36,6 +45,42 @@ mpi_wait() {
   kill "$(cat "$T/watchdog")" 2>/dev/null
 }
 meta() { "$COMPARE" --info "$1" | sed -n "s/^$2=//p"; }
+seconds_since() { awk -v a="$1" -v b="$(date +%s.%N)" 'BEGIN { printf "%.2f", b - a }'; }  # since `date +%s.%N`
+
+# Fault cases. An old output (and standard error image) that no fault may change:
+old_output() {
+  printf 'old image' >"$T/o.exr"; printf 'old standard error' >"$T/o.stderr.exr"
+  sums=$(cd "$T" && sha256sum o.exr o.stderr.exr)
+}
+# Fails unless the old output is byte-identical, no temporary of it is left and no rank of the job
+# (a process whose command line names the output) outlives mpirun (2 s of grace).
+check_untouched() {
+  [ "$(cd "$T" && sha256sum o.exr o.stderr.exr 2>&1)" = "$sums" ] || fail "$1: the old output changed"
+  ! ls "$T" | grep -q "^o\..*tmp-" || fail "$1: a temporary was left: $(ls "$T")"
+  for i in $(seq 20); do pgrep -f "$T/o.exr" >/dev/null || return 0; sleep 0.1; done
+  pgrep -af "$T/o.exr"; pkill -KILL -f "$T/o.exr"; fail "$1: a rank outlived mpirun"
+}
+# Runs mpirun with the given arguments under a 60 s timeout: output in $T/err, exit code in $rc,
+# seconds to the end in $took. A job still running after 60 s is a hang.
+fault_run() {
+  local label=$1 t0; shift
+  t0=$(date +%s.%N)
+  timeout -k 5 60 "$MPIRUN" --allow-run-as-root --oversubscribe "$@" >"$T/err" 2>&1; rc=$?
+  took=$(seconds_since "$t0")
+  if [ $rc = 124 ] || [ $rc = 137 ]; then cat "$T/err"; fail "$label: still running after 60 s (hung)"; fi
+}
+# The documented outcome of a refused job: exit code 2, TEXT (a fixed string) printed exactly once,
+# the old output untouched.
+expect_refusal() {
+  local label=$1 text=$2 n
+  [ $rc = 2 ] || { cat "$T/err"; fail "$label: exit code $rc, expected 2"; }
+  n=$(grep -cF -- "$text" "$T/err")
+  [ "$n" = 1 ] || { cat "$T/err"; fail "$label: '$text' printed $n times, expected once"; }
+  check_untouched "$label"
+  echo "$label: exit 2 in $took s: $(grep -F -- "$text" "$T/err")"
+}
+# Options of a long render (nothing may be rendered before the refusal: a render would time out).
+LONG=(--set camera.width=48 --set camera.height=40 --spp 1000000 --threads 1 -o "$T/o.exr")
 # Waits (up to 60 s) for rank 0's first progress line: every rank has completed a pass.
 wait_for_progress() {
   for i in $(seq 1 600); do
@@ -150,9 +195,10 @@ interrupt)
     wait_for_progress  # every rank has completed a pass, however loaded the machine
     ranks=$(pgrep -P $pid)
     [ $(echo $ranks | wc -w) = 2 ] || { kill -KILL $pid; fail "SIG$sig: expected 2 rank processes, found '$ranks'"; }
-    kill -$sig $pid
+    kill -$sig $pid; t0=$(date +%s.%N)
     mpi_wait
-    echo "SIG$sig: mpirun exit code $rc; $(cat "$T/out")"
+    took=$(seconds_since "$t0")
+    echo "SIG$sig: mpirun exit code $rc in $took s after the signal; $(cat "$T/out")"
     for r in $ranks; do  # a zombie (not yet reaped by init) is not running
       if [ -d /proc/$r ] && ! grep -q "^State:.*Z" /proc/$r/status 2>/dev/null &&
          grep -q penumbra-mpi /proc/$r/cmdline 2>/dev/null; then
@@ -217,9 +263,10 @@ interrupt_large)
   : >"$T/big.exr.tmp-$dead-0"; : >"$T/big.stderr.exr.tmp-$dead-0"; : >"$T/err"
   mpi_bg 2 render "$SCENE" "${args[@]}" --spp 1000000 --threads 1 --block 1 -o "$T/big.exr" >"$T/out" 2>"$T/err"
   wait_for_progress
-  kill -INT $pid
+  kill -INT $pid; t0=$(date +%s.%N)
   mpi_wait
-  echo "mpirun exit code $rc; $(cat "$T/out")"
+  took=$(seconds_since "$t0")
+  echo "mpirun exit code $rc in $took s after the signal; $(cat "$T/out")"
   [ -f "$T/big.exr" ] || { cat "$T/err"; fail "no partial image"; }
   [ -f "$T/big.stderr.exr" ] || { cat "$T/err"; fail "no standard error image"; }
   leftover=$(ls "$T" | grep "\.tmp-")
@@ -232,8 +279,8 @@ interrupt_large)
   check_partial "$T/big.exr" 720 Ctrl-C "${args[@]}"
   [ $rc = 1 ] || fail "exit code $rc, expected 1" ;;
 killed_rank)
-  echo "old image" >"$T/old.exr"; cp "$T/old.exr" "$T/k.exr"
-  mpi_bg 3 render "$SCENE" --spp 1000000 --threads 1 -o "$T/k.exr" >"$T/out" 2>"$T/err"
+  old_output
+  mpi_bg 3 render "$SCENE" --spp 1000000 --threads 1 -o "$T/o.exr" >"$T/out" 2>"$T/err"
   victim=""
   for i in $(seq 1 300); do
     for p in $(pgrep -P $pid); do
@@ -243,12 +290,13 @@ killed_rank)
   done
   [ -n "$victim" ] || { kill -KILL $pid; fail "rank 1 not found"; }
   sleep 3
-  kill -KILL "$victim"
+  kill -KILL "$victim"; t0=$(date +%s.%N)
   mpi_wait
-  echo "mpirun exit code $rc"; tail -5 "$T/err"
+  took=$(seconds_since "$t0")
+  echo "rank 1 killed: mpirun exit code $rc in $took s"; tail -5 "$T/err"
   [ $rc -ne 0 ] || fail "the job succeeded without a rank"
-  cmp "$T/old.exr" "$T/k.exr" || fail "the old output changed"
-  [ ! -f "$T/k.stderr.exr" ] || fail "a standard error image was written" ;;
+  awk -v t="$took" 'BEGIN { exit !(t < 60) }' || fail "the job took $took s to end after the kill"
+  check_untouched "killed rank" ;;
 reference)
   mpi 2 render "$SCENE" "${SMALL[@]}" --reference --spp 64 --threads 1 -o "$T/ref.exr" >/dev/null || fail "mpirun"
   "$COMPARE" --info "$T/ref.exr" | grep -q "^reference=rendered .* on 2 MPI ranks" || fail "metadata lack the ranks"
@@ -257,14 +305,93 @@ reference)
     -o "$T/conv" >"$T/out" 2>&1 || { cat "$T/out"; fail "converge"; }
   grep -q "reference: $T/ref.exr (with standard error)" "$T/out" || { cat "$T/out"; fail "converge did not use it"; } ;;
 scene_error)
-  echo "old image" >"$T/old.exr"; cp "$T/old.exr" "$T/s.exr"
-  timeout -k 5 120 "$MPIRUN" --allow-run-as-root --oversubscribe \
-    -np 2 "$PMPI" render "$SCENE" --spp 4 -o "$T/s.exr" : -np 1 "$PMPI" render "$T/missing.xml" --spp 4 -o "$T/s.exr" \
-    >"$T/out" 2>"$T/err"; rc=$?
-  echo "mpirun exit code $rc"; cat "$T/err"
-  [ $rc -ne 0 ] || fail "exit code 0"
-  grep -q "rank 2" "$T/err" || fail "the message does not name the failing rank"
-  cmp "$T/old.exr" "$T/s.exr" || fail "the old output changed" ;;
+  old_output
+  fault_run "missing scene on rank 2" -np 2 "$PMPI" render "$SCENE" "${LONG[@]}" : -np 1 "$PMPI" render "$T/missing.xml" "${LONG[@]}"
+  expect_refusal "missing scene on rank 2" "error (rank 2 of 3): "
+  grep -q "^error: rank 2 failed before the render; no rank rendered and nothing was written" "$T/err" ||
+    { cat "$T/err"; fail "no summary line"; }
+  # Only rank 0 writes, and it checks before rendering that it can.
+  fault_run "unwritable output" -np 2 "$PMPI" render "$SCENE" "${LONG[@]:0:8}" -o "$T/no-such-dir/o.exr"
+  expect_refusal "unwritable output" "error (rank 0 of 2): " ;;
+disagreement)
+  # Rank 0 renders SMALL at 8 spp in blocks of 4; the other ranks differ in one thing each.
+  base=(--threads 1 -o "$T/o.exr" "${SMALL[@]}")
+  r0=(render "$SCENE" "${base[@]}" --spp 8 --block 4)
+  old_output
+  fault_run "image size" -np 1 "$PMPI" "${r0[@]}" : -np 1 "$PMPI" "${r0[@]}" --set camera.width=32
+  expect_refusal "image size" "error: rank 1 disagrees with rank 0 on camera.width: 32 vs 48"
+  # One job of 9 ranks: each differing rank is named with its first difference; rank 8 renders the
+  # same scene from a copy under another path and agrees, rank 7 a copy whose OBJ file differs.
+  for d in a b; do mkdir -p "$T/$d"; cp "$SCENE" "$(dirname "$SCENE")/plane.obj" "$T/$d/"; done
+  sed -i 's/^v 1 0 -1$/v 1 0.5 -1/' "$T/b/plane.obj"
+  differing=(-np 1 "$PMPI" "${r0[@]}"
+    : -np 1 "$PMPI" render "$SCENE" "${base[@]}" --spp 16 --block 4
+    : -np 1 "$PMPI" render "$SCENE" "${base[@]}" --spp 8 --block 8
+    : -np 1 "$PMPI" "${r0[@]}" --seed 3
+    : -np 1 "$PMPI" "${r0[@]}" --set sampler.type=stratified
+    : -np 1 "$PMPI" "${r0[@]}" --set emitter.radiance=1,1,1
+    : -np 1 "$PMPI" "${r0[@]}" --set integrator.measure=solid-angle
+    : -np 1 "$PMPI" render "$T/b/sphere-area.xml" "${base[@]}" --spp 8 --block 4
+    : -np 1 "$PMPI" render "$T/a/sphere-area.xml" "${base[@]}" --spp 8 --block 4)
+  old_output
+  fault_run "ranks 1-7 differ" "${differing[@]}"
+  expect_refusal "spp" "error: rank 1 disagrees with rank 0 on spp: 16 vs 8"
+  expect_refusal "block" "error: rank 2 disagrees with rank 0 on block: 8 vs 4"
+  expect_refusal "seed" "error: rank 3 disagrees with rank 0 on seed: 3 vs 0"
+  expect_refusal "sampler" "error: rank 4 disagrees with rank 0 on sampler.type: stratified vs independent"
+  expect_refusal "emitter radiance" \
+    "error: rank 5 disagrees with rank 0: the resolved scene differs at emitter.radiance ($SCENE:18): 1, 1, 1 vs 300, 300, 300"
+  expect_refusal "integrator" "error: rank 6 disagrees with rank 0 on integrator.measure: solid-angle vs area"
+  expect_refusal "OBJ file" \
+    "error: rank 7 disagrees with rank 0: the resolved scene differs at shape#3.filename (contents) ($SCENE:31, $(dirname "$SCENE")/plane.obj): fnv1a64 "
+  [ "$(grep -c "disagree" "$T/err")" = 7 ] || { cat "$T/err"; fail "ranks 1-7 differ: not exactly 7 ranks named"; } ;;
+argument_error)
+  old_output
+  fault_run "bad argument on rank 1" -np 1 "$PMPI" render "$SCENE" "${LONG[@]}" : -np 1 "$PMPI" render "$SCENE" "${LONG[@]}" --threads 0
+  expect_refusal "bad argument on rank 1" "error (rank 1 of 2): --threads: Value 0 not in range"
+  fault_run "bad argument on rank 0" -np 1 "$PMPI" render "$SCENE" "${LONG[@]}" --threads 0 : -np 1 "$PMPI" render "$SCENE" "${LONG[@]}"
+  expect_refusal "bad argument on rank 0" "error (rank 0 of 2): --threads: Value 0 not in range"
+  fault_run "bad argument on every rank" -np 2 "$PMPI" render "$SCENE" "${LONG[@]}" --block 3
+  expect_refusal "bad argument on every rank" "error (ranks 0-1 of 2): --block must be a power of two, not 3"
+  fault_run "--help on rank 1 only" -np 1 "$PMPI" render "$SCENE" "${LONG[@]}" : -np 1 "$PMPI" render --help
+  expect_refusal "--help on rank 1 only" "error (rank 1 of 2): --help given, but not to every rank" ;;
+start_failure)
+  old_output
+  fault_run "missing program" -np 1 "$PMPI" render "$SCENE" "${LONG[@]}" : -np 1 "$T/no-such-program"
+  [ $rc != 0 ] || { cat "$T/err"; fail "missing program: exit code 0"; }
+  grep -q "could not access" "$T/err" || { cat "$T/err"; fail "missing program: no message from mpirun"; }
+  check_untouched "missing program"
+  echo "missing program: mpirun exit code $rc in $took s"
+  fault_run "failing program" -np 1 "$PMPI" render "$SCENE" "${LONG[@]}" : -np 1 false
+  [ $rc = 1 ] || { cat "$T/err"; fail "failing program: exit code $rc, expected 1 (false's)"; }
+  check_untouched "failing program"
+  echo "failing program: mpirun exit code $rc in $took s"
+  # A process of the job that exits with 0 without starting MPI. When it exits after another rank has
+  # called MPI_Init, mpirun ends the job itself (exit code 1, "exiting improperly"); when before, as
+  # here (rank 0 starts 2 s late), MPI_Init waits for it for ever and the start-up watchdog ends it.
+  export PENUMBRA_MPI_START_TIMEOUT=2
+  fault_run "quiet program" -np 1 sh -c 'sleep 2; exec "$0" "$@"' "$PMPI" render "$SCENE" "${LONG[@]}" : -np 1 true
+  unset PENUMBRA_MPI_START_TIMEOUT
+  if [ $rc = 1 ] && grep -q "exiting improperly" "$T/err"; then  # `true` was late after all
+    check_untouched "quiet program"
+    echo "quiet program: ended by mpirun (exit code 1) in $took s"
+  else
+    expect_refusal "quiet program" "error (rank 0): the MPI job did not start within 2 s"
+  fi
+  # Ctrl-C while a rank has not started (rank 0 waits in MPI_Init): mpirun ends the job, exit code 1.
+  nap=100.$$  # a sleep of its own, told apart from any other process
+  "$MPIRUN" --allow-run-as-root --oversubscribe -np 1 "$PMPI" render "$SCENE" "${LONG[@]}" : -np 1 sleep $nap \
+    >"$T/err" 2>&1 & pid=$!
+  (sleep 240 & echo $! >"$T/watchdog"; wait $! && kill -KILL $pid) >/dev/null 2>&1 &
+  for i in $(seq 100); do pgrep -f "$T/o.exr" >/dev/null && break; sleep 0.1; done
+  sleep 1
+  kill -INT $pid; t0=$(date +%s.%N)
+  mpi_wait
+  took=$(seconds_since "$t0")
+  [ $rc = 1 ] || { cat "$T/err"; fail "Ctrl-C before the render: exit code $rc, expected 1"; }
+  pgrep -fx "sleep $nap" >/dev/null && { pkill -fx "sleep $nap"; fail "Ctrl-C before the render: a rank outlived mpirun"; }
+  check_untouched "Ctrl-C before the render"
+  echo "Ctrl-C before the render: mpirun exit code $rc in $took s after the signal" ;;
 *) fail "unknown case $case_" ;;
 esac
 echo PASS
