@@ -26,12 +26,19 @@ std::string joinNames(const py::object& names, const char* argument) {
   return out;
 }
 
+// Files are checked as they are read (readReference); arrays here, before anything renders.
 Reference chooseReference(const PyScene& s, const py::object& reference, int threads) {
-  if (py::hasattr(reference, "mean") && py::hasattr(reference, "stderr"))  // a RenderResult: with its noise
-    return Reference{arrayToImage(reference.attr("mean"), "reference.mean"),
-                     arrayToImage(reference.attr("stderr"), "reference.stderr"), "render result"};
-  if (!reference.is_none() && !py::isinstance<py::str>(reference))
-    return Reference{arrayToImage(reference, "reference"), {}, "array"};
+  if (py::hasattr(reference, "mean") && py::hasattr(reference, "stderr")) {  // a RenderResult: with its noise
+    Reference ref{arrayToImage(reference.attr("mean"), "reference.mean"),
+                  arrayToImage(reference.attr("stderr"), "reference.stderr"), "render result"};
+    checkReferenceValues(ref, "reference");
+    return ref;
+  }
+  if (!reference.is_none() && !py::isinstance<py::str>(reference)) {
+    Reference ref{arrayToImage(reference, "reference"), {}, "array"};
+    checkReferenceValues(ref, "reference");
+    return ref;
+  }
   ReferenceRequest rq;
   if (!reference.is_none()) rq.path = reference.cast<std::string>();
   rq.threads = threads;

@@ -5,9 +5,11 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <set>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "core/analysis/reference.h"
 #include "core/image/image_io.h"
@@ -149,6 +151,90 @@ TEST(ConvergeCli, RenderReferenceWritesMeanAndStandardError) {
   EXPECT_EQ(ref.mean.width, 24);
   ASSERT_EQ(ref.standardError.width, 24);
   EXPECT_NE(ref.source.find("rendered direct/solid-angle 8 spp"), std::string::npos) << ref.source;
+  fs::remove_all(dir);
+}
+
+// A reference with one infinite or NaN value is refused before anything renders (exit 2), naming the
+// count and the first value; nothing is written.
+TEST(ConvergeCli, NonFiniteReferenceIsRefusedBeforeRendering) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("penumbra-converge-nonfinite-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  for (const float bad : {std::numeric_limits<float>::infinity(), std::numeric_limits<float>::quiet_NaN()}) {
+    Image ref(40, 32);
+    for (float& v : ref.rgb) v = 0.5f;
+    ref.rgb[ref.index(3, 2) + 1] = bad;
+    const std::string path = (dir / "ref.pfm").string(), out = (dir / "report").string();
+    writeImage(path, ref);
+    test::CommandResult r = penumbraCli("converge '" + analyticScene() +
+                                        "' --set camera.width=40 --set camera.height=32 --spp 4 " +
+                                        "--strategies area --reference '" + path + "' -o '" + out + "'");
+    EXPECT_EQ(r.exitCode, 2) << r.out;
+    EXPECT_NE(r.out.find("reference " + path +
+                         ": 1 of 3840 values is not finite; the first at pixel (3, 2) "
+                         "channel G: " +
+                         (std::isnan(bad) ? "nan" : "inf")),
+              std::string::npos)
+        << r.out;
+    EXPECT_EQ(r.out.find("RMSE"), std::string::npos) << r.out;  // no run
+    EXPECT_FALSE(fs::exists(fs::path(out) / "summary.md"));
+  }
+  fs::remove_all(dir);
+}
+
+// Names in `dir` that look like temporaries (".tmp").
+std::vector<std::string> temporariesIn(const fs::path& dir) {
+  std::vector<std::string> found;
+  for (const auto& e : fs::directory_iterator(dir))
+    if (e.path().filename().string().find(".tmp") != std::string::npos) found.push_back(e.path().string());
+  return found;
+}
+
+// An output the report cannot be written to is found before rendering, and leaves no temporary.
+TEST(ConvergeCli, UnwritableOutputIsFoundBeforeRendering) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("penumbra-converge-unwritable-" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir / "summary.md");  // a directory where the report's file goes
+  const std::string run = "converge '" + analyticScene() +
+                          "' --set camera.width=40 --set camera.height=32 --spp 4 --strategies area -o ";
+  test::CommandResult r = penumbraCli(run + "'" + dir.string() + "'");
+  EXPECT_EQ(r.exitCode, 2) << r.out;
+  EXPECT_NE(r.out.find((dir / "summary.md").string() + ": cannot write: it is a directory"),
+            std::string::npos)
+      << r.out;
+  EXPECT_EQ(r.out.find("RMSE"), std::string::npos) << r.out;
+  EXPECT_EQ(temporariesIn(dir), std::vector<std::string>());
+  EXPECT_FALSE(fs::exists(dir / "convergence.csv"));
+  // A directory in which no file can be created; and a regular file where the directory goes.
+  r = penumbraCli(run + "/proc");
+  EXPECT_EQ(r.exitCode, 2) << r.out;
+  EXPECT_NE(r.out.find("/proc/convergence.csv: cannot create a file in /proc"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("RMSE"), std::string::npos) << r.out;
+  std::ofstream(dir / "file") << "x";
+  r = penumbraCli(run + "'" + (dir / "file").string() + "'");
+  EXPECT_EQ(r.exitCode, 2) << r.out;
+  EXPECT_NE(r.out.find("-o " + (dir / "file").string() + ": exists and is not a directory"),
+            std::string::npos)
+      << r.out;
+  fs::remove_all(dir);
+}
+
+// The report's files are written through unique temporaries: none is left, and a second run replaces
+// the first run's files.
+TEST(ConvergeCli, ReportLeavesNoTemporaries) {
+  const fs::path dir = fs::temp_directory_path() / ("penumbra-converge-temps-" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  const std::string run = "converge '" + analyticScene() +
+                          "' --set camera.width=24 --set camera.height=16 --spp 2 --strategies area -o '" +
+                          dir.string() + "'";
+  for (int i = 0; i < 2; ++i) {
+    test::CommandResult r = penumbraCli(run);
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+  }
+  EXPECT_EQ(temporariesIn(dir), std::vector<std::string>());
+  for (const char* f : {"convergence.csv", "convergence.png", "equal-time.png", "summary.md"})
+    EXPECT_TRUE(fs::exists(dir / f)) << f;
   fs::remove_all(dir);
 }
 

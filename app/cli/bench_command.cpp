@@ -18,9 +18,11 @@
 #include "app/cli/scene_options.h"
 #include "core/analysis/order_statistics.h"
 #include "core/image/atomic_file.h"
+#include "core/math/error.h"
 #include "core/render/engine.h"
 #include "core/sampling/sampler_table.h"
 #include "core/scene/scaling_scene.h"
+#include "core/scene/xml_parser.h"
 
 namespace penumbra::cli {
 
@@ -204,8 +206,21 @@ std::string locateScene(const std::string& given, const std::string& repoRelativ
 }
 
 int runBench(const BenchOptions& o) {
+  if (o.scalingOnly && o.scalingSpp == 0)
+    throw Error(
+        "bench: --scaling-spp 0 skips the scaling series, the only thing --scaling-only runs; give "
+        "--scaling-spp 1 or more");
   if (!o.writeScalingScene.empty()) {
+    checkOutputPath(o.writeScalingScene);
     const std::string xml = scalingSceneXml(o.scalingLights, 128, 16);
+    if (xml.size() > kMaxSceneFileBytes) {
+      // Scene files grow about linearly with the lights: how many would fit, to name in the message.
+      const double perLight = double(xml.size()) / o.scalingLights;
+      throw Error("bench --write-scaling-scene: --lights " + std::to_string(o.scalingLights) +
+                  " makes a scene file of " + std::to_string(xml.size() >> 20) + " MB, above the " +
+                  std::to_string(kMaxSceneFileBytes >> 20) + " MB that penumbra reads; at most about " +
+                  std::to_string(int(0.99 * double(kMaxSceneFileBytes) / perLight)) + " lights fit");
+    }
     writeBytesAtomically(o.writeScalingScene, xml.data(), xml.size());
     std::printf("wrote %s (%d sphere lights, %d spheres)\n", o.writeScalingScene.c_str(), o.scalingLights,
                 2 * o.scalingLights);

@@ -80,7 +80,7 @@ void addCheckCommand(CLI::App& app, int& exitCode) {
   CLI::App* cmd = app.add_subcommand(
       "check", "Run the stiff-case catalogue (docs/stiff-cases.md); exit 1 if any case fails");
   cmd->add_option("--case", opts->cases, "Run only this case (repeatable)");
-  cmd->add_option("--seed", opts->seed, "Random seed")->check(unsignedInteger());
+  addSeedOption(*cmd, opts->seed, "Random seed");
   cmd->add_flag("--quick", opts->quick, "Fewer samples per case (a smoke run)");
   cmd->add_flag("-v,--verbose", opts->verbose, "Print what each case compared");
   cmd->add_flag("--list", *list, "List the cases and exit");

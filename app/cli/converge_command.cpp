@@ -9,6 +9,7 @@
 #include "app/cli/option_checks.h"
 #include "app/cli/scene_options.h"
 #include "core/analysis/convergence.h"
+#include "core/image/atomic_file.h"
 #include "core/math/error.h"
 #include "core/sampling/sampler_table.h"
 
@@ -36,6 +37,16 @@ void logLine(const std::string& s) {
   std::fprintf(stderr, "%s\n", s.c_str());
 }
 
+// Creates `dir` if missing and checks that each of `files` can be written in it (checkOutputPath).
+void prepareOutputDirectory(const std::string& dir, const std::vector<std::string>& files) {
+  std::error_code ec;
+  if (std::filesystem::exists(dir, ec) && !std::filesystem::is_directory(dir, ec))
+    throw Error("-o " + dir + ": exists and is not a directory");
+  std::filesystem::create_directories(dir, ec);
+  if (ec) throw Error("-o " + dir + ": cannot create the output directory: " + ec.message());
+  for (const std::string& f : files) checkOutputPath(dir + "/" + f);
+}
+
 int runConverge(const ConvergeOptions& o) {
   std::optional<net::DisplayServer> displayServer = o.display.resolve();
   LoadedScene loaded = o.scene.load();
@@ -43,6 +54,10 @@ int runConverge(const ConvergeOptions& o) {
   std::vector<IntegratorDesc> strategies = parseStrategies(loaded.settings.integrator, o.strategies);
   std::vector<SamplerKind> samplers = parseSamplers(loaded.settings.samplerKind, o.samplers);
   if (o.seed == kReferenceSeed) throw Error("converge: --seed must differ from the reference's seed");
+  // The report's files can be written (the directory is made if missing): found now, not after the runs.
+  const std::vector<std::string> reportFiles = {"convergence.csv", "convergence.png", "equal-time.png",
+                                                "summary.md"};
+  prepareOutputDirectory(o.outDir, reportFiles);
   std::unique_ptr<net::TevStreamer> tev = openStream(displayServer);  // each strategy's final image
   ReferenceRequest rq;
   rq.path = o.reference;
@@ -52,7 +67,6 @@ int runConverge(const ConvergeOptions& o) {
   Reference ref = obtainReference(loaded, rq, logLine);
   std::vector<uint8_t> mask = emitterMask(loaded);
 
-  std::filesystem::create_directories(o.outDir);
   ConvergenceOptions co;
   co.seconds = o.seconds;
   co.spp = o.spp;
@@ -118,7 +132,7 @@ void addConvergeCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("-o,--output", opts->outDir, "Output directory")->required();
   cmd->add_option("--threads", opts->threads, "Worker threads (default: all cores)")
       ->check(CLI::Range(1, 1024));
-  cmd->add_option("--seed", opts->seed, "Random seed")->check(unsignedInteger());
+  addSeedOption(*cmd, opts->seed, "Random seed");
   cmd->add_option("--time-axis", opts->timeAxis,
                   "x axis of convergence.png in time mode: wall (default) or cpu (the render's CPU seconds, "
                   "stable when other processes compete for the cores)")

@@ -5,9 +5,10 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 
+#include "app/cli/false_colour.h"
+#include "core/image/atomic_file.h"
 #include "core/image/tonemap.h"
 #include "core/math/error.h"
 #include "core/sampling/sampler_table.h"
@@ -22,22 +23,18 @@ namespace {
 const double kColors[][3] = {{0.84, 0.37, 0.0},  {0.0, 0.45, 0.70}, {0.0, 0.62, 0.45},
                              {0.80, 0.47, 0.65}, {0.90, 0.62, 0.0}, {0.34, 0.71, 0.91}};
 
-void writeAtomically(const std::string& path, const std::string& text) {
-  std::string tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary);
-    out << text;
-    if (!out) throw Error("cannot write " + path);
-  }
-  fs::rename(tmp, path);
+// Through a unique temporary that is removed on any failure (core/image/atomic_file.h).
+void savePng(cairo_surface_t* surface, const std::string& path) {
+  cairo_surface_flush(surface);
+  writeFileAtomically(path, [&](const std::string& temp) {
+    const cairo_status_t status = cairo_surface_write_to_png(surface, temp.c_str());
+    if (status != CAIRO_STATUS_SUCCESS)
+      throw Error("cannot write " + path + ": " + cairo_status_to_string(status));
+  });
 }
 
-void savePng(cairo_surface_t* surface, const std::string& path) {
-  std::string tmp = path + ".tmp.png";
-  cairo_surface_flush(surface);
-  if (cairo_surface_write_to_png(surface, tmp.c_str()) != CAIRO_STATUS_SUCCESS)
-    throw Error("cannot write " + path);
-  fs::rename(tmp, path);
+void writeText(const std::string& path, const std::string& text) {
+  writeBytesAtomically(path, text.data(), text.size());
 }
 
 std::string fmt(const char* f, double v) {
@@ -158,18 +155,6 @@ std::vector<double> squaredErrors(const Image& v, const Image& ref) {
   return e;
 }
 
-// "magma"-like false colour, t in [0, 1].
-void falseColour(double t, double& r, double& g, double& b) {
-  static const double k[][3] = {{0.0, 0.0, 0.02},   {0.23, 0.06, 0.44}, {0.55, 0.16, 0.51},
-                                {0.87, 0.29, 0.41}, {0.99, 0.62, 0.42}, {0.99, 0.99, 0.75}};
-  t = std::clamp(t, 0.0, 1.0) * 5;
-  int i = std::min(int(t), 4);
-  double f = t - i;
-  r = k[i][0] + f * (k[i + 1][0] - k[i][0]);
-  g = k[i][1] + f * (k[i + 1][1] - k[i][1]);
-  b = k[i][2] + f * (k[i + 1][2] - k[i][2]);
-}
-
 cairo_surface_t* surfaceFrom(const std::vector<uint8_t>& rgb, int w, int h) {
   cairo_surface_t* s = cairo_image_surface_create(CAIRO_FORMAT_RGB24, w, h);
   cairo_surface_flush(s);
@@ -250,7 +235,7 @@ void writeConvergenceCsv(const std::string& path, const std::vector<ConvergenceR
           << p.error.all.rmse << ',' << p.error.all.relMse << ',' << p.error.all.mseStdErr << ','
           << p.error.all.refVariance << ',' << p.error.noLight.mse << ',' << p.error.noLight.rmse << ','
           << p.error.noLight.relMse << ',' << p.error.noLight.mseStdErr << '\n';
-  writeAtomically(path, out.str());
+  writeText(path, out.str());
 }
 
 void plotConvergence(const std::string& path, const std::vector<ConvergenceRun>& runs,
@@ -407,7 +392,7 @@ void writeEqualTimeImage(const std::string& path, const std::vector<ConvergenceR
   for (const ConvergenceRun& r : runs) {
     errs.push_back(squaredErrors(r.finalImage, ref.mean));
     for (double e : errs.back())
-      if (e > 0) pool.push_back(std::log10(e));
+      if (e > 0 && std::isfinite(e)) pool.push_back(std::log10(e));
   }
   double lo = -6, hi = 0;
   if (!pool.empty()) {
@@ -448,11 +433,9 @@ void writeEqualTimeImage(const std::string& path, const std::vector<ConvergenceR
          12, 0.5, 0);
     std::vector<uint8_t> rgb(std::size_t(w) * h * 3);
     for (std::size_t p = 0; p < errs[i].size(); ++p) {
-      double t = errs[i][p] > 0 ? (std::log10(errs[i][p]) - lo) / (hi - lo) : 0;
-      double cr_, cg, cb;
-      falseColour(t, cr_, cg, cb);
-      rgb[3 * p] = uint8_t(cr_ * 255 + 0.5), rgb[3 * p + 1] = uint8_t(cg * 255 + 0.5),
-              rgb[3 * p + 2] = uint8_t(cb * 255 + 0.5);
+      const Rgb c = falseColour(errs[i][p] > 0 ? (std::log10(errs[i][p]) - lo) / (hi - lo) : 0);
+      rgb[3 * p] = uint8_t(c.r * 255 + 0.5), rgb[3 * p + 1] = uint8_t(c.g * 255 + 0.5),
+              rgb[3 * p + 2] = uint8_t(c.b * 255 + 0.5);
     }
     s = surfaceFrom(rgb, w, h);
     double y2 = top + tile + labelH;
@@ -465,9 +448,8 @@ void writeEqualTimeImage(const std::string& path, const std::vector<ConvergenceR
   // Colour bar under the reference column.
   double bx = gap + (n - 1) * (tile + gap), by = top + tile + labelH + 40, bw = tile, bh = 18;
   for (int k = 0; k < int(bw); ++k) {
-    double r, g, b;
-    falseColour(k / bw, r, g, b);
-    cairo_set_source_rgb(cr, r, g, b);
+    const Rgb c = falseColour(k / bw);
+    cairo_set_source_rgb(cr, c.r, c.g, c.b);
     cairo_rectangle(cr, bx + k, by, 1, bh);
     cairo_fill(cr);
   }
@@ -550,7 +532,7 @@ void writeSummary(const std::string& path, const std::vector<ConvergenceRun>& ru
         << ", so there is no speed-up column.)\n";
   out << "\nFiles: convergence.csv (every measurement), convergence.png (RMSE against "
       << (info.sppMode ? "spp" : "time") << ", log-log), equal-time.png (final images and error maps).\n";
-  writeAtomically(path, out.str());
+  writeText(path, out.str());
 }
 
 }  // namespace penumbra::cli

@@ -22,9 +22,9 @@ struct DisplayServerOption {
   std::optional<net::DisplayServer> resolve() const;
 };
 
-// A streamer connecting to `server` (nullptr for none). Create it after the engine it follows, so it
-// is destroyed first.
-std::unique_ptr<net::TevStreamer> openStream(const std::optional<net::DisplayServer>& server);
+// A streamer connecting to `server` (nullptr for none).
+std::unique_ptr<net::TevStreamer> openStream(const std::optional<net::DisplayServer>& server,
+                                             net::TevStreamOptions options = {});
 
 // The name of an image in tev: the scene file's stem and the strategy, e.g. "sphere-area [area]"
 // ("built-in" for the built-in scene), then `suffix` (converge: " converge").

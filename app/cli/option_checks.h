@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
+#include <optional>
 #include <string>
 
 namespace penumbra::cli {
@@ -27,6 +28,19 @@ inline CLI::Validator unsignedInteger(uint64_t max = UINT64_MAX) {
         return {};
       },
       "UINT");
+}
+
+// --seed of every command: any 64-bit unsigned integer, nothing out of range clamped into it.
+inline CLI::Option* addSeedOption(CLI::App& cmd, uint64_t& seed, const std::string& help) {
+  return cmd.add_option("--seed", seed, help)->check(unsignedInteger())->type_name("UINT");
+}
+// The same where leaving it out means "the scene's seed".
+inline CLI::Option* addSeedOption(CLI::App& cmd, std::optional<uint64_t>& seed, const std::string& help) {
+  return cmd
+      .add_option_function<std::string>(
+          "--seed", [&seed](const std::string& text) { seed = std::stoull(text); }, help)
+      ->check(unsignedInteger())
+      ->type_name("UINT");
 }
 
 // A finite number > 0 (rejects nan, inf and anything that is not entirely a number).

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <optional>
 #include <thread>
 
 #include "app/cli/commands.h"
@@ -46,7 +47,7 @@ struct RenderOptions {
   std::string output;
   uint32_t spp = 0;
   double seconds = 0;
-  int64_t seed = -1;
+  std::optional<uint64_t> seed;  // default: the scene's
   int threads = 0;
   bool reference = false;  // converged reference: lowest-variance estimator, stored with its standard error
   DisplayServerOption display;
@@ -71,11 +72,11 @@ int runRender(const RenderOptions& o) {
   auto job = std::make_shared<RenderJob>();
   job->scene = loaded.scene;
   job->settings = loaded.settings;
-  if (o.seed >= 0) job->settings.seed = uint64_t(o.seed);
+  if (o.seed) job->settings.seed = *o.seed;
   std::string output = o.output;
   if (o.reference) {
     job->settings.integrator = referenceEstimator(job->settings.integrator);
-    if (o.seed < 0) job->settings.seed = kReferenceSeed;      // independent of the runs measured against it
+    if (!o.seed) job->settings.seed = kReferenceSeed;         // independent of the runs measured against it
     if (output.empty()) output = referenceCachePath(loaded);  // where `penumbra converge` looks for it
   }
   if (output.empty()) throw Error("render: -o/--output is required (optional only with --reference)");
@@ -103,18 +104,31 @@ int runRender(const RenderOptions& o) {
   auto previous = std::signal(SIGINT, onInterrupt);
   Engine engine;
   engine.start(job, limits, o.threads);
-  std::unique_ptr<net::TevStreamer> tev = openStream(displayServer);
+  net::TevStreamOptions streamOptions;
+  streamOptions.renderThreads = engine.threadCount();
+  std::unique_ptr<net::TevStreamer> tev = openStream(displayServer, streamOptions);
   const std::string tevName = tevImageName(loaded.path, job->settings.integrator);
-  if (tev) tev->follow(engine, tevName);
   bool tty = isatty(STDERR_FILENO);
   bool interrupted = false;
+  // This loop is the engine's only snapshot reader, with or without a stream, so streaming cannot
+  // change what an interrupted render writes: `latest`, the newest pass boundary published.
+  FilmSnapshot latest;
+  bool streamAsked = false;  // a snapshot the stream wanted is on its way
   auto lastRequest = std::chrono::steady_clock::now() - std::chrono::seconds(1);
   while (!engine.progress().finished) {
     // A pass boundary at most about half a second old stays published, so an interrupted render can
     // write whole passes; a one-pass request resolves that pass row by row and holds up no worker.
-    if (!tev && std::chrono::steady_clock::now() - lastRequest >= std::chrono::milliseconds(500)) {
-      engine.requestNextPassSnapshot(o.reference);
-      lastRequest = std::chrono::steady_clock::now();
+    // The stream asks for more, never for less.
+    const auto now = std::chrono::steady_clock::now();
+    const net::TevStreamer::Want want = tev ? tev->wanted() : net::TevStreamer::Want{};
+    if (now - lastRequest >= std::chrono::milliseconds(500) || (want.frame && !streamAsked)) {
+      engine.requestNextPassSnapshot(o.reference || want.withError);
+      lastRequest = now;
+      streamAsked = streamAsked || want.frame;
+    }
+    if (engine.takeSnapshot(latest)) {
+      streamAsked = false;
+      if (tev) tev->offer(tevName, latest, true);  // copied only when the stream takes it
     }
     if (gInterrupts > 0) {
       engine.cancel();
@@ -134,14 +148,8 @@ int runRender(const RenderOptions& o) {
   // abandoned pass.
   FilmSnapshot last;
   if (interrupted) {
-    if (tev) {
-      // The streamer was the engine's only snapshot reader: take back what it read, then anything newer.
-      last = tev->stopFollowing();
-      FilmSnapshot newer;
-      if (engine.takeSnapshot(newer) && newer.spp > last.spp) last = std::move(newer);
-    } else {
-      engine.latestSnapshot(last);
-    }
+    engine.takeSnapshot(latest);  // anything published since the last poll
+    last = std::move(latest);
     p.spp = last.spp;
     p.seconds = last.seconds;
     p.samples =
@@ -151,6 +159,7 @@ int runRender(const RenderOptions& o) {
       std::printf("%s: interrupted before %s: nothing written%s\n", output.c_str(),
                   last.spp == 0 ? "the first pass completed" : "a pass with its standard error completed",
                   std::filesystem::exists(output) ? " (the existing file is unchanged)" : "");
+      if (tev) tev->finish();
       std::signal(SIGINT, previous);
       return kExitInterrupted;
     }
@@ -188,11 +197,12 @@ int runRender(const RenderOptions& o) {
               interrupted ? " (interrupted: the completed passes were written)" : "");
   if (!selection.empty()) std::printf("%s\n", selection.c_str());
   std::fflush(stdout);
-  if (tev) {
+  if (tev) {  // at most TevStreamOptions::waitSeconds more
     if (interrupted)
-      tev->finish(net::TevFrame{tevName, last.mean, last.standardError});
+      tev->finish(net::TevFrame{tevName, last.mean, last.standardError, true});
     else
-      tev->finish(net::TevFrame{tevName, engine.film().mean(p.spp), engine.film().standardError(p.spp)});
+      tev->finish(
+          net::TevFrame{tevName, engine.film().mean(p.spp), engine.film().standardError(p.spp), true});
   }
   std::signal(SIGINT, previous);
   return interrupted ? kExitInterrupted : 0;
@@ -218,8 +228,7 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
       ->check(CLI::Range(1u, 1u << 30));
   cmd->add_option("--time", opts->seconds, "Render for this many seconds (whole passes)")
       ->check(finitePositiveNumber());
-  cmd->add_option("--seed", opts->seed, "Random seed (default: the scene's, else 0)")
-      ->check(CLI::NonNegativeNumber);
+  addSeedOption(*cmd, opts->seed, "Random seed (default: the scene's, else 0)");
   cmd->add_option("--threads", opts->threads, "Worker threads (default: all cores)")
       ->check(CLI::Range(1, 1024));
   opts->display.addTo(*cmd);

@@ -207,7 +207,7 @@ void addWarpCommand(CLI::App& app, int& exitCode, WarpGuiRunner gui) {
                   "Histogram resolution (2-D: res x res; sphere: 2res x res in (phi, cos theta))")
       ->capture_default_str()
       ->check(CLI::Range(2, 1000));
-  cmd->add_option("--seed", args->seed, "Random seed")->capture_default_str()->check(unsignedInteger());
+  addSeedOption(*cmd, args->seed, "Random seed")->capture_default_str();
   auto* all =
       cmd->add_flag("--all", args->all, "Test every warp (several parameters), Sidak-corrected, as a table");
   auto* dump = cmd->add_option("--dump", args->dump, "Write N warped samples to stdout as 'x y z' lines")

@@ -1,9 +1,8 @@
 // A stand-in for the tev image viewer inside the test process: a TCP listener on an ephemeral port of
 // 127.0.0.1 (nothing else), served by a thread of its own. It decodes every packet with
 // app/net/tev_protocol.h, rebuilds each image from its tiles, and records what a test checks: names,
-// channel lists, every tile, and anything malformed. Modes reproduce the failures a client must survive:
-// a viewer that closes the connection after the first packet, and one that never accepts. Every wait
-// is bounded; the thread stops when the object is destroyed.
+// channel lists, every tile, and anything malformed. Modes reproduce the viewers a client must survive
+// (see Mode). Every wait is bounded; the thread stops when the object is destroyed.
 #pragma once
 
 #include <arpa/inet.h>
@@ -35,7 +34,17 @@ namespace penumbra::test {
 
 class FakeTev {
  public:
-  enum class Mode { Serve, CloseAfterFirstPacket, NeverAccept };
+  enum class Mode {
+    Serve,                  // reads and decodes everything, as tev does
+    CloseAfterFirstPacket,  // closes the connection after the first whole packet
+    NeverAccept,            // listens, never accepts: the kernel completes handshakes into the backlog
+    BacklogFull,            // listens with a full backlog (filled by the fake itself): SYNs are dropped
+    NeverRead,              // accepts, never reads
+    CloseAtOnce,            // accepts and closes at once
+    Reset,                  // accepts and resets the connection (RST) at once
+    Garbage,                // sends bytes that are not tev's protocol all along, and reads as Serve does
+    SlowReader,             // reads 64 KB every 100 ms (small receive buffer), decoding as Serve does
+  };
 
   struct ReceivedImage {
     int width = 0, height = 0;
@@ -99,18 +108,25 @@ class FakeTev {
     a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
     a.sin_port = 0;  // ephemeral
     socklen_t len = sizeof a;
+    if (mode == Mode::SlowReader && listener_ >= 0) {  // accepted sockets inherit it
+      const int bytes = kSlowChunk;
+      ::setsockopt(listener_, SOL_SOCKET, SO_RCVBUF, &bytes, sizeof bytes);
+    }
     if (listener_ < 0 || ::bind(listener_, reinterpret_cast<sockaddr*>(&a), sizeof a) != 0 ||
-        ::listen(listener_, 4) != 0 || ::getsockname(listener_, reinterpret_cast<sockaddr*>(&a), &len) != 0) {
+        ::listen(listener_, mode == Mode::BacklogFull ? 0 : 4) != 0 ||
+        ::getsockname(listener_, reinterpret_cast<sockaddr*>(&a), &len) != 0) {
       problem("cannot listen on 127.0.0.1");
       return;
     }
     port_ = ntohs(a.sin_port);
+    if (mode == Mode::BacklogFull) fillBacklog(a);
     thread_ = std::thread([this] { serve(); });
   }
   ~FakeTev() {
     stop_ = true;
     if (thread_.joinable()) thread_.join();
     if (listener_ >= 0) ::close(listener_);
+    for (int fd : fillers_) ::close(fd);
   }
   FakeTev(const FakeTev&) = delete;
   FakeTev& operator=(const FakeTev&) = delete;
@@ -145,6 +161,19 @@ class FakeTev {
 
  private:
   static constexpr double kMaxLifeSeconds = 300;  // the thread gives up on its own after this
+  static constexpr int kSlowChunk = 1 << 16;      // SlowReader: bytes per read, and the receive buffer
+
+  // Connections of the fake's own that nobody accepts: with a backlog of 0 the first one fills it (the
+  // kernel queues backlog + 1), the next waits; later SYNs are dropped and a client's connect hangs.
+  void fillBacklog(const sockaddr_in& at) {
+    for (int i = 0; i < 2; ++i) {
+      const int fd = ::socket(AF_INET, SOCK_STREAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
+      if (fd < 0) continue;
+      ::connect(fd, reinterpret_cast<const sockaddr*>(&at), sizeof at);  // EINPROGRESS: completes, or not
+      fillers_.push_back(fd);
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));  // the first handshake completes
+  }
 
   void problem(const std::string& p) {
     std::lock_guard lk(mutex_);
@@ -158,7 +187,7 @@ class FakeTev {
                            kMaxLifeSeconds;
     };
     while (alive()) {
-      if (mode_ == Mode::NeverAccept) {  // the kernel completes handshakes into the backlog; nobody reads
+      if (mode_ == Mode::NeverAccept || mode_ == Mode::BacklogFull) {
         std::this_thread::sleep_for(std::chrono::milliseconds(20));
         continue;
       }
@@ -170,7 +199,14 @@ class FakeTev {
         std::lock_guard lk(mutex_);
         ++accepted_;
       }
-      readConnection(fd, alive);
+      if (mode_ == Mode::Reset) {
+        const linger abort{1, 0};  // close() sends RST instead of FIN
+        ::setsockopt(fd, SOL_SOCKET, SO_LINGER, &abort, sizeof abort);
+      } else if (mode_ == Mode::NeverRead) {
+        while (alive()) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+      } else if (mode_ != Mode::CloseAtOnce) {
+        readConnection(fd, alive);
+      }
       ::close(fd);
       {
         std::lock_guard lk(mutex_);
@@ -184,8 +220,12 @@ class FakeTev {
   template <class Alive>
   void readConnection(int fd, Alive alive) {
     std::vector<uint8_t> buffer;
-    uint8_t chunk[1 << 16];
+    uint8_t chunk[kSlowChunk];
+    static const char garbage[] = "HTTP/1.1 400 Bad Request\r\n\r\n\x00\xff\x13\x37 not tev\n";
     while (alive()) {
+      if (mode_ == Mode::Garbage)
+        ::send(fd, garbage, sizeof garbage - 1, MSG_DONTWAIT | MSG_NOSIGNAL);  // dropped when full
+      if (mode_ == Mode::SlowReader) std::this_thread::sleep_for(std::chrono::milliseconds(100));
       pollfd p{fd, POLLIN, 0};
       if (::poll(&p, 1, 20) <= 0) continue;
       const ssize_t n = ::recv(fd, chunk, sizeof chunk, 0);
@@ -260,6 +300,7 @@ class FakeTev {
   std::map<std::string, ReceivedImage> images_;
   std::vector<std::string> problems_;
   int packets_ = 0, accepted_ = 0, ended_ = 0;
+  std::vector<int> fillers_;  // BacklogFull: the fake's own connections
 };
 
 // The display server at 127.0.0.1:port.

@@ -29,6 +29,10 @@ int pollMs(double seconds) {
   return seconds <= 0 ? 0 : int(seconds * 1e3) + 1;
 }
 
+// Longest single poll: how late a deadline set by another thread may be noticed.
+constexpr int kSliceMs = 20;
+const char* const kPastDeadline = "gave up at the deadline";
+
 // RFC 1123 host names: dot-separated labels of letters, digits and inner hyphens, at most 63 each.
 bool isHostName(const std::string& h) {
   if (h.empty() || h.size() > 253) return false;
@@ -119,6 +123,34 @@ void TevConnection::close() {
   fd_ = -1;
 }
 
+void TevConnection::setDeadline(Clock::time_point deadline) {
+  deadline_ = deadline.time_since_epoch().count();
+}
+
+void TevConnection::clearDeadline() {
+  deadline_ = Clock::time_point::max().time_since_epoch().count();
+}
+
+bool TevConnection::pastDeadline() const {
+  return Clock::now().time_since_epoch().count() >= deadline_.load();
+}
+
+int TevConnection::waitFor(int fd, short events, double seconds) {
+  const auto began = Clock::now();
+  for (;;) {
+    if (pastDeadline()) {
+      errno = 0;
+      return -1;
+    }
+    const double left = seconds - secondsSince(began);
+    if (left <= 0) return 0;
+    pollfd p{fd, events, 0};
+    const int rc = ::poll(&p, 1, std::min(pollMs(left), kSliceMs));
+    if (rc > 0) return rc;
+    if (rc < 0 && errno != EINTR) return -1;
+  }
+}
+
 bool TevConnection::connect(const DisplayServer& server, double timeoutSeconds, std::string& why) {
   close();
   why = "no address to connect to";
@@ -130,12 +162,16 @@ bool TevConnection::connect(const DisplayServer& server, double timeoutSeconds, 
     }
     int rc = ::connect(fd, reinterpret_cast<const sockaddr*>(&a.storage), a.length);
     if (rc != 0 && errno == EINPROGRESS) {
-      pollfd p{fd, POLLOUT, 0};
-      rc = ::poll(&p, 1, pollMs(timeoutSeconds));
+      rc = waitFor(fd, POLLOUT, timeoutSeconds);
       if (rc == 0) {
         why = "no answer within " + std::to_string(int(timeoutSeconds)) + " s";
         ::close(fd);
         continue;
+      }
+      if (rc < 0 && pastDeadline()) {
+        why = kPastDeadline;
+        ::close(fd);
+        return false;
       }
       int err = 0;
       socklen_t len = sizeof err;
@@ -171,6 +207,11 @@ bool TevConnection::write(std::span<const uint8_t> bytes, double stallSeconds, s
   }
   size_t sent = 0;
   while (sent < bytes.size()) {
+    if (pastDeadline()) {
+      why = kPastDeadline;
+      close();
+      return false;
+    }
     const ssize_t n = ::send(fd_, bytes.data() + sent, bytes.size() - sent, MSG_NOSIGNAL | MSG_DONTWAIT);
     if (n > 0) {
       sent += size_t(n);
@@ -182,15 +223,14 @@ bool TevConnection::write(std::span<const uint8_t> bytes, double stallSeconds, s
       close();
       return false;
     }
-    pollfd p{fd_, POLLOUT, 0};
-    const int rc = ::poll(&p, 1, pollMs(stallSeconds));
+    const int rc = waitFor(fd_, POLLOUT, stallSeconds);
     if (rc == 0) {
       why = "stopped reading (nothing taken for " + std::to_string(int(stallSeconds)) + " s)";
       close();
       return false;
     }
-    if (rc < 0 && errno != EINTR) {
-      why = std::strerror(errno);
+    if (rc < 0) {
+      why = pastDeadline() ? kPastDeadline : std::strerror(errno);
       close();
       return false;
     }
@@ -209,11 +249,17 @@ bool TevConnection::finish(double timeoutSeconds, std::string& why) {
     return false;
   }
   ::shutdown(fd_, SHUT_WR);
-  // The deadline moves while the peer keeps taking bytes (SIOCOUTQ: sent but not yet acknowledged).
+  // The timeout moves while the peer keeps taking bytes (SIOCOUTQ: sent but not yet acknowledged);
+  // the deadline does not.
   int unacked = -1;
   auto lastProgress = Clock::now();
   uint8_t buf[4096];
   for (;;) {
+    if (pastDeadline()) {
+      why = kPastDeadline;
+      close();
+      return false;
+    }
     int queued = 0;
     if (ioctl(fd_, SIOCOUTQ, &queued) == 0 && queued != unacked) {
       unacked = queued;
@@ -228,8 +274,8 @@ bool TevConnection::finish(double timeoutSeconds, std::string& why) {
       return false;
     }
     pollfd p{fd_, POLLIN | POLLRDHUP, 0};
-    const int rc = ::poll(&p, 1, std::min(pollMs(left), 50));
-    if (rc <= 0) continue;  // timeout (re-check progress) or EINTR
+    const int rc = ::poll(&p, 1, std::min(pollMs(left), kSliceMs));
+    if (rc <= 0) continue;  // timeout (re-check progress and the deadline) or EINTR
     const ssize_t n = ::recv(fd_, buf, sizeof buf, MSG_DONTWAIT);
     if (n == 0) break;  // the peer read to our end of stream and closed: everything arrived
     if (n < 0 && errno != EAGAIN && errno != EINTR) {

@@ -1,10 +1,13 @@
 // The TCP side of talking to tev: the HOST[:PORT] of --display-server, resolved once up front, and a
-// connection whose every operation has a deadline (a tev that stops reading, or never accepts, can
-// hold up the sending thread for at most that long, never forever).
+// connection whose every operation has a timeout (a tev that stops reading, or never accepts, can
+// hold up the sending thread for at most that long, never forever), and which another thread can give
+// a deadline that ends whatever it is doing (a stream that may take only so long after a render).
 #pragma once
 
 #include <sys/socket.h>
 
+#include <atomic>
+#include <chrono>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -36,6 +39,14 @@ class TevConnection {
   TevConnection(const TevConnection&) = delete;
   TevConnection& operator=(const TevConnection&) = delete;
 
+  using Clock = std::chrono::steady_clock;
+
+  // From any thread: connect, write and finish give up at `deadline` (within about 20 ms of it), with
+  // `why` saying so, and close the socket. clearDeadline() lifts it.
+  void setDeadline(Clock::time_point deadline);
+  void clearDeadline();
+  bool pastDeadline() const;
+
   // Connects to the first address that accepts within timeoutSeconds. False with `why` otherwise.
   bool connect(const DisplayServer& server, double timeoutSeconds, std::string& why);
   // Writes all of `bytes`. False with `why` when the peer has gone, on a socket error, or when the peer
@@ -51,7 +62,11 @@ class TevConnection {
 
  private:
   void close();
+  // Waits for `events` on `fd` for at most `seconds`, in slices that watch the deadline: > 0 when
+  // they came, 0 on timeout, -1 past the deadline or on a poll error (errno set; 0 for the deadline).
+  int waitFor(int fd, short events, double seconds);
   int fd_ = -1;
+  std::atomic<Clock::rep> deadline_{Clock::time_point::max().time_since_epoch().count()};
 };
 
 }  // namespace penumbra::net

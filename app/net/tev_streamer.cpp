@@ -14,8 +14,6 @@ namespace penumbra::net {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
 double threadCpuSeconds() {
   timespec ts;
   clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
@@ -32,6 +30,12 @@ void warnOnStderr(const std::string& message) {
   std::fprintf(stderr, "%s%s\n", isatty(STDERR_FILENO) ? "\r\033[K" : "", message.c_str());
 }
 
+std::string secondsText(double s) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g s", s);
+  return buf;
+}
+
 }  // namespace
 
 TevStreamer::TevStreamer(DisplayServer server, TevStreamOptions options)
@@ -45,60 +49,75 @@ TevStreamer::~TevStreamer() {
   finish();
 }
 
-void TevStreamer::follow(Engine& engine, std::string name) {
-  std::lock_guard lk(mutex_);
-  engine_ = &engine;
-  engineName_ = std::move(name);
-  cv_.notify_all();
+// Under mutex_.
+bool TevStreamer::dueLocked(Clock::time_point now) const {
+  return now >= nextDue_ && (options_.renderThreads <= 0 || processCpuSeconds() >= cpuDue_);
 }
 
-FilmSnapshot TevStreamer::stopFollowing() {
-  std::unique_lock lk(mutex_);
-  engine_ = nullptr;
-  cv_.notify_all();
-  const auto deadline = Clock::now() + std::chrono::seconds(10);
-  while (busy_ && !stop_ && Clock::now() < deadline) cv_.wait_for(lk, std::chrono::milliseconds(10));
-  if (busy_) return FilmSnapshot();  // the sending thread may still read snapshot_
-  return std::move(snapshot_);
+TevStreamer::Want TevStreamer::wanted() const {
+  std::lock_guard lk(mutex_);
+  Want w;
+  w.frame = !failed_ && !stop_ && !busy_ && !pending_ && dueLocked(Clock::now());
+  w.withError = options_.errorEvery > 0 &&
+                offered_ % uint64_t(options_.errorEvery) == uint64_t(options_.errorEvery - 1);
+  return w;
 }
 
-void TevStreamer::offer(const std::string& name, const FilmSnapshot& snapshot) {
+void TevStreamer::offer(const std::string& name, const FilmSnapshot& snapshot, bool errorLayer) {
   std::lock_guard lk(mutex_);
-  if (failed_ || stop_ || busy_ || pending_ || Clock::now() < nextDue_) return;
+  if (failed_ || stop_ || busy_ || pending_ || !dueLocked(Clock::now())) return;
   if (snapshot.mean.empty() || snapshot.spp == 0) return;  // nothing yet, or the blocky preview
   if (snapshot.version == offeredVersion_ && name == offeredName_) return;
   offeredVersion_ = snapshot.version;
   offeredName_ = name;
-  pending_ = TevFrame{name, snapshot.mean, Image()};
+  pending_ = TevFrame{name, snapshot.mean, errorLayer ? snapshot.standardError : Image(), errorLayer};
+  pendingOffered_ = true;
+  ++offered_;
   ++submitted_;
   cv_.notify_all();
 }
 
+void TevStreamer::startWaiting(const std::string& during) {
+  waitingFor_ = during;
+  connection_.setDeadline(Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                             std::chrono::duration<double>(options_.waitSeconds)));
+}
+
 void TevStreamer::send(TevFrame frame) {
   std::unique_lock lk(mutex_);
-  cv_.wait(lk, [&] { return failed_ || stop_ || !pending_; });
   if (failed_ || stop_) return;
-  pending_ = std::move(frame);
-  const uint64_t serial = ++submitted_;
-  cv_.notify_all();
-  cv_.wait(lk, [&] { return failed_ || completed_ >= serial; });
+  startWaiting("an image was handed over");
+  if (pending_ && pendingOffered_) pending_.reset();   // an offered frame not begun: this one is newer
+  cv_.wait(lk, [&] { return failed_ || !pending_; });  // the sending thread's every wait has the deadline
+  if (!failed_) {
+    pending_ = std::move(frame);
+    pendingOffered_ = false;
+    const uint64_t serial = ++submitted_;
+    cv_.notify_all();
+    cv_.wait(lk, [&] { return failed_ || completed_ >= serial; });
+  }
+  connection_.clearDeadline();
+  waitingFor_.clear();
 }
 
 void TevStreamer::finish(std::optional<TevFrame> last) {
+  if (!thread_.joinable()) return;
   {
     std::unique_lock lk(mutex_);
-    engine_ = nullptr;  // the engine may go away once this returns
-    if (last && !failed_ && !stop_) {
+    if (!failed_) startWaiting("the render ended");
+    if (pending_ && pendingOffered_) pending_.reset();
+    if (last && !failed_) {
       cv_.wait(lk, [&] { return failed_ || !pending_; });
       if (!failed_) {
         pending_ = std::move(*last);
+        pendingOffered_ = false;
         ++submitted_;
       }
     }
     stop_ = true;
     cv_.notify_all();
   }
-  if (thread_.joinable()) thread_.join();
+  thread_.join();
 }
 
 bool TevStreamer::failed() const {
@@ -117,7 +136,13 @@ void TevStreamer::fail(const std::string& why, bool continuing) {
   pending_.reset();
   completed_ = submitted_;
   cv_.notify_all();
-  options_.warn("warning: display server " + server_.label() + ": " + why +
+  std::string message = why;
+  if (!waitingFor_.empty() && connection_.pastDeadline()) {
+    message = "too slow: still busy " + secondsText(options_.waitSeconds) + " after " + waitingFor_ +
+              "; dropped it";
+    continuing = false;
+  }
+  options_.warn("warning: display server " + server_.label() + ": " + message +
                 (continuing ? "; continuing without it" : ""));
 }
 
@@ -128,38 +153,28 @@ void TevStreamer::run() {
   busy_ = false;
   if (!connected) fail("cannot connect (" + why + ")", true);
   nextDue_ = Clock::now();
-  const int cores = int(std::max(1u, std::thread::hardware_concurrency()));
   while (!failed_) {
     if (pending_) {
       TevFrame frame = std::move(*pending_);
+      const bool offered = pendingOffered_;
       pending_.reset();
       busy_ = true;
       lk.unlock();
       const auto began = Clock::now();
       const double cpu0 = threadCpuSeconds(), processCpu0 = processCpuSeconds();
-      const bool ok = transmit(frame.name, frame.mean, frame.standardError, !frame.standardError.empty());
+      const bool ok = transmit(frame);
       lk.lock();
       busy_ = false;
       ++completed_;
-      if (ok) scheduleNext(began, processCpu0, threadCpuSeconds() - cpu0, cores);
+      if (ok && offered) {
+        const double own = threadCpuSeconds() - cpu0;
+        scheduleNext(began, processCpu0, options_.renderThreads > 0 ? own * (1 + kEngineWorkPerOwn) : own);
+      }
       cv_.notify_all();
       continue;
     }
     if (stop_) break;
-    if (!engine_) {
-      cv_.wait(lk);
-      continue;
-    }
-    const auto now = Clock::now();
-    const double cpuLeft = cpuDue_ - processCpuSeconds();
-    if (now >= nextDue_ && cpuLeft <= 0) {
-      pullFromEngine(lk);
-      continue;
-    }
-    // Until the interval has passed, then in steps of what the CPU still owed takes at full speed.
-    const double step = std::clamp(cpuLeft / std::max(engine_->threadCount(), 1), 0.01, 0.5);
-    cv_.wait_until(lk, std::max(nextDue_, now + std::chrono::duration_cast<Clock::duration>(
-                                                    std::chrono::duration<double>(step))));
+    cv_.wait(lk);
   }
   if (failed_) return;
   lk.unlock();
@@ -169,70 +184,34 @@ void TevStreamer::run() {
   }
 }
 
-// Asks the engine for a snapshot, waits for it (while still following and nothing else is to be
-// sent) and sends it. Called and returns with `lock` held.
-void TevStreamer::pullFromEngine(std::unique_lock<std::mutex>& lock) {
-  Engine* engine = engine_;
-  const std::string name = engineName_;
-  const bool withError =
-      options_.errorEvery > 0 && pulled_ % uint64_t(options_.errorEvery) == uint64_t(options_.errorEvery - 1);
-  busy_ = true;
-  lock.unlock();
-  const auto began = Clock::now();
-  const double cpu0 = threadCpuSeconds(), processCpu0 = processCpuSeconds();
-  engine->takeSnapshot(snapshot_);  // drop an older publication: the update shows a pass still to come
-  engine->requestNextPassSnapshot(withError);
-  bool fresh = false;
-  RenderProgress progress;
-  lock.lock();
-  while (!stop_ && engine_ == engine && !pending_) {
-    lock.unlock();
-    fresh = engine->takeSnapshot(snapshot_);
-    progress = engine->progress();
-    lock.lock();
-    if (fresh || progress.finished) break;  // finished: the caller sends the last frame itself
-    cv_.wait_for(lock, std::chrono::milliseconds(5));
-  }
-  bool ok = true;
-  if (fresh && !progress.finished && snapshot_.spp > 0 && !snapshot_.mean.empty()) {
-    ++pulled_;
-    lock.unlock();
-    ok = transmit(name, snapshot_.mean, snapshot_.standardError, true);
-    lock.lock();
-  }
-  busy_ = false;
-  const double own = threadCpuSeconds() - cpu0;
-  if (ok) scheduleNext(began, processCpu0, own * (1 + kEngineWorkPerOwn), engine->threadCount());
-  cv_.notify_all();
-}
-
-void TevStreamer::scheduleNext(Clock::time_point began, double beganProcessCpu, double workSeconds,
-                               int threads) {
-  const double interval =
-      std::max(options_.minIntervalSeconds, workSeconds / (options_.costShare * std::max(threads, 1)));
+void TevStreamer::scheduleNext(Clock::time_point began, double beganProcessCpu, double workSeconds) {
+  const int threads = options_.renderThreads > 0 ? options_.renderThreads
+                                                 : int(std::max(1u, std::thread::hardware_concurrency()));
+  const double interval = std::max(options_.minIntervalSeconds, workSeconds / (options_.costShare * threads));
   nextDue_ = began + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(interval));
   cpuDue_ = beganProcessCpu + workSeconds / options_.costShare;
 }
 
 // Runs on the sending thread, unlocked. On a failure, ends the stream with its warning.
-bool TevStreamer::transmit(const std::string& name, const Image& mean, const Image& standardError,
-                           bool errorLayer) {
+bool TevStreamer::transmit(const TevFrame& frame) {
+  const Image& mean = frame.mean;
+  const bool errorLayer = frame.errorLayer || !frame.standardError.empty();
   std::vector<TevLayer> layers = {{"", &mean}};
-  if (errorLayer && !standardError.empty()) layers.push_back({"stderr.", &standardError});
+  if (!frame.standardError.empty()) layers.push_back({"stderr.", &frame.standardError});
   std::string why;
   bool ok = !connection_.peerClosed();
   if (!ok) why = "closed the connection";
-  if (ok && (created_.name != name || created_.width != mean.width || created_.height != mean.height ||
+  if (ok && (created_.name != frame.name || created_.width != mean.width || created_.height != mean.height ||
              created_.errorLayer != errorLayer)) {
     std::vector<TevLayer> declared = {{"", &mean}};
     if (errorLayer) declared.push_back({"stderr.", &mean});
-    encodeCreateImage({true, name, mean.width, mean.height, tevChannelNames(declared)}, packet_);
+    encodeCreateImage({true, frame.name, mean.width, mean.height, tevChannelNames(declared)}, packet_);
     ok = connection_.write(packet_, options_.stallSeconds, why);
-    if (ok) created_ = {name, mean.width, mean.height, errorLayer};
+    if (ok) created_ = {frame.name, mean.width, mean.height, errorLayer};
   }
   for (const TileRect& tile : tevTiles(mean.width, mean.height)) {
     if (!ok) break;
-    encodeUpdateImage(name, false, layers, tile, packet_);
+    encodeUpdateImage(frame.name, false, layers, tile, packet_);
     ok = connection_.write(packet_, options_.stallSeconds, why);
   }
   std::lock_guard lk(mutex_);

@@ -1,10 +1,12 @@
-// Streams a progressive render to tev from a thread of its own: connects, creates the image, then
-// sends it as tiles (tev_protocol.h) whenever an update is due. Nothing here blocks a render thread:
-// the engine is only asked for snapshots (Engine::requestNextPassSnapshot / takeSnapshot), and every
-// socket operation has a deadline. The first failure (tev not running, refusing, gone, not reading) prints
-// one warning and ends the stream; whoever renders carries on.
+// Streams images to tev from a thread of its own: connects, creates each image, then sends it as tiles
+// (tev_protocol.h). The stream is best effort and never holds up whoever renders: frames are offered
+// (copied, then sent on this thread; an offer while a frame is still being sent is dropped), every
+// socket operation has a timeout, and whoever waits for the stream (send, finish) waits at most
+// waitSeconds, after which the stream is dropped. The first failure (tev not running, refusing, gone,
+// not reading, too slow at the end) prints one warning and ends the stream; the caller carries on.
 #pragma once
 
+#include <chrono>
 #include <condition_variable>
 #include <cstdint>
 #include <functional>
@@ -12,36 +14,44 @@
 #include <optional>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "app/net/tev_client.h"
 #include "core/image/image.h"
-#include "core/render/engine.h"
+#include "core/render/snapshot_publisher.h"
 
 namespace penumbra::net {
 
-// One image as tev shows it: channels R, G, B, and, when standardError is not empty, the per-pixel
-// standard error of the mean as the layer "stderr" (channels stderr.R, stderr.G, stderr.B).
+// One image as tev shows it: channels R, G, B and, with errorLayer or a standardError, the layer
+// "stderr" (channels stderr.R, stderr.G, stderr.B) holding the per-pixel standard error of the mean.
+// errorLayer declares the layer even in a frame that does not carry it (tev keeps the last one sent),
+// so an image whose frames carry it now and then is created in tev once.
 struct TevFrame {
   std::string name;
   Image mean;
   Image standardError;
+  bool errorLayer = false;
 };
 
 struct TevStreamOptions {
-  // Pacing: after each update the next is due once the work it cost is costShare of the render
-  // threads' time since it began, and never sooner than minIntervalSeconds. Following an engine, that
-  // time is also counted in process CPU time, so a render that gets less than its cores (a busy
-  // machine) is updated less often. The work: this thread's CPU time (copying, encoding, sending) and,
-  // following an engine, the workers' resolve of the snapshot (Engine::requestNextPassSnapshot: inside
-  // the pass, no worker waits), counted as twice this thread's (tev_streamer.cpp).
+  // Pacing of offered frames: after each update the next is due once the work it cost is costShare of
+  // the render threads' time since it began, and never sooner than minIntervalSeconds.
   double minIntervalSeconds = 0.25;
   double costShare = 0.01;
-  // Following an engine, every errorEvery-th update also carries the standard error (resolving it
-  // costs the workers about five times what the mean does); the last frame always does.
+  // > 0: the offered frames are snapshots the renderer resolved because the stream wanted them
+  // (wanted()), on this many threads. Their resolve is then counted as twice this thread's own work
+  // (tev_streamer.cpp), and the pacing also waits for that share of process CPU time, so a render that
+  // gets less than its cores (a busy machine) is updated less often.
+  int renderThreads = 0;
+  // Every errorEvery-th wanted frame asks for the standard error too (resolving it costs the workers
+  // about five times what the mean does).
   int errorEvery = 4;
   double connectSeconds = 3;  // to connect
   double stallSeconds = 5;    // longest wait for tev to take bytes mid-stream
   double closeSeconds = 2;    // longest wait, at the end, for tev to confirm it read everything
+  // Longest send() and finish() wait for the stream: whatever it is still doing then (connecting,
+  // sending, waiting for tev to read) is abandoned and the stream dropped with its warning.
+  double waitSeconds = 1;
   // Receives the one warning (default: a line on stderr).
   std::function<void(const std::string&)> warn;
 };
@@ -54,36 +64,41 @@ class TevStreamer {
   TevStreamer(const TevStreamer&) = delete;
   TevStreamer& operator=(const TevStreamer&) = delete;
 
-  // From now on, whenever an update is due, asks `engine` for a snapshot (the standard error with every
-  // errorEvery-th) and sends it as `name`, with the stderr layer. The streamer becomes the engine's only
-  // snapshot reader (it uses takeSnapshot); call finish() before the engine is destroyed.
-  void follow(Engine& engine, std::string name);
-  // Stops following the engine (after an update in progress, at most about 10 s) and hands back the
-  // last snapshot taken from it (empty, spp 0, if none): what the engine's only reader has seen.
-  FilmSnapshot stopFollowing();
-  // A snapshot someone else reads (the viewer's), as R, G, B. Copied and sent only when an update is
-  // due and it is newer than the last one taken, so it is cheap to call on every poll.
-  void offer(const std::string& name, const FilmSnapshot& snapshot);
-  // Sends `frame` (after what is being sent) and returns once it is sent or the stream has failed.
+  // Whether offer() would take a frame now (connected, idle, and an update is due), and whether that
+  // frame should carry the standard error. For a render loop that asks its engine for a snapshot
+  // only when the stream wants one.
+  struct Want {
+    bool frame = false;
+    bool withError = false;
+  };
+  Want wanted() const;
+  // A snapshot (its mean, and its standard error when errorLayer and it has one): copied and sent when
+  // an update is due and the stream is idle, dropped otherwise; a snapshot already offered under
+  // `name` is skipped. Cheap when dropped, so it can be called on every poll.
+  void offer(const std::string& name, const FilmSnapshot& snapshot, bool errorLayer = false);
+  // Sends `frame` after what is being sent; returns once it is sent, the stream has failed, or
+  // waitSeconds have passed (then the stream is dropped).
   void send(TevFrame frame);
-  // Stops following the engine, sends `last` if given, ends the stream and joins the thread. Takes at
-  // most about connectSeconds + stallSeconds + closeSeconds when tev misbehaves.
+  // Sends `last` if given, ends the stream and joins the thread, all within waitSeconds (and a few
+  // tens of ms); after that the stream is dropped with its warning.
   void finish(std::optional<TevFrame> last = std::nullopt);
 
   bool failed() const;
   uint64_t updatesSent() const;  // whole-image updates sent so far
 
  private:
+  using Clock = std::chrono::steady_clock;
+
   void run();
-  void pullFromEngine(std::unique_lock<std::mutex>& lock);
-  // Sends one image as `name`; creates it in tev first when its name, size or channels changed.
-  // errorLayer: the image has the stderr layer (its tiles are sent when standardError is not empty).
-  bool transmit(const std::string& name, const Image& mean, const Image& standardError, bool errorLayer);
+  // Sends one frame; creates the image in tev first when its name, size or layers changed.
+  bool transmit(const TevFrame& frame);
   void fail(const std::string& why, bool continuing);
+  // Under mutex_: the connection gives up waitSeconds from now; a failure after it says `during`.
+  void startWaiting(const std::string& during);
+  bool dueLocked(Clock::time_point now) const;
   // Under mutex_: when the next update is due, from when this one began (wall clock and process CPU
   // time) and the work it cost.
-  void scheduleNext(std::chrono::steady_clock::time_point began, double beganProcessCpu, double workSeconds,
-                    int threads);
+  void scheduleNext(Clock::time_point began, double beganProcessCpu, double workSeconds);
 
   DisplayServer server_;
   TevStreamOptions options_;
@@ -92,20 +107,19 @@ class TevStreamer {
   mutable std::mutex mutex_;
   std::condition_variable cv_;
   bool stop_ = false, failed_ = false, busy_ = true;  // busy_: connecting or sending
-  Engine* engine_ = nullptr;
-  std::string engineName_;
   std::optional<TevFrame> pending_;
+  bool pendingOffered_ = false;             // pending_ came from offer()
   uint64_t submitted_ = 0, completed_ = 0;  // frames given to send() / finish(), and handled
+  uint64_t offered_ = 0;                    // frames offer() took
   uint64_t offeredVersion_ = ~0ull;
   std::string offeredName_;
-  std::chrono::steady_clock::time_point nextDue_;  // no update before this
-  double cpuDue_ = 0;  // following an engine, nor before the process has used this much CPU time
+  Clock::time_point nextDue_;  // no offered frame before this
+  double cpuDue_ = 0;          // with renderThreads, nor before the process has used this much CPU time
+  std::string waitingFor_;     // what a caller is waiting for, while one is (startWaiting)
   uint64_t updates_ = 0;
 
   // Touched by the sending thread only.
-  FilmSnapshot snapshot_;
   std::vector<uint8_t> packet_;
-  uint64_t pulled_ = 0;  // snapshots taken from the engine
   struct Created {
     std::string name;
     int width = 0, height = 0;

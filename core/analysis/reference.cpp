@@ -144,7 +144,35 @@ Reference readReference(const std::string& path) {
   }
   ref.source = "file " + path;
   if (const std::string* how = meta.find("reference")) ref.source += " (" + *how + ")";
+  checkReferenceValues(ref, "reference " + path);
   return ref;
+}
+
+namespace {
+
+// Throws when a value of `image` fails `valid`: the count and the first one (in row-major order).
+template <class Valid>
+void checkValues(const Image& image, const std::string& what, const char* expected, Valid valid) {
+  std::size_t bad = 0, first = 0;
+  for (std::size_t i = 0; i < image.rgb.size(); ++i)
+    if (!valid(image.rgb[i]) && bad++ == 0) first = i;
+  if (bad == 0) return;
+  const std::size_t pixel = first / 3;
+  char value[32];
+  std::snprintf(value, sizeof value, "%g", double(image.rgb[first]));
+  throw Error(what + ": " + std::to_string(bad) + " of " + std::to_string(image.rgb.size()) +
+              (bad == 1 ? " values is not " : " values are not ") + expected + "; the first at pixel (" +
+              std::to_string(pixel % std::size_t(image.width)) + ", " +
+              std::to_string(pixel / std::size_t(image.width)) + ") channel " + "RGB"[first % 3] + ": " +
+              value);
+}
+
+}  // namespace
+
+void checkReferenceValues(const Reference& ref, const std::string& what) {
+  checkValues(ref.mean, what, "finite", [](float v) { return std::isfinite(v); });
+  checkValues(ref.standardError, what + " (standard error)", "finite and non-negative",
+              [](float v) { return std::isfinite(v) && v >= 0.f; });
 }
 
 bool hasClosedFormReference(const LoadedScene& scene) {

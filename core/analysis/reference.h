@@ -58,8 +58,14 @@ Reference renderReference(const LoadedScene& scene, RenderLimits limits, int thr
 // the mean first; `compression` applies to every EXR written.
 void writeReference(const std::string& path, const Reference& ref, const ImageMetadata& metadata = {},
                     ExrCompression compression = ExrCompression::Zip);
-// (b) Reads a reference image and, if present, its sibling standard error. Throws Error.
+// (b) Reads a reference image and, if present, its sibling standard error, and checks their values
+// (checkReferenceValues). Throws Error.
 Reference readReference(const std::string& path);
+
+// What an image measured against must hold: a finite mean (negative values are allowed: a pixel filter
+// with negative lobes, mitchell, makes them) and a finite, non-negative standard error. Throws Error
+// naming `what`, how many values break that, and the first of them (pixel x, y, channel and value).
+void checkReferenceValues(const Reference& ref, const std::string& what);
 
 // (c) True for scenes under a directory named "analytic" (the closed form is valid there).
 bool hasClosedFormReference(const LoadedScene& scene);

@@ -7,10 +7,13 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <limits>
 #include <string>
 #include <vector>
 
 #include "core/analysis/test_scenes_fixture.h"
+#include "core/image/image_io.h"
+#include "core/math/error.h"
 
 namespace penumbra {
 namespace {
@@ -86,6 +89,51 @@ TEST(Reference, MissingCacheDirectoryIsCreatedSoTheRenderIsKept) {
   obtainReference(scene, rq);
   EXPECT_TRUE(fs::exists(referenceCachePath(scene, dir.string())));
   fs::remove_all(dir.parent_path().parent_path());
+}
+
+// What a reference must hold, in memory and in a file: a finite mean (negative values allowed: a
+// mitchell filter makes them), a finite non-negative standard error; the count and the first bad value.
+std::string referenceProblem(const Reference& ref) {
+  try {
+    checkReferenceValues(ref, "reference r.exr");
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(Reference, NonFiniteValuesAreRefusedWithTheFirstPixel) {
+  Reference ref{Image(4, 3), Image(4, 3), "test"};
+  EXPECT_EQ(referenceProblem(ref), "");
+  ref.mean.rgb[ref.mean.index(1, 0) + 2] = -0.25f;  // a negative lobe's value: allowed
+  EXPECT_EQ(referenceProblem(ref), "");
+  ref.mean.rgb[ref.mean.index(3, 1) + 1] = std::numeric_limits<float>::infinity();
+  ref.mean.rgb[ref.mean.index(0, 2) + 0] = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_EQ(referenceProblem(ref),
+            "reference r.exr: 2 of 36 values are not finite; the first at pixel (3, 1) channel G: inf");
+  ref.mean = Image(4, 3);
+  ref.standardError.rgb[ref.standardError.index(2, 2) + 2] = -1e-3f;
+  EXPECT_EQ(referenceProblem(ref),
+            "reference r.exr (standard error): 1 of 36 values is not finite and non-negative; the first at "
+            "pixel (2, 2) channel B: -0.001");
+}
+
+TEST(Reference, FilesWithNonFiniteValuesAreRefusedAsTheyAreRead) {
+  const fs::path dir = fs::temp_directory_path() / ("penumbra-ref-values-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const std::string path = (dir / "nan.pfm").string();
+  Image mean(5, 2);
+  mean.rgb[mean.index(4, 1)] = std::numeric_limits<float>::quiet_NaN();
+  writeImage(path, mean);
+  try {
+    readReference(path);
+    ADD_FAILURE() << "accepted a NaN reference";
+  } catch (const Error& e) {
+    EXPECT_EQ(
+        std::string(e.what()),
+        "reference " + path + ": 1 of 30 values is not finite; the first at pixel (4, 1) channel R: nan");
+  }
+  fs::remove_all(dir);
 }
 
 }  // namespace

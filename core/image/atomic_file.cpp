@@ -11,6 +11,7 @@
 #include <charconv>
 #include <cstring>
 
+#include "core/math/bounded_read.h"
 #include "core/math/error.h"
 
 namespace penumbra {
@@ -84,6 +85,7 @@ std::string atomicTempPath(const std::string& path) {
 
 void checkOutputPath(const std::string& path) {
   if (path.empty()) throw Error("cannot write image: empty output path");
+  checkNoNulInPath(path, "output");
   const std::string dir = directoryOf(path);
   struct stat st;
   if (::stat(dir.c_str(), &st) != 0) {

@@ -14,7 +14,8 @@ namespace penumbra {
 // Unique temp name next to `path`: path + ".tmp-<pid>-<counter>".
 std::string atomicTempPath(const std::string& path);
 
-// Checks, without touching an existing file, that `path` can be written atomically: its directory
+// Checks, without touching an existing file, that `path` can be written atomically: it has no NUL byte,
+// its directory
 // exists and a file can be created in it (a probe temporary is created and removed), and an existing
 // `path` is a regular file that is not read-only (it is refused, as cp refuses without -f, rather
 // than replaced). Throws Error naming the path and the reason. Commands call it before long work.

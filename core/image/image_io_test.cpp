@@ -215,6 +215,23 @@ TEST_F(ImageIoTest, UnsupportedExtensionListsSupportedOnes) {
   EXPECT_TRUE(fs::exists(file("UP.EXR")));
 }
 
+// The system would read or write such a path only up to its NUL byte: another file.
+TEST_F(ImageIoTest, PathsWithANulByteAreRefused) {
+  for (const char* ext : {".exr", ".pfm", ".png"}) {
+    writeImage(file(std::string("a") + ext), testImage());
+    const std::string withNul = file(std::string("a") + ext) + '\0' + ".old" + ext;
+    try {
+      readImage(withNul);
+      ADD_FAILURE() << "read " << ext;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("has a NUL byte at offset"), std::string::npos) << e.what();
+    }
+    const auto before = fs::last_write_time(file(std::string("a") + ext));
+    EXPECT_THROW(writeImage(withNul, testImage(3, 2)), Error) << ext;
+    EXPECT_EQ(fs::last_write_time(file(std::string("a") + ext)), before) << ext;
+  }
+}
+
 TEST_F(ImageIoTest, EmptyImageThrows) {
   EXPECT_THROW(writeImage(file("e.exr"), Image{}), Error);
   Image bad(2, 2);

@@ -9,6 +9,7 @@
 #include "core/image/atomic_file.h"
 #include "core/image/image_io.h"
 #include "core/image/tonemap.h"
+#include "core/math/bounded_read.h"
 #include "core/math/error.h"
 
 namespace penumbra {
@@ -36,6 +37,7 @@ void writePng(const std::string& path, const Image& image, const ImageMetadata& 
 }
 
 Image readPng(const std::string& path) {
+  checkNoNulInPath(path, "PNG file");
   png_image png;
   std::memset(&png, 0, sizeof png);
   png.version = PNG_IMAGE_VERSION;

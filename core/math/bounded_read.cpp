@@ -20,7 +20,17 @@ std::string sizeText(uint64_t bytes) {
 
 }  // namespace
 
+void checkNoNulInPath(const std::string& path, const std::string& what) {
+  const size_t nul = path.find('\0');
+  if (nul == std::string::npos) return;
+  std::string shown;
+  for (char c : path) shown += c == '\0' ? std::string("\\0") : std::string(1, c);
+  throw Error(what + " path \"" + shown + "\" has a NUL byte at offset " + std::to_string(nul) +
+              ": no file can have that name");
+}
+
 void checkRegularFile(const std::string& path, uint64_t maxBytes, const std::string& what) {
+  checkNoNulInPath(path, what);
   struct stat st;
   if (::stat(path.c_str(), &st) != 0) {
     const int err = errno;

@@ -8,8 +8,12 @@
 
 namespace penumbra {
 
-// Throws Error(path, 0, ...) unless `path` names a regular file (after symlinks) of at most
-// `maxBytes`; `what` names it in messages ("scene file", "mesh file").
+// Throws Error unless `path` is free of NUL bytes: the system would take it only up to the first one,
+// i.e. another file. `what` names the file in the message ("scene file", "output image").
+void checkNoNulInPath(const std::string& path, const std::string& what);
+
+// Throws Error (checkNoNulInPath, then Error(path, 0, ...)) unless `path` names a regular file (after
+// symlinks) of at most `maxBytes`; `what` names it in messages ("scene file", "mesh file").
 void checkRegularFile(const std::string& path, uint64_t maxBytes, const std::string& what);
 
 // checkRegularFile, then the whole file; reads at most maxBytes even if the file grows meanwhile.

@@ -3,6 +3,7 @@
 
 #include <tinyxml2.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -20,9 +21,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using tinyxml2::XMLElement;
-
-// Scene files are hand-written XML (meshes live in their own files): far below this.
-constexpr uint64_t kMaxSceneFileBytes = uint64_t(64) << 20;
 
 const char* kObjectTags[] = {"scene",  "shape",   "bsdf",       "emitter",
                              "camera", "sampler", "integrator", "rfilter"};
@@ -244,6 +242,30 @@ SceneNode* findFirst(SceneNode& node, const std::string& tag) {
   return nullptr;
 }
 
+// Refuses a NUL byte, or a character reference to one (&#0;, &#x0;), with its line and column. XML
+// allows neither, and tinyxml2 keeps text as C strings: everything after one would be dropped unseen.
+void checkNoNulCharacter(const std::string& xml, const std::string& file) {
+  size_t at = xml.find('\0');
+  std::string what = "a NUL character (byte 0)";
+  for (size_t r = xml.find("&#"); r != std::string::npos && r < at; r = xml.find("&#", r + 2)) {
+    size_t i = r + 2;
+    if (i < xml.size() && xml[i] == 'x') ++i;
+    const size_t digits = i;
+    while (i < xml.size() && xml[i] == '0') ++i;
+    if (i > digits && i < xml.size() && xml[i] == ';') {
+      at = r;
+      what = "the character reference " + xml.substr(r, i + 1 - r) + " (NUL)";
+      break;
+    }
+  }
+  if (at == std::string::npos) return;
+  const size_t lineStart = at == 0 ? 0 : xml.rfind('\n', at - 1) + 1;  // npos + 1 == 0: the first line
+  const int line = 1 + int(std::count(xml.begin(), xml.begin() + std::ptrdiff_t(at), '\n'));
+  throw Error(file, line,
+              "column " + std::to_string(at - lineStart + 1) + ": " + what +
+                  " is not allowed in a scene (XML text cannot hold one)");
+}
+
 }  // namespace
 
 glm::mat4 lookAtMatrix(const Vec3& origin, const Vec3& target, const Vec3& up, const std::string& file,
@@ -318,6 +340,7 @@ glm::mat4 parseTransformElement(const tinyxml2::XMLElement& element, const std::
 
 SceneNode parseSceneString(const std::string& xml, const std::string& nameForErrors,
                            const std::string& baseDir) {
+  checkNoNulCharacter(xml, nameForErrors);
   tinyxml2::XMLDocument doc;
   if (doc.Parse(xml.c_str(), xml.size()) != tinyxml2::XML_SUCCESS) {
     std::string msg = doc.ErrorStr() ? doc.ErrorStr() : "unknown error";
@@ -333,6 +356,7 @@ SceneNode parseSceneString(const std::string& xml, const std::string& nameForErr
 }
 
 SceneNode parseSceneFile(const std::string& path) {
+  checkNoNulInPath(path, "scene file");
   std::error_code ec;
   if (!fs::exists(path, ec))
     throw Error(path, 0, "cannot open scene file (resolved to " + fs::absolute(path, ec).string() + ")");

@@ -11,6 +11,7 @@
 // PropertyList::lineOf for the line).
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <string_view>
 
@@ -23,6 +24,10 @@ class XMLElement;
 }
 
 namespace penumbra {
+
+// The largest scene file parseSceneFile reads (meshes live in their own files; hand-written scenes are
+// far below this). What writes scene files (penumbra bench --write-scaling-scene) keeps to it too.
+inline constexpr uint64_t kMaxSceneFileBytes = uint64_t(64) << 20;
 
 // Parses a scene file. The file name in messages is `path` as given; baseDir is its directory.
 SceneNode parseSceneFile(const std::string& path);

@@ -139,6 +139,38 @@ TEST(XmlParser, ErrorsCarryLines) {
       4);
 }
 
+// tinyxml2 keeps text as C strings: a NUL would silently end the file or a value (here the second
+// shape, or the mesh path "plane.obj\0.bak" read as "plane.obj"). Refused where it is.
+TEST(XmlParser, NulCharactersAreRefusedWithTheirLine) {
+  const std::string head = "<scene>\n<shape type=\"sphere\"/>\n";
+  std::string msg;
+  const std::string nul(1, '\0');
+  EXPECT_EQ(errorLine(head + "  " + nul + "<shape type=\"sphere\"/>\n</scene>", &msg), 3);
+  EXPECT_NE(msg.find("t.xml:3: column 3: a NUL character (byte 0) is not allowed"), std::string::npos) << msg;
+  EXPECT_EQ(errorLine(head + "</scene>" + nul + "trailing", &msg), 3);
+  for (const char* ref : {"&#0;", "&#x0;", "&#000;", "&#x00;"}) {
+    EXPECT_EQ(errorLine(head + "<shape type=\"obj\">\n<string name=\"filename\" value=\"plane.obj" + ref +
+                            ".bak\"/>\n</shape>\n</scene>",
+                        &msg),
+              4)
+        << ref;
+    EXPECT_NE(msg.find(std::string("the character reference ") + ref + " (NUL)"), std::string::npos) << msg;
+  }
+  // Other character references are text as usual.
+  EXPECT_NO_THROW(parseSceneString(head + "<!-- &#10; &#x41; &#100; &#x10; -->\n</scene>", "t.xml", "/base"));
+}
+
+TEST(XmlParser, ScenePathWithANulByteIsRefused) {
+  try {
+    parseSceneFile(std::string("scene.xml") + '\0' + ".evil");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("scene file path \"scene.xml\\0.evil\" has a NUL byte at offset 9"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(XmlParser, MissingFile) {
   try {
     parseSceneFile("/nonexistent/dir/scene.xml");
