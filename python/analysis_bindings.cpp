@@ -2,48 +2,79 @@
 // arrays) and the closed forms a render can be checked against without a reference file.
 #include <pybind11/stl.h>
 
+#include <cmath>
 #include <optional>
 
 #include "core/analysis/closed_forms.h"
 #include "core/analysis/convergence.h"
 #include "core/analysis/reference.h"
+#include "core/math/argument_checks.h"
 #include "core/math/error.h"
+#include "core/render/memory_estimate.h"
 #include "core/sampling/sampler_table.h"
+#include "python/arguments.h"
 #include "python/bindings.h"
+#include "python/interrupt.h"
+#include "python/text.h"
 
 namespace penumbra::python {
 
 namespace {
 
+// A str of comma-separated names or an iterable of str, as one comma-separated str; ValueError for
+// no names at all (an empty str or list would otherwise mean "the default").
 std::string joinNames(const py::object& names, const char* argument) {
-  if (py::isinstance<py::str>(names)) return names.cast<std::string>();
   std::string out;
-  try {
-    for (auto n : names.cast<py::iterable>()) (out += out.empty() ? "" : ",") += n.cast<std::string>();
-  } catch (const py::cast_error&) {
-    throw py::type_error(std::string(argument) + ": expected a str or a list of str");
+  if (py::isinstance<py::str>(names)) {
+    out = names.cast<std::string>();
+  } else {
+    try {
+      for (auto n : names.cast<py::iterable>()) {
+        if (!py::isinstance<py::str>(n)) throw py::cast_error();
+        (out += out.empty() ? "" : ",") += n.cast<std::string>();
+      }
+    } catch (const py::cast_error&) {
+      throw py::type_error(std::string(argument) + ": expected a str or a list of str");
+    }
   }
+  checkNoNul(out, argument);
+  if (out.find_first_not_of(", ") == std::string::npos)
+    throw py::value_error(std::string(argument) + ": expected 'all' or at least one name, got none");
   return out;
 }
 
-// Files are checked as they are read (readReference); arrays here, before anything renders.
-Reference chooseReference(const PyScene& s, const py::object& reference, int threads) {
+// A core parse error as a ValueError naming the argument.
+template <class F>
+auto parsedArgument(const char* argument, F&& parse) {
+  try {
+    return parse();
+  } catch (const Error& e) {
+    throw py::value_error(std::string(argument) + ": " + e.what());
+  }
+}
+
+// The reference as converge() was given it; None and paths are obtained by `obtain` (the caller runs
+// it interruptibly, without the GIL).
+struct ReferenceChoice {
+  std::optional<Reference> given;  // a RenderResult or an array
+  ReferenceRequest request;        // otherwise
+};
+
+ReferenceChoice chooseReference(const py::object& reference, int threads) {
+  ReferenceChoice c;
   if (py::hasattr(reference, "mean") && py::hasattr(reference, "stderr")) {  // a RenderResult: with its noise
-    Reference ref{arrayToImage(reference.attr("mean"), "reference.mean"),
-                  arrayToImage(reference.attr("stderr"), "reference.stderr"), "render result"};
-    checkReferenceValues(ref, "reference");
-    return ref;
+    c.given = Reference{arrayToImage(reference.attr("mean"), "reference.mean"),
+                        arrayToImage(reference.attr("stderr"), "reference.stderr"), "render result"};
+    checkReferenceValues(*c.given, "reference");
+  } else if (py::isinstance<py::str>(reference) || py::isinstance<py::bytes>(reference) ||
+             py::hasattr(reference, "__fspath__")) {
+    c.request.path = pathArgument(reference, "reference");
+  } else if (!reference.is_none()) {
+    c.given = Reference{arrayToImage(reference, "reference"), {}, "array"};
+    checkReferenceValues(*c.given, "reference");
   }
-  if (!reference.is_none() && !py::isinstance<py::str>(reference)) {
-    Reference ref{arrayToImage(reference, "reference"), {}, "array"};
-    checkReferenceValues(ref, "reference");
-    return ref;
-  }
-  ReferenceRequest rq;
-  if (!reference.is_none()) rq.path = reference.cast<std::string>();
-  rq.threads = threads;
-  py::gil_scoped_release release;
-  return obtainReference(s.loaded, rq);
+  c.request.threads = threads;
+  return c;
 }
 
 py::dict runToDict(const ConvergenceRun& r) {
@@ -73,83 +104,92 @@ py::dict runToDict(const ConvergenceRun& r) {
   d["rmse_nolight"] = column([](const ConvergencePoint& p) { return p.error.noLight.rmse; });
   d["rel_mse_nolight"] = column([](const ConvergencePoint& p) { return p.error.noLight.relMse; });
   d["mse_stderr_nolight"] = column([](const ConvergencePoint& p) { return p.error.noLight.mseStdErr; });
-  d["label"] = r.strategy;
+  d["label"] = text(r.strategy);
   d["final_image"] = imageToArray(Image(r.finalImage));
   return d;
 }
 
 py::dict converge(const PyScene& s, const py::object& strategies, const py::object& samplers,
                   std::optional<double> time, std::optional<int64_t> spp, const py::object& reference,
-                  int64_t seed, std::optional<int> threads) {
+                  int64_t seed, std::optional<int64_t> threads) {
   if (!time && !spp)
     throw py::value_error("time or spp: give one (seconds, or samples per pixel per strategy)");
-  if (time && !(*time > 0)) throw py::value_error("time: expected seconds > 0");
-  if (spp && (*spp < 1 || *spp > (int64_t(1) << 24))) throw py::value_error("spp: expected 1 .. 2^24");
-  if (seed < 0) throw py::value_error("seed: expected an integer >= 0");
-  if (uint64_t(seed) == kReferenceSeed) throw py::value_error("seed: must differ from the reference's seed");
-  if (threads && (*threads < 1 || *threads > 1024)) throw py::value_error("threads: expected 1 .. 1024");
-  std::vector<IntegratorDesc> list =
-      parseStrategies(s.loaded.settings.integrator, joinNames(strategies, "strategies"));
+  if (time) checkedSeconds(*time, "time");
+  if (spp) checkedCount(*spp, 1, kMaxConvergeSpp, "spp");
+  const uint64_t seedValue = checkedSeed(seed);
+  if (seedValue == kReferenceSeed) throw py::value_error("seed: must differ from the reference's seed");
+  const int threadCount = checkedThreads(threads);
+  const LoadedScene scene = s.loaded;  // what the GIL-released runs read
+  std::vector<IntegratorDesc> list = parsedArgument("strategies", [&] {
+    return parseStrategies(scene.settings.integrator, joinNames(strategies, "strategies"));
+  });
   std::vector<SamplerKind> kinds;
-  if (!samplers.is_none()) {
-    std::string names = joinNames(samplers, "samplers");
-    size_t at = 0;
-    while (at <= names.size()) {
-      size_t comma = names.find(',', at);
-      std::string name = names.substr(at, comma == std::string::npos ? std::string::npos : comma - at);
-      SamplerKind k;
-      if (!parseSamplerKind(name, k))
-        throw py::value_error("samplers: unknown sampler '" + name +
-                              "' (expected one of: " + acceptedSamplerNames() + ")");
-      kinds.push_back(k);
-      if (comma == std::string::npos) break;
-      at = comma + 1;
-    }
-  }
-  Reference ref = chooseReference(s, reference, threads.value_or(0));
-  if (ref.mean.width != s.loaded.settings.camera.width || ref.mean.height != s.loaded.settings.camera.height)
-    throw py::value_error("reference: expected a " + std::to_string(s.loaded.settings.camera.height) + " x " +
-                          std::to_string(s.loaded.settings.camera.width) + " x 3 image");
-  std::vector<uint8_t> mask;
+  if (!samplers.is_none())
+    kinds = parsedArgument("samplers", [&] {
+      return parseSamplers(scene.settings.samplerKind, joinNames(samplers, "samplers"));
+    });
+  const CameraDesc& camera = scene.settings.camera;
+  checkRenderFitsInMemory(camera.width, camera.height, scene.path.empty() ? "converge" : scene.path);
+  ReferenceChoice choice = chooseReference(reference, threadCount);
+  Reference ref = choice.given ? std::move(*choice.given) : runInterruptibly([&](CancelFlag cancel) {
+    ReferenceRequest rq = choice.request;
+    rq.cancel = cancel;
+    return obtainReference(scene, rq);
+  });
+  if (ref.mean.width != camera.width || ref.mean.height != camera.height)
+    throw py::value_error("reference: expected a " + std::to_string(camera.height) + " x " +
+                          std::to_string(camera.width) + " x 3 image");
+  std::vector<uint8_t> mask = runInterruptibly([&](CancelFlag cancel) { return emitterMask(scene, cancel); });
   ConvergenceOptions co;
   co.seconds = time.value_or(0.0);
   co.spp = spp ? uint32_t(*spp) : 0u;
-  co.threads = threads.value_or(0);
-  co.seed = uint64_t(seed);
+  co.threads = threadCount;
+  co.seed = seedValue;
 
   py::dict out;
-  auto runAll = [&](const LoadedScene& scene, const char* sampler) {
+  auto runAll = [&](const LoadedScene& withSampler, const char* sampler) {
     for (const IntegratorDesc& d : list) {
-      ConvergenceRun run;
-      {
-        py::gil_scoped_release release;
-        run = runConvergence(scene, d, ref, mask, co);
-      }
+      ConvergenceRun run = runInterruptibly([&](CancelFlag cancel) {
+        ConvergenceOptions o = co;
+        o.cancel = cancel;
+        return runConvergence(withSampler, d, ref, mask, o);
+      });
       py::dict measured = runToDict(run);
-      std::string name = strategyShortName(d);
+      py::str name = text(strategyShortName(d));
       if (sampler) {
-        measured["sampler"] = sampler;
-        out[py::make_tuple(name, sampler)] = measured;
+        measured["sampler"] = text(sampler);
+        out[py::make_tuple(name, text(sampler))] = measured;
       } else {
-        out[py::str(name)] = measured;
+        out[name] = measured;
       }
     }
   };
-  {
-    py::gil_scoped_release release;
-    mask = emitterMask(s.loaded);
-  }
-  if (kinds.empty()) {
-    runAll(s.loaded, nullptr);
+  if (samplers.is_none()) {
+    runAll(scene, nullptr);
   } else {
     for (SamplerKind k : kinds) {
-      LoadedScene withSampler = s.loaded;
+      LoadedScene withSampler = scene;
       withSampler.settings.samplerKind = k;
       runAll(withSampler, samplerKindName(k));
     }
   }
   return out;
 }
+
+// Closed-form arguments: finite (NaN would come back as a number) and within the form's domain, up
+// to rounding.
+double checkedArgument(double value, const char* argument, double lo, double hi) {
+  constexpr double kSlack = 1e-9;  // a cosine from a dot product may exceed 1 by a few ulps
+  if (!std::isfinite(value))
+    throw py::value_error(std::string(argument) + ": expected a finite number, got " + std::to_string(value));
+  if (value < lo - kSlack || value > hi + kSlack)
+    throw py::value_error(std::string(argument) + ": expected a number in [" + std::to_string(lo) + ", " +
+                          (std::isinf(hi) ? std::string("inf") : std::to_string(hi)) + "], got " +
+                          std::to_string(value));
+  return value;
+}
+
+constexpr double kInf = HUGE_VAL;
 
 }  // namespace
 
@@ -160,43 +200,68 @@ void bindAnalysis(py::module_& m) {
         "Error against time (time=seconds per strategy) or samples (spp=N) from a cold start, as "
         "`penumbra converge` measures it.\n\n"
         "strategies: 'all' or names (a str 'area,solid-angle' or a list) of the scene integrator's "
-        "strategies (see strategies()). samplers: None (the scene's) or names (see samplers()): every "
-        "strategy runs with each. reference: None (closed form for analytic scenes, else the cached or a "
-        "freshly rendered one), a path to an EXR/PFM, 'closed-form', an H x W x 3 array, or a RenderResult "
-        "(its stderr is then "
-        "subtracted from the measured error as the CLI does for rendered references).\n\n"
+        "strategies (see strategies()); an empty str or list is a ValueError. samplers: None (the "
+        "scene's), 'all' (every row of samplers(), as --samplers all) or names: every strategy runs with "
+        "each. reference: None (closed form for analytic scenes, else the cached or a freshly rendered "
+        "one), a path (str, bytes, os.PathLike) to an EXR/PFM, 'closed-form', an H x W x 3 array, or a "
+        "RenderResult (its stderr is then subtracted from the measured error as the CLI does for "
+        "rendered references). time: a finite number of seconds > 0 (as --time).\n\n"
         "Returns {short_name: measurements} (with samplers: {(short_name, sampler): measurements}); "
         "measurements is a dict of NumPy arrays, one entry per measured point, with the columns of "
         "convergence.csv: seconds, cpu_seconds, spp, samples, mse, rmse, rel_mse, mse_stderr, "
         "ref_variance, mse_nolight, rmse_nolight, rel_mse_nolight, mse_stderr_nolight; plus label and "
-        "final_image (the mean at the end).");
+        "final_image (the mean at the end).\n\n"
+        "The GIL is released while measuring; Ctrl-C raises KeyboardInterrupt within a fraction of a "
+        "second, also while a reference is rendered (no cache file is then written).");
 
   py::module_ cf = m.def_submodule("closed_form",
-                                   "Closed-form truths (double precision, numerically careful evaluations).");
-  cf.def("sphere_light_irradiance_factor",
-         py::vectorize(static_cast<double (*)(double, double)>(&sphereLightIrradianceFactor)),
+                                   "Closed-form truths (double precision, numerically careful evaluations). "
+                                   "Arguments must be finite and within each form's domain (ValueError).");
+  cf.def("sphere_light_irradiance_factor", py::vectorize([](double cosTheta, double sinAlpha) {
+           return sphereLightIrradianceFactor(checkedArgument(cosTheta, "cos_theta", -1, 1),
+                                              checkedArgument(sinAlpha, "sin_alpha", 0, 1));
+         }),
          py::arg("cos_theta"), py::arg("sin_alpha"),
          "I(theta, alpha): irradiance from a uniform sphere light of radiance Le with nothing in the way is "
-         "E = Le * I. theta: angle between the normal and the direction to the centre; sin(alpha) = r / d. "
-         "Vectorised over NumPy arrays.");
+         "E = Le * I. theta: angle between the normal and the direction to the centre (cos_theta in "
+         "[-1, 1]); sin(alpha) = r / d in [0, 1]. Vectorised over NumPy arrays.");
   cf.def(
       "sphere_light_irradiance_factor_at",
       [](std::array<double, 3> x, std::array<double, 3> n, std::array<double, 3> c, double r, bool twoSided) {
+        for (int i = 0; i < 3; ++i) {
+          checkedArgument(x[i], "x", -kInf, kInf);
+          checkedArgument(n[i], "n", -kInf, kInf);
+          checkedArgument(c[i], "center", -kInf, kInf);
+        }
+        if (n[0] == 0 && n[1] == 0 && n[2] == 0) throw py::value_error("n: expected a non-zero normal");
+        if (!(checkedArgument(r, "radius", 0, kInf) > 0))
+          throw py::value_error("radius: expected a number > 0");
         return sphereLightIrradianceFactor(glm::dvec3(x[0], x[1], x[2]), glm::dvec3(n[0], n[1], n[2]),
                                            glm::dvec3(c[0], c[1], c[2]), r, twoSided);
       },
       py::arg("x"), py::arg("n"), py::arg("center"), py::arg("radius"), py::arg("two_sided") = false,
-      "I for shading point x with normal n (need not be normalised) and a sphere light at center with "
-      "radius; handles points on and inside the sphere.");
-  cf.def("ao_plane_with_sphere", py::vectorize(static_cast<double (*)(double, double)>(&aoPlaneWithSphere)),
+      "I for shading point x with normal n (non-zero; need not be normalised) and a sphere light at "
+      "center with radius > 0; handles points on and inside the sphere.");
+  cf.def("ao_plane_with_sphere", py::vectorize([](double cosTheta, double sinAlpha) {
+           return aoPlaneWithSphere(checkedArgument(cosTheta, "cos_theta", -1, 1),
+                                    checkedArgument(sinAlpha, "sin_alpha", 0, 1));
+         }),
          py::arg("cos_theta"), py::arg("sin_alpha"),
          "Ambient occlusion of a point on an infinite plane with one sphere as the only occluder: 1 - I/pi.");
-  cf.def("ao_plane_near_resting_sphere", py::vectorize(&aoPlaneNearRestingSphere), py::arg("rho"),
-         py::arg("radius"),
-         "AO of a plane point at horizontal distance rho from the contact point of a sphere of that "
-         "radius resting on the plane: 1 - R^3 / (rho^2 + R^2)^(3/2).");
+  cf.def("ao_plane_near_resting_sphere", py::vectorize([](double rho, double radius) {
+           checkedArgument(rho, "rho", 0, kInf);
+           if (!(checkedArgument(radius, "radius", 0, kInf) > 0))
+             throw py::value_error("radius: expected a number > 0");
+           return aoPlaneNearRestingSphere(rho, radius);
+         }),
+         py::arg("rho"), py::arg("radius"),
+         "AO of a plane point at horizontal distance rho >= 0 from the contact point of a sphere of that "
+         "radius (> 0) resting on the plane: 1 - R^3 / (rho^2 + R^2)^(3/2).");
   cf.def(
-      "ao_on_resting_convex_body", py::vectorize(&aoOnRestingConvexBody), py::arg("psi"),
+      "ao_on_resting_convex_body", py::vectorize([](double psi) {
+        return aoOnRestingConvexBody(checkedArgument(psi, "psi", -kInf, kInf));
+      }),
+      py::arg("psi"),
       "AO on a convex body resting on an infinite plane, psi = angle of the normal from up: cos^2(psi/2).");
 }
 

@@ -16,6 +16,8 @@ namespace penumbra::python {
 namespace py = pybind11;
 
 // A loaded scene as Python holds it: the description (edited by Scene.set) and the built world.
+// Calls that release the GIL work on a copy of `loaded` (shared pointers to the built world), so a
+// set() from another thread never changes what they read.
 struct PyScene {
   LoadedScene loaded;
 };
@@ -27,7 +29,8 @@ extern PyObject* gSceneError;
 
 // An H x W x 3 float32 array that owns the image's pixels (moved, not copied).
 py::array_t<float> imageToArray(Image&& image);
-// The array (H x W x 3, any float dtype) as an Image; throws ValueError naming `argument`.
+// The array (H x W x 3, any float dtype, H and W >= 1) as an Image; TypeError/ValueError naming
+// `argument`, MemoryError when the copy does not fit.
 Image arrayToImage(const py::handle& array, const char* argument);
 
 void bindScene(py::module_& m);

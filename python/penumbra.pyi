@@ -1,4 +1,5 @@
 """Type stubs of the penumbra module (python/*.cpp): what each function takes and returns."""
+import os
 from typing import Callable, Iterable, Optional, Sequence, Tuple, Union
 
 import numpy as np
@@ -6,6 +7,7 @@ import numpy.typing as npt
 
 ArrayF32 = npt.NDArray[np.float32]
 ArrayLike = npt.ArrayLike
+PathLike = Union[str, bytes, os.PathLike[str], os.PathLike[bytes]]
 
 class SceneError(ValueError):
     file: Optional[str]
@@ -37,7 +39,7 @@ class RenderResult:
     bad_samples: int
     threads: int
     metadata: dict[str, str]
-    def save(self, path: str, image: Optional[ArrayLike] = None) -> None: ...
+    def save(self, path: PathLike, image: Optional[ArrayLike] = None) -> None: ...
 
 class Chi2Result:
     warp: str
@@ -47,19 +49,20 @@ class Chi2Result:
     dof: int
     alpha: float
     accepted: bool
-    verdict: str  # "accept" or "REJECT"
+    inconclusive: bool  # too few samples: no two cells left after pooling (dof 0, p_value NaN)
+    verdict: str  # "accept", "REJECT" or "inconclusive"
     message: str
     pooled_cells: int
     observed: npt.NDArray[np.float64]
     expected: npt.NDArray[np.float64]
 
-def load_scene(path: str, overrides: Optional[dict[str, Union[str, int, float, bool]]] = None) -> Scene: ...
-def scene_from_string(xml: str, base_dir: str = "", name: str = "<string>",
+def load_scene(path: PathLike, overrides: Optional[dict[str, Union[str, int, float, bool]]] = None) -> Scene: ...
+def scene_from_string(xml: Union[str, bytes], base_dir: PathLike = "", name: str = "<string>",
                       overrides: Optional[dict[str, Union[str, int, float, bool]]] = None) -> Scene: ...
 def strategies() -> list[dict[str, object]]: ...
 def samplers() -> list[dict[str, object]]: ...
 def warp_names() -> list[str]: ...
-def random_points(n: int, seed: int = 1) -> ArrayF32: ...
+def random_points(n: int, seed: int = 1, out: Optional[ArrayF32] = None) -> ArrayF32: ...
 def warp(name: str, u: ArrayLike, param: Optional[float] = None, out: Optional[ArrayF32] = None) -> ArrayF32: ...
 def pdf(name: str, v: ArrayLike, param: Optional[float] = None, out: Optional[ArrayF32] = None) -> ArrayF32: ...
 def chi2_test(name: str, samples: int = 1000000, seed: int = 1, res: int = 51, param: Optional[float] = None,
@@ -68,7 +71,7 @@ def sample_points(sampler: str, n: int, pixel: Tuple[int, int] = (0, 0), dims: T
                   seed: int = 0, sample_count: Optional[int] = None) -> ArrayF32: ...
 def converge(scene: Scene, strategies: Union[str, Sequence[str]] = "all",
              samplers: Union[None, str, Sequence[str]] = None, time: Optional[float] = None,
-             spp: Optional[int] = None, reference: Union[None, str, ArrayLike, RenderResult] = None,
+             spp: Optional[int] = None, reference: Union[None, PathLike, ArrayLike, RenderResult] = None,
              seed: int = 0, threads: Optional[int] = None) -> dict[object, dict[str, object]]: ...
 
 class closed_form:

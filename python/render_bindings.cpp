@@ -8,9 +8,14 @@
 #include <thread>
 
 #include "core/image/image_io.h"
+#include "core/math/argument_checks.h"
 #include "core/render/engine.h"
+#include "core/render/memory_estimate.h"
 #include "core/render/sample_count_fit.h"
+#include "python/arguments.h"
 #include "python/bindings.h"
+#include "python/interrupt.h"
+#include "python/text.h"
 
 namespace penumbra::python {
 
@@ -35,20 +40,23 @@ void drawBar(uint32_t spp, double seconds, uint32_t target, double limitSeconds)
 }
 
 RenderResult render(const PyScene& s, std::optional<int64_t> spp, std::optional<double> time, int64_t seed,
-                    std::optional<int> threads, const py::object& progress) {
-  if (spp && (*spp < 1 || *spp > (int64_t(1) << 30))) throw py::value_error("spp: expected 1 .. 2^30");
-  if (time && !(*time > 0)) throw py::value_error("time: expected seconds > 0");
-  if (seed < 0) throw py::value_error("seed: expected an integer >= 0");
-  if (threads && (*threads < 1 || *threads > 1024)) throw py::value_error("threads: expected 1 .. 1024");
+                    std::optional<int64_t> threads, const py::object& progress) {
+  if (spp) checkedCount(*spp, 1, kMaxRenderSpp, "spp");
+  if (time) checkedSeconds(*time, "time");
+  const uint64_t seedValue = checkedSeed(seed);
+  const int threadCount = checkedThreads(threads);
   bool bar = py::isinstance<py::bool_>(progress) && progress.cast<bool>();
   bool callback = !bar && !progress.is_none() && !py::isinstance<py::bool_>(progress);
   if (callback && !PyCallable_Check(progress.ptr()))
     throw py::type_error("progress: expected a callable (spp, seconds), True or None");
 
+  const std::string scenePath = s.loaded.path;  // what the GIL-released render reads is copied
+  const CameraDesc& camera = s.loaded.settings.camera;
+  checkRenderFitsInMemory(camera.width, camera.height, scenePath.empty() ? "render" : scenePath);
   auto job = std::make_shared<RenderJob>();
   job->scene = s.loaded.scene;
   job->settings = s.loaded.settings;
-  job->settings.seed = uint64_t(seed);
+  job->settings.seed = seedValue;
   RenderLimits limits;
   limits.seconds = time.value_or(0.0);
   limits.targetSpp = spp ? uint32_t(*spp) : (time ? 0u : job->settings.sampleCount);
@@ -59,7 +67,7 @@ RenderResult render(const PyScene& s, std::optional<int64_t> spp, std::optional<
   Engine engine;
   {
     py::gil_scoped_release release;
-    engine.start(job, limits, threads.value_or(0));
+    engine.start(job, limits, threadCount);
   }
   uint32_t reported = 0;
   bool done = false;
@@ -110,17 +118,18 @@ RenderResult render(const PyScene& s, std::optional<int64_t> spp, std::optional<
   for (auto& [k, v] : describeSettings(job->settings)) r.metadata.add(k, v);
   r.metadata.add("spp", std::to_string(r.spp));
   r.metadata.add("seconds", std::to_string(r.seconds));
-  r.metadata.add("scene", s.loaded.path.empty() ? "<built-in>" : s.loaded.path);
+  r.metadata.add("scene", scenePath.empty() ? "<built-in>" : scenePath);
   r.metadata.add("badSamples", std::to_string(r.badSamples));
   r.mean = imageToArray(std::move(mean));
   r.standardError = imageToArray(std::move(error));
   return r;
 }
 
-void save(const RenderResult& r, const std::string& path, const py::object& image) {
+void save(const RenderResult& r, const py::object& path, const py::object& image) {
+  std::string file = pathArgument(path, "path");
   Image pixels = arrayToImage(image.is_none() ? py::object(r.mean) : image, "image");
   py::gil_scoped_release release;
-  writeImage(path, pixels, r.metadata);
+  writeImage(file, pixels, r.metadata);
 }
 
 }  // namespace
@@ -143,13 +152,13 @@ void bindRender(py::module_& m) {
           "metadata",
           [](const RenderResult& r) {
             py::dict d;
-            for (auto& [k, v] : r.metadata.entries) d[py::str(k)] = v;
+            for (auto& [k, v] : r.metadata.entries) d[text(k)] = text(v);
             return d;
           },
           "What save() stores in an EXR: the settings, spp, seconds, scene, badSamples.")
       .def("save", &save, py::arg("path"), py::arg("image") = py::none(),
            "Write the mean (or `image`, an H x W x 3 array) as the CLI does: .exr (float, with the "
-           "metadata), .pfm (float) or .png (sRGB 8-bit), atomically.")
+           "metadata), .pfm (float) or .png (sRGB 8-bit), atomically. path: str, bytes or os.PathLike.")
       .def("__repr__", [](const RenderResult& r) {
         return "<penumbra.RenderResult " + std::to_string(r.spp) + " spp, " + std::to_string(r.seconds) +
                " s>";
@@ -165,7 +174,10 @@ void bindRender(py::module_& m) {
             "cannot). seed: the random seed (the same seed gives the "
             "same image for any thread count). threads: worker threads (default: all cores). progress: a "
             "callable(spp, seconds) called after each pass, or True for a bar on stderr.\n\n"
-            "The GIL is released while rendering. Ctrl-C abandons the pass and raises KeyboardInterrupt.");
+            "The GIL is released while rendering. Ctrl-C abandons the pass and raises KeyboardInterrupt. "
+            "Raises ValueError for time NaN, infinite or <= 0 (as the CLI), MemoryError (the CLI's "
+            "message) when the render's estimated memory (108 B/pixel) exceeds what the process can "
+            "still get, and a worker's failure (MemoryError, RuntimeError) on this thread.");
 }
 
 }  // namespace penumbra::python

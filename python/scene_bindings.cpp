@@ -8,6 +8,7 @@
 #include "core/sampling/sampler_table.h"
 #include "core/scene/xml_parser.h"
 #include "python/bindings.h"
+#include "python/text.h"
 
 namespace penumbra::python {
 
@@ -16,8 +17,12 @@ namespace {
 // "True"/"False" for bools (the scene syntax), str() for everything else.
 std::string overrideValue(const py::handle& value, const std::string& key) {
   if (py::isinstance<py::bool_>(value)) return value.cast<bool>() ? "true" : "false";
-  if (py::isinstance<py::int_>(value) || py::isinstance<py::float_>(value) || py::isinstance<py::str>(value))
-    return py::str(value).cast<std::string>();
+  if (py::isinstance<py::int_>(value) || py::isinstance<py::float_>(value) ||
+      py::isinstance<py::str>(value)) {
+    std::string text = py::str(value).cast<std::string>();
+    checkNoNul(text, ("value of '" + key + "'").c_str());
+    return text;
+  }
   throw py::type_error("value of '" + key + "': expected str, int, float or bool, got " +
                        py::str(py::type::handle_of(value).attr("__name__")).cast<std::string>());
 }
@@ -30,21 +35,27 @@ std::vector<std::pair<std::string, std::string>> overrideList(const py::object& 
   for (auto [k, v] : overrides.cast<py::dict>()) {
     if (!py::isinstance<py::str>(k)) throw py::type_error("overrides: keys must be str 'tag.property'");
     std::string key = k.cast<std::string>();
+    checkNoNul(key, "overrides");
     out.emplace_back(key, overrideValue(v, key));
   }
   return out;
 }
 
-PyScene loadFile(const std::string& path, const py::object& overrides) {
+PyScene loadFile(const py::object& path, const py::object& overrides) {
+  std::string file = pathArgument(path, "path");
   auto list = overrideList(overrides);
   py::gil_scoped_release release;
-  return PyScene{loadScene(path, list)};
+  return PyScene{loadScene(file, list)};
 }
 
-PyScene loadString(const std::string& xml, const std::string& baseDir, const std::string& name,
+PyScene loadString(const std::string& xml, const py::object& baseDir, const std::string& name,
                    const py::object& overrides) {
+  checkNoNul(name, "name");  // the XML's own NUL bytes are the parser's (file and line)
   auto list = overrideList(overrides);
-  std::string dir = baseDir.empty() ? std::filesystem::current_path().string() : baseDir;
+  std::string dir =
+      baseDir.is_none() || (py::isinstance<py::str>(baseDir) && baseDir.cast<std::string>().empty())
+          ? std::filesystem::current_path().string()
+          : pathArgument(baseDir, "base_dir");
   py::gil_scoped_release release;
   return PyScene{loadSceneFromString(xml, name, dir, list)};
 }
@@ -52,6 +63,7 @@ PyScene loadString(const std::string& xml, const std::string& baseDir, const std
 // Scene.set: applies the override to the description, then rebuilds what it can change (only the
 // settings for camera, sampler, integrator and filter; the whole world otherwise).
 void setProperty(PyScene& s, const std::string& key, const py::handle& value) {
+  checkNoNul(key, "key");
   std::string text = overrideValue(value, key);
   SceneNode desc = s.loaded.desc;
   applyOverride(desc, key, text);
@@ -72,7 +84,7 @@ void setProperty(PyScene& s, const std::string& key, const py::handle& value) {
 
 py::dict settingsDict(const PyScene& s) {
   py::dict d;
-  for (auto& [k, v] : describeSettings(s.loaded.settings)) d[py::str(k)] = v;
+  for (auto& [k, v] : describeSettings(s.loaded.settings)) d[text(k)] = text(v);
   return d;
 }
 
@@ -91,11 +103,10 @@ void bindScene(py::module_& m) {
                              "The render settings as the image metadata spells them: integrator and its "
                              "properties, sampler, sampleCount, seed, rfilter, resolution.")
       .def_property_readonly(
-          "strategy", [](const PyScene& s) { return strategyLabel(s.loaded.settings.integrator); },
+          "strategy", [](const PyScene& s) { return text(strategyLabel(s.loaded.settings.integrator)); },
           "The strategy label, e.g. 'direct/solid-angle'.")
       .def_property_readonly(
-          "sampler",
-          [](const PyScene& s) { return std::string(samplerKindName(s.loaded.settings.samplerKind)); },
+          "sampler", [](const PyScene& s) { return text(samplerKindName(s.loaded.settings.samplerKind)); },
           "The sampler's canonical name, e.g. 'independent'.")
       .def_property_readonly(
           "sample_count", [](const PyScene& s) { return s.loaded.settings.sampleCount; },
@@ -108,24 +119,26 @@ void bindScene(py::module_& m) {
           "height", [](const PyScene& s) { return s.loaded.settings.camera.height; },
           "Image height in pixels.")
       .def_property_readonly(
-          "path", [](const PyScene& s) { return s.loaded.path; }, "The file it came from ('' for a string).")
+          "path", [](const PyScene& s) { return pathText(s.loaded.path); },
+          "The file it came from ('' for a string).")
       .def_property_readonly(
-          "warnings", [](const PyScene& s) { return s.loaded.warnings; },
+          "warnings", [](const PyScene& s) { return textList(s.loaded.warnings); },
           "Warnings of loading (e.g. unused properties).")
       .def(
-          "to_xml", [](const PyScene& s) { return writeSceneXml(s.loaded.desc); },
+          "to_xml", [](const PyScene& s) { return text(writeSceneXml(s.loaded.desc)); },
           "The description, overrides and set() applied, as scene XML.")
       .def("__repr__", [](const PyScene& s) {
-        return "<penumbra.Scene " + (s.loaded.path.empty() ? std::string("<string>") : s.loaded.path) + " " +
-               std::to_string(s.loaded.settings.camera.width) + "x" +
-               std::to_string(s.loaded.settings.camera.height) + " " +
-               strategyLabel(s.loaded.settings.integrator) + ">";
+        return py::str("<penumbra.Scene {} {}x{} {}>")
+            .format(s.loaded.path.empty() ? py::str("<string>") : pathText(s.loaded.path),
+                    s.loaded.settings.camera.width, s.loaded.settings.camera.height,
+                    text(strategyLabel(s.loaded.settings.integrator)));
       });
 
   m.def("load_scene", &loadFile, py::arg("path"), py::arg("overrides") = py::none(),
-        "Load a scene file (Nori-style XML). overrides: {'tag.property': value} applied as --set "
-        "does, e.g. {'integrator.measure': 'area', 'sampler.sampleCount': 64}. Raises SceneError with "
-        ".file and .line.");
+        "Load a scene file (Nori-style XML, UTF-8). path: str, bytes or os.PathLike. overrides: "
+        "{'tag.property': value} applied as --set does, e.g. {'integrator.measure': 'area', "
+        "'sampler.sampleCount': 64}. Raises SceneError with .file and .line (also for bytes that are "
+        "not UTF-8 text).");
   m.def("scene_from_string", &loadString, py::arg("xml"), py::arg("base_dir") = "",
         py::arg("name") = "<string>", py::arg("overrides") = py::none(),
         "Load a scene from XML text. base_dir resolves relative paths (OBJ files; default: the "
@@ -137,10 +150,10 @@ void bindScene(py::module_& m) {
         py::list out;
         for (const StrategyRow& r : strategyTable()) {
           py::dict d;
-          d["label"] = std::string(r.label);
-          d["short_name"] = std::string(r.shortName);
-          d["integrator"] = std::string(r.xmlType);
-          d["description"] = std::string(r.description);
+          d["label"] = text(std::string(r.label));
+          d["short_name"] = text(std::string(r.shortName));
+          d["integrator"] = text(std::string(r.xmlType));
+          d["description"] = text(std::string(r.description));
           d["reference"] = r.reference;
           d["baseline"] = r.baseline;
           out.append(d);
@@ -155,9 +168,9 @@ void bindScene(py::module_& m) {
         py::list out;
         for (const SamplerRow& r : samplerTable()) {
           py::dict d;
-          d["name"] = std::string(samplerKindName(r.kind));
-          d["label"] = std::string(r.label);
-          d["description"] = std::string(r.description);
+          d["name"] = text(samplerKindName(r.kind));
+          d["label"] = text(std::string(r.label));
+          d["description"] = text(std::string(r.description));
           d["uses_sample_count"] = r.usesSampleCount;
           out.append(d);
         }

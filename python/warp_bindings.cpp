@@ -1,22 +1,33 @@
-// The sample warps and their pdfs over NumPy arrays (one C++ loop, GIL released), the chi-square
-// test `penumbra warp` runs, and the samplers' 2-D point sets.
+// The sample warps and their pdfs over NumPy arrays (C++ loops over chunks, GIL released, signals
+// checked between chunks), the chi-square test `penumbra warp` runs, and the samplers' 2-D point sets.
 #include <pybind11/stl.h>
 
+#include <cmath>
+#include <limits>
 #include <optional>
 
+#include "core/math/argument_checks.h"
 #include "core/math/error.h"
 #include "core/sampling/chi2.h"
 #include "core/sampling/rng.h"
 #include "core/sampling/sampler.h"
 #include "core/sampling/sampler_table.h"
 #include "core/sampling/warp_params.h"
+#include "python/arguments.h"
 #include "python/bindings.h"
+#include "python/interrupt.h"
+#include "python/text.h"
 
 namespace penumbra::python {
 
 namespace {
 
 using FloatArray = py::array_t<float, py::array::c_style | py::array::forcecast>;
+
+// Points per chunk of the warp loops: about a millisecond, so Ctrl-C acts at once.
+constexpr int64_t kPointsPerChunk = 1 << 16;
+// The largest k of sample_points' dims (2k, 2k + 1): each point draws k + 1 pairs.
+constexpr int kMaxSampleDraw = 4095;
 
 struct WarpChoice {
   WarpType type;
@@ -25,6 +36,7 @@ struct WarpChoice {
 
 // Name and parameter as the CLI checks them; errors are ValueErrors naming the argument.
 WarpChoice choose(const std::string& name, const std::optional<double>& param) {
+  checkNoNul(name, "name");
   WarpType type;
   if (!parseWarpType(name, type))
     throw py::value_error("name: unknown warp '" + name + "' (expected one of: " + warpTypeList() + ")");
@@ -37,26 +49,32 @@ WarpChoice choose(const std::string& name, const std::optional<double>& param) {
 
 FloatArray points(const py::handle& input, const char* argument, py::ssize_t minColumns,
                   py::ssize_t maxColumns) {
-  FloatArray a;
+  const std::string expected = std::string(argument) + ": expected an (N, 2) or (N, 3) array of numbers";
+  if (input.is_none()) throw py::type_error(expected);
+  py::object converted;  // numpy's own conversion: its MemoryError stays one
   try {
-    a = FloatArray::ensure(input);
-  } catch (const py::error_already_set&) {
+    converted = py::module_::import("numpy").attr("ascontiguousarray")(input, py::arg("dtype") = "float32");
+  } catch (py::error_already_set& e) {
+    if (e.matches(PyExc_MemoryError)) throw;
+    throw py::type_error(expected);
   }
-  if (!a) {
-    PyErr_Clear();
-    throw py::type_error(std::string(argument) + ": expected an (N, 2) or (N, 3) array of numbers");
-  }
+  FloatArray a = FloatArray::ensure(converted);  // already float32 and contiguous: no copy
   if (a.ndim() != 2 || a.shape(1) < minColumns || a.shape(1) > maxColumns)
     throw py::value_error(std::string(argument) + ": expected shape (N, " + std::to_string(minColumns) +
                           (maxColumns > minColumns ? " or " + std::to_string(maxColumns) : std::string()) +
-                          "), got ndim " + std::to_string(a.ndim()));
+                          "), got " + py::str(converted.attr("shape")).cast<std::string>());
   return a;
 }
 
 // The output array: a new one, or `out` (NumPy's convention: a float32 C-contiguous array of the
 // result's shape, reused so that repeated calls do not fault in fresh pages every time).
-py::array_t<float> outputArray(const py::object& out, std::vector<py::ssize_t> shape) {
-  if (out.is_none()) return py::array_t<float>(shape);
+py::array_t<float> outputArray(const py::object& out, std::vector<py::ssize_t> shape, const char* function) {
+  if (out.is_none()) {
+    uint64_t bytes = sizeof(float);
+    for (py::ssize_t n : shape) bytes *= uint64_t(n);
+    checkAllocation(bytes, std::string(function) + ": the float32 result");
+    return py::array_t<float>(shape);
+  }
   auto a = py::array_t<float, py::array::c_style>::ensure(out);
   if (!a || !py::isinstance<py::array_t<float>>(out) || !a.writeable() ||
       !(py::cast<py::array>(out).flags() & py::array::c_style))
@@ -67,11 +85,28 @@ py::array_t<float> outputArray(const py::object& out, std::vector<py::ssize_t> s
   return py::reinterpret_borrow<py::array_t<float>>(out);
 }
 
+// Whether two arrays' memory overlaps (numpy.may_share_memory: their byte extents intersect).
+bool overlaps(const py::array& a, const py::array& b) {
+  const auto* a0 = static_cast<const char*>(a.data());
+  const auto* b0 = static_cast<const char*>(b.data());
+  return a.nbytes() > 0 && b.nbytes() > 0 && a0 < b0 + b.nbytes() && b0 < a0 + a.nbytes();
+}
+
+// The input as the loops read it: a copy when the output overlaps it (as NumPy's ufuncs do), so
+// writing a point never changes an input point not yet read.
+FloatArray separateFrom(FloatArray in, const py::array& out) {
+  if (!overlaps(in, out)) return in;
+  return FloatArray::ensure(py::array(in).attr("copy")());
+}
+
 // One loop per warp, its function called directly (the type is resolved once, not per point).
+// A point with a NaN or infinite coordinate gives NaN (the warps assume [0, 1)^2).
 template <typename F>
 void warpLoop(F f, const float* src, float* dst, py::ssize_t n, py::ssize_t dims) {
+  constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
   for (py::ssize_t i = 0; i < n; ++i) {
-    Vec3 v = f(Vec2(src[2 * i], src[2 * i + 1]));
+    const Vec2 u(src[2 * i], src[2 * i + 1]);
+    const Vec3 v = std::isfinite(u.x) && std::isfinite(u.y) ? f(u) : Vec3(kNaN);
     dst[dims * i] = v.x;
     dst[dims * i + 1] = v.y;
     if (dims == 3) dst[dims * i + 2] = v.z;
@@ -108,13 +143,14 @@ py::array_t<float> warpArray(const std::string& name, const py::handle& u, std::
   WarpChoice w = choose(name, param);
   FloatArray in = points(u, "u", 2, 2);
   const py::ssize_t n = in.shape(0);
-  py::array_t<float> result = outputArray(out, {n, warpIsSpherical(w.type) ? 3 : 2});
+  const py::ssize_t dims = warpIsSpherical(w.type) ? 3 : 2;
+  py::array_t<float> result = outputArray(out, {n, dims}, "warp");
+  in = separateFrom(in, result);
   const float* src = in.data();
   float* dst = result.mutable_data();
-  {
-    py::gil_scoped_release release;
-    warpAll(w, src, dst, n);
-  }
+  forEachChunk(n, kPointsPerChunk, [&](int64_t begin, int64_t end) {
+    warpAll(w, src + 2 * begin, dst + dims * begin, end - begin);
+  });
   return result;
 }
 
@@ -123,16 +159,19 @@ py::array_t<float> pdfArray(const std::string& name, const py::handle& v, std::o
   WarpChoice w = choose(name, param);
   FloatArray in = points(v, "v", 2, 3);
   const py::ssize_t n = in.shape(0), cols = in.shape(1);
-  py::array_t<float> result = outputArray(out, {n});
+  py::array_t<float> result = outputArray(out, {n}, "pdf");
+  in = separateFrom(in, result);
   const float* src = in.data();
   float* dst = result.mutable_data();
-  {
-    py::gil_scoped_release release;
-    for (py::ssize_t i = 0; i < n; ++i) {
+  forEachChunk(n, kPointsPerChunk, [&](int64_t begin, int64_t end) {
+    for (int64_t i = begin; i < end; ++i) {
       const float* p = src + cols * i;
-      dst[i] = Warp::pdf(w.type, Vec3(p[0], p[1], cols == 3 ? p[2] : 0.f), w.param);
+      const Vec3 v(p[0], p[1], cols == 3 ? p[2] : 0.f);
+      dst[i] = std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z)
+                   ? Warp::pdf(w.type, v, w.param)
+                   : std::numeric_limits<float>::quiet_NaN();
     }
-  }
+  });
   return result;
 }
 
@@ -141,29 +180,29 @@ struct Chi2Report {
   std::optional<float> param;
   double pValue = 0, chi2 = 0, alpha = 0;
   int dof = 0, pooledCells = 0;
-  bool accepted = false;
-  std::string message;
+  bool accepted = false, inconclusive = false;
+  std::string verdict, message;
   py::array_t<double> observed, expected;
 };
 
-Chi2Report chi2(const std::string& name, int64_t samples, int64_t seed, int res, std::optional<double> param,
-                int testCount) {
+Chi2Report chi2(const std::string& name, int64_t samples, int64_t seed, int64_t res,
+                std::optional<double> param, int64_t testCount) {
   WarpChoice w = choose(name, param);
-  if (samples < 100 || samples > 1'000'000'000) throw py::value_error("samples: expected 100 .. 1e9");
-  if (res < 2 || res > 1000) throw py::value_error("res: expected 2 .. 1000");
-  if (seed < 0) throw py::value_error("seed: expected an integer >= 0");
-  if (testCount < 1) throw py::value_error("test_count: expected >= 1");
+  checkedCount(samples, kMinChi2Samples, kMaxChi2Samples, "samples");
+  checkedCount(res, kMinChi2Resolution, kMaxChi2Resolution, "res");
+  const uint64_t seedValue = checkedSeed(seed);
+  checkedCount(testCount, 1, std::numeric_limits<int>::max(), "test_count");
   Chi2Options opt;
   opt.sampleCount = uint64_t(samples);
-  opt.resolution = res;
-  opt.seed = uint64_t(seed);
-  opt.testCount = testCount;
-  Chi2Result r;
-  {
-    py::gil_scoped_release release;
-    r = chi2Test(chi2DomainFor(w.type, w.param), warpSampleFunction(w.type, w.param),
-                 warpPdfFunction(w.type, w.param), opt);
-  }
+  opt.resolution = int(res);
+  opt.seed = seedValue;
+  opt.testCount = int(testCount);
+  Chi2Result r = runInterruptibly([&](CancelFlag cancel) {
+    Chi2Options o = opt;
+    o.cancel = cancel;
+    return chi2Test(chi2DomainFor(w.type, w.param), warpSampleFunction(w.type, w.param),
+                    warpPdfFunction(w.type, w.param), o);
+  });
   Chi2Report out;
   out.warp = warpTypeName(w.type);
   if (warpHasParameter(w.type)) out.param = w.param;
@@ -172,6 +211,8 @@ Chi2Report chi2(const std::string& name, int64_t samples, int64_t seed, int res,
   out.dof = r.dof;
   out.alpha = r.alphaEffective;
   out.accepted = r.accepted;
+  out.inconclusive = r.inconclusive;
+  out.verdict = chi2Verdict(r);
   out.message = r.message;
   out.pooledCells = r.pooledCells;
   out.observed = py::array_t<double>({py::ssize_t(r.resY), py::ssize_t(r.resX)}, r.observed.data());
@@ -179,46 +220,52 @@ Chi2Report chi2(const std::string& name, int64_t samples, int64_t seed, int res,
   return out;
 }
 
-py::array_t<float> samplePoints(const std::string& samplerName, int64_t n, std::pair<int, int> pixel,
-                                std::pair<int, int> dims, int64_t seed, std::optional<int64_t> sampleCount) {
+py::array_t<float> samplePoints(const std::string& samplerName, int64_t n, std::pair<int64_t, int64_t> pixel,
+                                std::pair<int64_t, int64_t> dims, int64_t seed,
+                                std::optional<int64_t> sampleCount) {
+  checkNoNul(samplerName, "sampler");
   SamplerKind kind;
   if (!parseSamplerKind(samplerName, kind))
     throw py::value_error("sampler: unknown sampler '" + samplerName +
                           "' (expected one of: " + acceptedSamplerNames() + ")");
-  if (n < 1 || n > (int64_t(1) << 30)) throw py::value_error("n: expected 1 .. 2^30");
-  if (dims.first < 0 || dims.first % 2 != 0 || dims.second != dims.first + 1)
-    throw py::value_error("dims: expected a pair (2k, 2k + 1), the k-th 2-D draw of each pixel sample");
-  if (pixel.first < 0 || pixel.second < 0) throw py::value_error("pixel: expected (x, y) >= 0");
-  if (seed < 0) throw py::value_error("seed: expected an integer >= 0");
-  int64_t count = sampleCount.value_or(n);
-  if (count < 1 || count > (int64_t(1) << 30)) throw py::value_error("sample_count: expected 1 .. 2^30");
-  py::array_t<float> out({py::ssize_t(n), py::ssize_t(2)});
+  checkedCount(n, 1, int64_t(1) << 30, "n");
+  if (dims.first < 0 || dims.first % 2 != 0 || dims.second != dims.first + 1 ||
+      dims.first / 2 > kMaxSampleDraw)
+    throw py::value_error("dims: expected a pair (2k, 2k + 1) with 0 <= k <= " +
+                          std::to_string(kMaxSampleDraw) + ", the k-th 2-D draw of each pixel sample");
+  if (pixel.first < 0 || pixel.second < 0 || pixel.first > std::numeric_limits<int>::max() ||
+      pixel.second > std::numeric_limits<int>::max())
+    throw py::value_error("pixel: expected (x, y) with 0 <= x, y <= 2^31 - 1");
+  const uint64_t seedValue = checkedSeed(seed);
+  const int64_t count = checkedCount(sampleCount.value_or(n), 1, int64_t(1) << 30, "sample_count");
+  py::array_t<float> out = outputArray(py::none(), {py::ssize_t(n), py::ssize_t(2)}, "sample_points");
   float* dst = out.mutable_data();
-  {
-    py::gil_scoped_release release;
-    Sampler sampler(kind, uint32_t(count), uint64_t(seed));
-    const int skip = dims.first / 2;
-    for (int64_t i = 0; i < n; ++i) {
-      sampler.startPixelSample(IVec2(pixel.first, pixel.second), uint32_t(i));
+  Sampler sampler(kind, uint32_t(count), seedValue);
+  const int skip = int(dims.first / 2);
+  const IVec2 p(int(pixel.first), int(pixel.second));
+  forEachChunk(n, std::max<int64_t>(1, kPointsPerChunk / (skip + 1)), [&](int64_t begin, int64_t end) {
+    for (int64_t i = begin; i < end; ++i) {
+      sampler.startPixelSample(p, uint32_t(i));
       for (int k = 0; k < skip; ++k) sampler.next2D();
-      Vec2 p = sampler.next2D();
-      dst[2 * i] = p.x;
-      dst[2 * i + 1] = p.y;
+      Vec2 v = sampler.next2D();
+      dst[2 * i] = v.x;
+      dst[2 * i + 1] = v.y;
     }
-  }
+  });
   return out;
 }
 
 // The uniform stream `penumbra warp --dump` and the chi-square test draw: PCG32(mix64(seed), seed).
-py::array_t<float> randomPoints(int64_t n, int64_t seed) {
-  if (n < 0 || n > (int64_t(1) << 34)) throw py::value_error("n: expected 0 .. 2^34");
-  if (seed < 0) throw py::value_error("seed: expected an integer >= 0");
-  py::array_t<float> out({py::ssize_t(n), py::ssize_t(2)});
-  float* dst = out.mutable_data();
-  py::gil_scoped_release release;
-  Rng rng(mix64(uint64_t(seed)), uint64_t(seed));
-  for (int64_t i = 0; i < 2 * n; ++i) dst[i] = rng.nextFloat();
-  return out;
+py::array_t<float> randomPoints(int64_t n, int64_t seed, const py::object& out) {
+  checkedCount(n, 0, int64_t(1) << 40, "n");
+  const uint64_t seedValue = checkedSeed(seed);
+  py::array_t<float> result = outputArray(out, {py::ssize_t(n), py::ssize_t(2)}, "random_points");
+  float* dst = result.mutable_data();
+  Rng rng(mix64(seedValue), seedValue);
+  forEachChunk(n, kPointsPerChunk, [&](int64_t begin, int64_t end) {
+    for (int64_t i = 2 * begin; i < 2 * end; ++i) dst[i] = rng.nextFloat();
+  });
+  return result;
 }
 
 }  // namespace
@@ -232,19 +279,24 @@ void bindWarp(py::module_& m) {
         return names;
       },
       "The warp names warp(), pdf() and chi2_test() accept.");
-  m.def("random_points", &randomPoints, py::arg("n"), py::arg("seed") = 1,
+  m.def("random_points", &randomPoints, py::arg("n"), py::arg("seed") = 1, py::arg("out") = py::none(),
         "n uniform points in [0, 1)^2, float32 (n, 2): the PCG32 stream `penumbra warp --dump N --seed "
-        "SEED` and chi2_test() draw, so warp(name, random_points(n, seed)) equals the CLI's dump.");
+        "SEED` and chi2_test() draw, so warp(name, random_points(n, seed)) equals the CLI's dump. out: "
+        "as for warp().");
   m.def("warp", &warpArray, py::arg("name"), py::arg("u"), py::arg("param") = py::none(),
         py::arg("out") = py::none(),
         "Warp uniform points u, an (N, 2) array in [0, 1)^2, with warp `name` (see warp_names()). "
         "Returns float32 (N, 2) for planar warps, (N, 3) for warps onto the sphere. param: "
         "uniform-cone cos(theta_max) in [-1, 1) (default 0.5), beckmann alpha > 0 (default 0.2). out: "
-        "a float32 array of the result's shape to write into (and return), as NumPy's out=.");
+        "a float32 array of the result's shape to write into (and return), as NumPy's out=; it may "
+        "overlap u (u is then copied first, as NumPy does). Points with a NaN or infinite coordinate "
+        "give NaN. Ctrl-C "
+        "raises KeyboardInterrupt within milliseconds (out then holds the points done so far).");
   m.def("pdf", &pdfArray, py::arg("name"), py::arg("v"), py::arg("param") = py::none(),
         py::arg("out") = py::none(),
         "The density of warp `name` at points v, (N, 2) or (N, 3) (z = 0 for planar warps): per unit "
-        "area on the plane, per steradian on the sphere. Returns float32 (N,). out: as for warp().");
+        "area on the plane, per steradian on the sphere. Returns float32 (N,); points with a NaN or "
+        "infinite coordinate give NaN. out: as for warp().");
 
   py::class_<Chi2Report>(m, "Chi2Result", "The outcome of chi2_test(), as `penumbra warp` prints it.")
       .def_readonly("warp", &Chi2Report::warp)
@@ -254,32 +306,37 @@ void bindWarp(py::module_& m) {
       .def_readonly("dof", &Chi2Report::dof)
       .def_readonly("alpha", &Chi2Report::alpha, "The Sidak-corrected significance level of this test.")
       .def_readonly("accepted", &Chi2Report::accepted)
+      .def_readonly("inconclusive", &Chi2Report::inconclusive,
+                    "Too few samples to test: pooling the cells that expect fewer than 5 samples left "
+                    "fewer than two cells (dof 0). accepted is then False, p_value NaN.")
+      .def_readonly("verdict", &Chi2Report::verdict, "'accept', 'REJECT' or 'inconclusive', the CLI's word.")
       .def_property_readonly(
-          "verdict", [](const Chi2Report& r) { return std::string(r.accepted ? "accept" : "REJECT"); },
-          "'accept' or 'REJECT', the CLI's word.")
-      .def_readonly("message", &Chi2Report::message, "Why it was rejected ('' when accepted).")
+          "message", [](const Chi2Report& r) { return text(r.message); },
+          "Why it was rejected or is inconclusive ('' when accepted).")
       .def_readonly("pooled_cells", &Chi2Report::pooledCells)
       .def_readonly("observed", &Chi2Report::observed,
                     "Observed counts per cell (rows: y or w; columns: x or phi).")
       .def_readonly("expected", &Chi2Report::expected, "Expected counts per cell.")
       .def("__repr__", [](const Chi2Report& r) {
         return "<penumbra.Chi2Result " + r.warp + " chi2 " + std::to_string(r.chi2) + " dof " +
-               std::to_string(r.dof) + " p " + std::to_string(r.pValue) + " " +
-               (r.accepted ? "accept" : "REJECT") + ">";
+               std::to_string(r.dof) + " p " + std::to_string(r.pValue) + " " + r.verdict + ">";
       });
   m.def("chi2_test", &chi2, py::arg("name"), py::arg("samples") = 1'000'000, py::arg("seed") = 1,
         py::arg("res") = 51, py::arg("param") = py::none(), py::arg("test_count") = 1,
         "Pearson chi-square test of warp `name` against its pdf, exactly as `penumbra warp NAME "
         "--samples --seed --res` runs it (PCG32 samples, adaptive quadrature, low-expectation cells "
-        "pooled). test_count > 1 applies the Sidak correction for that many tests. Returns Chi2Result.");
+        "pooled). samples: 100 .. 1e9; res: 2 .. 1000. test_count > 1 applies the Sidak correction for "
+        "that many tests. Returns Chi2Result: verdict 'accept', 'REJECT', or 'inconclusive' when too "
+        "few samples leave no two cells to compare. Ctrl-C raises KeyboardInterrupt at once.");
 
   m.def("sample_points", &samplePoints, py::arg("sampler"), py::arg("n"),
-        py::arg("pixel") = std::pair<int, int>(0, 0), py::arg("dims") = std::pair<int, int>(0, 1),
-        py::arg("seed") = 0, py::arg("sample_count") = py::none(),
+        py::arg("pixel") = std::pair<int64_t, int64_t>(0, 0),
+        py::arg("dims") = std::pair<int64_t, int64_t>(0, 1), py::arg("seed") = 0,
+        py::arg("sample_count") = py::none(),
         "The 2-D points a render sampler (see samplers()) gives one pixel over sample indices 0..n-1: "
         "dims (2k, 2k+1) is its k-th 2-D draw (k = 0: the pixel filter's). sample_count: the scene's "
         "sampleCount the sampler is built with (stratified: its strata; default n). Returns float32 "
-        "(n, 2).");
+        "(n, 2). n: 1 .. 2^30; k: 0 .. 4095.");
 }
 
 }  // namespace penumbra::python

@@ -12,6 +12,8 @@
 #include <optional>
 #include <string>
 
+#include "core/math/argument_checks.h"
+
 namespace penumbra::cli {
 
 // A decimal integer in [0, max]: digits only (no sign, no exponent).
@@ -49,8 +51,8 @@ inline CLI::Validator finitePositiveNumber() {
       [](std::string& text) -> std::string {
         char* end = nullptr;
         const double v = std::strtod(text.c_str(), &end);
-        if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(v) || !(v > 0.0))
-          return "expected a finite number > 0, got '" + text + "'";
+        if (text.empty() || end != text.c_str() + text.size() || !isFinitePositive(v))
+          return std::string(kExpectedFinitePositive) + ", got '" + text + "'";
         return {};
       },
       "POSITIVE");

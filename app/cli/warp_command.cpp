@@ -135,7 +135,7 @@ int runSingle(const WarpArgs& a, const CLI::App& cmd) {
   std::printf("chi2      %.2f\n", r.chi2);
   std::printf("dof       %d\n", r.dof);
   std::printf("p-value   %.4g\n", r.pValue);
-  std::printf("verdict   %s (alpha %.3g)%s%s\n", r.accepted ? "accept" : "REJECT", r.alphaEffective,
+  std::printf("verdict   %s (alpha %.3g)%s%s\n", chi2Verdict(r), r.alphaEffective,
               r.message.empty() ? "" : ": ", r.message.c_str());
   return r.accepted ? 0 : 1;
 }
@@ -183,8 +183,7 @@ int runAll(const WarpArgs& a) {
                             warpPdfFunction(c.type, c.param), opt);
     if (!r.accepted) ++failures;
     std::printf("%-20s %-26s %12.2f %6d %10.4f  %s%s%s\n", warpTypeName(c.type), c.label.c_str(), r.chi2,
-                r.dof, r.pValue, r.accepted ? "accept" : "REJECT", r.message.empty() ? "" : ": ",
-                r.message.c_str());
+                r.dof, r.pValue, chi2Verdict(r), r.message.empty() ? "" : ": ", r.message.c_str());
     std::fflush(stdout);
   }
   std::printf("\n%d of %zu accepted\n", static_cast<int>(cases.size()) - failures, cases.size());
@@ -202,11 +201,11 @@ void addWarpCommand(CLI::App& app, int& exitCode, WarpGuiRunner gui) {
                   "uniform-cone: cos(theta_max) in [-1, 1) (default 0.5); beckmann: alpha > 0 (default 0.2)");
   cmd->add_option("--samples", args->samples, "Number of samples for the test")
       ->capture_default_str()
-      ->check(unsignedInteger() & CLI::Range(uint64_t{100}, uint64_t{1'000'000'000}));
+      ->check(unsignedInteger() & CLI::Range(uint64_t(kMinChi2Samples), uint64_t(kMaxChi2Samples)));
   cmd->add_option("--res", args->res,
                   "Histogram resolution (2-D: res x res; sphere: 2res x res in (phi, cos theta))")
       ->capture_default_str()
-      ->check(CLI::Range(2, 1000));
+      ->check(CLI::Range(kMinChi2Resolution, kMaxChi2Resolution));
   addSeedOption(*cmd, args->seed, "Random seed")->capture_default_str();
   auto* all =
       cmd->add_flag("--all", args->all, "Test every warp (several parameters), Sidak-corrected, as a table");

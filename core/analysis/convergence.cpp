@@ -202,6 +202,10 @@ ConvergenceRun runConvergence(const LoadedScene& scene, const IntegratorDesc& st
       while (next < targets.size() && targets[next] <= reached) ++next;
     }
     if (p.finished) break;
+    if (cancelRequested(o.cancel)) {
+      engine.cancel();
+      throw Cancelled();
+    }
     if (!requested && next < targets.size()) {
       double now = sppMode ? double(p.spp + 1) : p.seconds;  // spp: the pass in flight completes it
       if (now >= targets[next]) {

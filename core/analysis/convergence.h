@@ -14,6 +14,7 @@
 
 #include "core/analysis/error_metrics.h"
 #include "core/analysis/reference.h"
+#include "core/math/cancellation.h"
 
 namespace penumbra {
 
@@ -44,6 +45,7 @@ struct ConvergenceOptions {
   uint64_t seed = 0;
   int pointsPerDecade = 6;
   double firstFraction = 1e-3;  // first target = firstFraction * limit (time mode)
+  CancelFlag cancel = nullptr;  // set: the run stops within milliseconds and throws Cancelled
 };
 
 // Every strategy of base's integrator type in table order (core/render/strategy_table.h), or those

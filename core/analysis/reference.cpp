@@ -1,12 +1,14 @@
 #include "core/analysis/reference.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <sstream>
+#include <thread>
 
 #include "core/analysis/closed_forms.h"
 #include "core/image/image_io.h"
@@ -101,7 +103,8 @@ std::string standardErrorPath(const std::string& referencePath) {
   return p.string() + ".stderr.exr";
 }
 
-Reference renderReference(const LoadedScene& scene, RenderLimits limits, int threads, uint64_t seed) {
+Reference renderReference(const LoadedScene& scene, RenderLimits limits, int threads, uint64_t seed,
+                          CancelFlag cancel) {
   if (limits.targetSpp == 0 && limits.seconds <= 0) throw Error("renderReference: no spp or time limit");
   auto job = std::make_shared<RenderJob>();
   job->scene = scene.scene;
@@ -110,6 +113,13 @@ Reference renderReference(const LoadedScene& scene, RenderLimits limits, int thr
   job->settings.seed = seed;
   Engine engine;
   engine.start(job, limits, threads);
+  while (cancel && !engine.progress().finished) {
+    if (cancelRequested(cancel)) {
+      engine.cancel();
+      throw Cancelled();
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
   engine.wait();
   RenderProgress p = engine.progress();
   Reference ref;
@@ -181,7 +191,7 @@ bool hasClosedFormReference(const LoadedScene& scene) {
   return dir.filename() == "analytic" && hasDirectClosedForm(scene.settings.integrator);
 }
 
-Reference closedFormReference(const LoadedScene& loaded, int grid) {
+Reference closedFormReference(const LoadedScene& loaded, int grid, CancelFlag cancel) {
   if (!hasDirectClosedForm(loaded.settings.integrator))
     throw Error("closed-form reference: only the direct integrator is supported");
   const Scene& scene = *loaded.scene;
@@ -194,6 +204,7 @@ Reference closedFormReference(const LoadedScene& loaded, int grid) {
   const double invN = 1.0 / (double(grid) * grid);
   for (int y = 0; y < camera.height(); ++y)
     for (int x = 0; x < camera.width(); ++x) {
+      throwIfCancelled(cancel);
       glm::dvec3 sum(0.0);
       for (int j = 0; j < grid; ++j)
         for (int i = 0; i < grid; ++i) {
@@ -226,12 +237,12 @@ Reference closedFormReference(const LoadedScene& loaded, int grid) {
   return ref;
 }
 
-std::vector<uint8_t> emitterMask(const LoadedScene& loaded) {
+std::vector<uint8_t> emitterMask(const LoadedScene& loaded, CancelFlag cancel) {
   const Scene& scene = *loaded.scene;
   PerspectiveCamera camera(loaded.settings.camera);
   const int w = camera.width(), h = camera.height();
   std::vector<uint8_t> direct(std::size_t(w) * h, 0);
-  for (int y = 0; y < h; ++y)
+  for (int y = 0; y < h && !cancelRequested(cancel); ++y)
     for (int x = 0; x < w; ++x)
       for (int j = 0; j < 3 && !direct[std::size_t(y) * w + x]; ++j)
         for (int i = 0; i < 3; ++i) {
@@ -243,6 +254,7 @@ std::vector<uint8_t> emitterMask(const LoadedScene& loaded) {
             break;
           }
         }
+  throwIfCancelled(cancel);
   int r = int(std::ceil(loaded.settings.filter.radius));
   std::vector<uint8_t> mask(direct.size(), 0);
   for (int y = 0; y < h; ++y)
@@ -268,7 +280,7 @@ Reference obtainReference(const LoadedScene& scene, const ReferenceRequest& requ
   };
   if (request.path == "closed-form" || (request.path.empty() && hasClosedFormReference(scene))) {
     say("reference: closed form");
-    return closedFormReference(scene);
+    return closedFormReference(scene, 16, request.cancel);
   }
   if (!request.path.empty()) {
     Reference ref = readReference(request.path);
@@ -293,8 +305,8 @@ Reference obtainReference(const LoadedScene& scene, const ReferenceRequest& requ
   if (ec) throw Error(cache + ": cannot create the reference cache's directory: " + ec.message());
   say("reference: rendering " + std::to_string(request.referenceSpp) + " spp of " +
       strategyLabel(referenceEstimator(scene.settings.integrator)) + " into " + cache);
-  Reference ref =
-      renderReference(scene, RenderLimits{request.referenceSpp, request.referenceSeconds}, request.threads);
+  Reference ref = renderReference(scene, RenderLimits{request.referenceSpp, request.referenceSeconds},
+                                  request.threads, kReferenceSeed, request.cancel);
   ImageMetadata meta;
   meta.add("sceneHash", sceneContentHash(scene.desc));
   writeReference(cache, ref, meta);

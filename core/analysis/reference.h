@@ -24,6 +24,7 @@
 #include "core/image/image.h"
 #include "core/image/image_io.h"
 #include "core/integrators/integrator_desc.h"
+#include "core/math/cancellation.h"
 #include "core/render/engine.h"
 #include "core/scene/scene_builder.h"
 
@@ -51,9 +52,10 @@ std::string standardErrorPath(const std::string& referencePath);
 // samples and its error would be grossly underestimated. Scenes and `converge` default to small seeds.
 inline constexpr uint64_t kReferenceSeed = 0x5EEDF00D12345678ull;
 
-// (a) Renders a reference (limits as in Engine::start; at least one of them must be set).
+// (a) Renders a reference (limits as in Engine::start; at least one of them must be set). Throws
+// Cancelled once `cancel` is set.
 Reference renderReference(const LoadedScene& scene, RenderLimits limits, int threads = 0,
-                          uint64_t seed = kReferenceSeed);
+                          uint64_t seed = kReferenceSeed, CancelFlag cancel = nullptr);
 // Writes the mean to `path` and the standard error (if any) to standardErrorPath(path), both atomically,
 // the mean first; `compression` applies to every EXR written.
 void writeReference(const std::string& path, const Reference& ref, const ImageMetadata& metadata = {},
@@ -69,13 +71,15 @@ void checkReferenceValues(const Reference& ref, const std::string& what);
 
 // (c) True for scenes under a directory named "analytic" (the closed form is valid there).
 bool hasClosedFormReference(const LoadedScene& scene);
-// Throws Error for integrators other than direct (the AO closed forms are not wired up).
-Reference closedFormReference(const LoadedScene& scene, int grid = 16);
+// Throws Error for integrators other than direct (the AO closed forms are not wired up), Cancelled
+// once `cancel` is set (checked per pixel).
+Reference closedFormReference(const LoadedScene& scene, int grid = 16, CancelFlag cancel = nullptr);
 
 // Nonzero for pixels whose estimate can contain radiance of an emitter seen directly by the camera:
 // 3x3 camera rays per pixel find the pixels that see an emitter, then the mask is dilated by the
 // pixel filter's radius (rounded up), because a pixel's samples land anywhere within that radius.
-std::vector<uint8_t> emitterMask(const LoadedScene& scene);
+// Throws Cancelled once `cancel` is set (checked per row).
+std::vector<uint8_t> emitterMask(const LoadedScene& scene, CancelFlag cancel = nullptr);
 
 // How `penumbra converge` and the viewer find a reference: an explicit path ("closed-form" forces
 // (c)); else the closed form for analytic scenes; else the cache; else render one (referenceSpp
@@ -87,6 +91,7 @@ struct ReferenceRequest {
   double referenceSeconds = 0;  // if > 0, caps the time spent rendering a missing reference
   bool renderIfMissing = true;
   int threads = 0;
+  CancelFlag cancel = nullptr;  // set: throws Cancelled (and writes no cache) within a fraction of a second
 };
 Reference obtainReference(const LoadedScene& scene, const ReferenceRequest& request,
                           void (*log)(const std::string&) = nullptr);

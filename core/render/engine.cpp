@@ -1,8 +1,10 @@
 #include "core/render/engine.h"
 
 #include <algorithm>
+#include <system_error>
 #include <thread>
 
+#include "core/math/error.h"
 #include "core/render/row_renderer.h"
 
 namespace penumbra {
@@ -36,6 +38,10 @@ void Engine::start(std::shared_ptr<const RenderJob> job, RenderLimits limits, in
   spp_ = 0;
   passSeconds_ = 0.0;
   badSamples_ = 0;
+  {
+    PassBarrier::Lock lk = barrier_.lock();
+    failure_ = nullptr;
+  }
   clock_.start();
   publisher_.restart();
   spawnWorkers(threads, limits.preview);
@@ -45,9 +51,19 @@ void Engine::spawnWorkers(int threads, bool preview) {
   barrier_.reset(threads);
   stopAll_ = false;
   nextPreviewRow_ = 0;
-  publisher_.resolveNextPassRows(preview, film_);  // an interactive start shows its first pass at once
-  if (preview) preview_ = Image(film_.width(), film_.height());
-  workers_.spawn(threads, [this, preview] { workerLoop(preview); });
+  try {
+    publisher_.resolveNextPassRows(preview, film_);  // an interactive start shows its first pass at once
+    if (preview) preview_ = Image(film_.width(), film_.height());
+    workers_.spawn(
+        threads, [this, preview] { workerLoop(preview); }, [this](std::exception_ptr e) { workerFailed(e); });
+  } catch (const std::system_error& e) {
+    cancel();  // the workers already started would wait for the others at the first boundary
+    throw Error("render: cannot start " + std::to_string(threads) + " worker threads (" + e.what() +
+                "); ask for fewer threads");
+  } catch (...) {
+    cancel();
+    throw;
+  }
 }
 
 bool Engine::extend(RenderLimits limits) {
@@ -105,6 +121,26 @@ void Engine::stopNow() {
 
 void Engine::wait() {
   workers_.join();
+  if (std::exception_ptr e = failure()) std::rethrow_exception(e);
+}
+
+std::exception_ptr Engine::failure() const {
+  PassBarrier::Lock lk = barrier_.lock();
+  return failure_;
+}
+
+// Ends the render as cancel() does, from the failing worker: the others leave their rows within a
+// pixel and the barrier (its waits give up once cancel_ is set), so none waits for this one.
+void Engine::workerFailed(std::exception_ptr e) {
+  {
+    PassBarrier::Lock lk = barrier_.lock();
+    if (!failure_) failure_ = e;
+    cancel_ = true;
+    abandonRows_ = true;
+    finish();  // under the lock, as at a boundary: the clock's pause state is read
+    barrier_.notifyAll();
+  }
+  if (signal_) signal_->notify();
 }
 
 void Engine::setPaused(bool paused) {
@@ -190,7 +226,7 @@ void Engine::renderPreview(const RowRenderer& renderRow, Sampler& sampler) {
 void Engine::workerLoop(bool preview) {
   const RenderJob& job = *job_;
   const RenderSettings& s = job.settings;
-  RowRenderer renderRow = makeRowRenderer(job);
+  RowRenderer renderRow = rowRendererFactory_ ? rowRendererFactory_(job) : makeRowRenderer(job);
   Sampler sampler(s.samplerKind, s.sampleCount, s.seed);
   const int height = s.camera.height;
   const size_t rowValues = size_t(s.camera.width) * 6;
@@ -227,7 +263,8 @@ void Engine::workerLoop(bool preview) {
     if (bad) badSamples_ += bad;
 
     PassBarrier::Lock lk = barrier_.lock();
-    if (barrier_.arrive(lk)) {
+    // A cancelled render (or a failed worker, which may never arrive) ends here without the boundary.
+    if (barrier_.arrive(lk, [&] { return cancel_.load(); })) {
       bool stop = passBoundary();
       restingAtBoundary_ = true;  // the film is at rest while this worker waits (probeAtRest)
       if (!stop) barrier_.wait(lk, [&] { return !clock_.paused() || cancel_ || stopRequested_ || stopNow_; });
@@ -238,7 +275,7 @@ void Engine::workerLoop(bool preview) {
       stopAll_ = stop;
       barrier_.release();
     }
-    if (stopAll_) return;
+    if (stopAll_ || cancel_) return;
     pass = spp_;
     meanRows = publisher_.rowMeanTarget();
     errorRows = publisher_.rowErrorTarget();

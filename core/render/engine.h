@@ -12,6 +12,8 @@
 
 #include <atomic>
 #include <cstdint>
+#include <exception>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -21,13 +23,12 @@
 #include "core/render/publish_signal.h"
 #include "core/render/render_clock.h"
 #include "core/render/render_job.h"
+#include "core/render/row_renderer.h"
 #include "core/render/sample_schedule.h"
 #include "core/render/snapshot_publisher.h"
 #include "core/render/worker_pool.h"
 
 namespace penumbra {
-
-struct RowRenderer;
 
 struct RenderProgress {
   uint32_t spp = 0;          // completed passes
@@ -46,7 +47,8 @@ class Engine {
   Engine& operator=(const Engine&) = delete;
 
   // Starts a fresh accumulation (cancelling any running one). threads <= 0: all cores. `schedule`
-  // maps passes to sample indices for the whole accumulation (extend keeps it).
+  // maps passes to sample indices for the whole accumulation (extend keeps it). Throws (nothing
+  // left running) when the film cannot be allocated or the threads cannot be started.
   void start(std::shared_ptr<const RenderJob> job, RenderLimits limits = {}, int threads = 0,
              SampleSchedule schedule = {});
   // Abandons the running pass and joins the workers; the film keeps the completed passes.
@@ -74,8 +76,19 @@ class Engine {
   // its next pass boundary; a render that stopped at its old limits resumes where it left off.
   // Returns false (and changes nothing) when there is no accumulation to extend.
   bool extend(RenderLimits limits);
-  // Blocks until the limits are reached or the render is stopped.
+  // Blocks until the limits are reached or the render is stopped. Rethrows, here on the calling
+  // thread, the exception that made a worker fail (see failure()).
   void wait();
+  // What a worker threw (std::bad_alloc resolving a snapshot, an integrator's error), or null. A
+  // worker that throws ends the render as cancel() does: the other workers stop within a pixel, the
+  // render is finished, and the film holds the completed passes plus part of the failed one. Reset
+  // by start().
+  std::exception_ptr failure() const;
+  // The row renderer each worker makes at its start (default makeRowRenderer); tests substitute
+  // one that fails. For later start() calls.
+  void setRowRendererFactory(std::function<RowRenderer(const RenderJob&)> factory) {
+    rowRendererFactory_ = std::move(factory);
+  }
   void setPaused(bool paused);
   bool paused() const { return clock_.paused(); }
   // Notified after every snapshot publication (and when a render stops), from a worker thread.
@@ -124,8 +137,9 @@ class Engine {
   void spawnWorkers(int threads, bool preview);
   void workerLoop(bool preview);
   void renderPreview(const RowRenderer& renderRow, Sampler& sampler);
-  bool passBoundary();  // run by the last worker to finish a pass; returns true to stop
-  void finish();        // marks the accumulation finished (once) and stops its clock
+  bool passBoundary();                      // run by the last worker to finish a pass; returns true to stop
+  void finish();                            // marks the accumulation finished (once) and stops its clock
+  void workerFailed(std::exception_ptr e);  // on the failing worker: keep e, stop the others
 
   std::shared_ptr<const RenderJob> job_;
   RenderLimits limits_;      // under the barrier's lock while workers run
@@ -136,6 +150,8 @@ class Engine {
   RenderClock clock_;
   SnapshotPublisher publisher_{clock_};
   std::shared_ptr<PublishSignal> signal_;
+  std::function<RowRenderer(const RenderJob&)> rowRendererFactory_;
+  std::exception_ptr failure_;  // under the barrier's lock
 
   // Pass state.
   std::atomic<int> nextRow_{0};

@@ -5,9 +5,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <new>
 #include <thread>
 
 #include "core/geometry/procedural_mesh.h"
+#include "core/math/error.h"
 #include "core/math/frame.h"
 #include "core/sampling/sampler_table.h"
 
@@ -545,6 +547,68 @@ TEST(Engine, StopNowAtRestKeepsEveryRowAtTheSamePasses) {
     fresh.wait();
     return fresh.film().sums();
   }());
+}
+
+// ---- a worker that throws: the render ends, the calling thread gets the exception ----------------
+
+// The scene's rows, except that row `failRow` of pass `failPass` throws std::bad_alloc (as resolving a
+// snapshot does when memory runs out).
+std::function<RowRenderer(const RenderJob&)> failingRows(int failRow, uint32_t failPass) {
+  return [=](const RenderJob& job) {
+    RowRenderer rows = makeRowRenderer(job);
+    auto row = rows.row;
+    rows.row = [=](int y, uint32_t pass, Sampler& sampler, Film& film, uint64_t& bad,
+                   const std::atomic<bool>& cancel) {
+      if (y == failRow && pass == failPass) throw std::bad_alloc();
+      row(y, pass, sampler, film, bad, cancel);
+    };
+    return rows;
+  };
+}
+
+TEST(Engine, AWorkerThatThrowsEndsTheRenderAndWaitRethrowsOnTheCallingThread) {
+  for (int threads : {1, 2, 4}) {
+    Engine engine;
+    engine.setRowRendererFactory(failingRows(5, 2));
+    engine.start(smallJob(), RenderLimits{}, threads);  // unlimited: only the failure ends it
+    ASSERT_TRUE(eventually([&] { return engine.progress().finished; })) << threads << " threads";
+    EXPECT_THROW(engine.wait(), std::bad_alloc);
+    EXPECT_TRUE(engine.failure() != nullptr);
+    EXPECT_EQ(engine.progress().spp, 2u);  // passes 0 and 1 completed, pass 2 failed
+    // The next render starts clean.
+    engine.setRowRendererFactory(nullptr);
+    engine.start(smallJob(), RenderLimits{3, 0.0}, threads);
+    EXPECT_NO_THROW(engine.wait());
+    EXPECT_EQ(engine.failure(), nullptr);
+    EXPECT_EQ(engine.progress().spp, 3u);
+  }
+}
+
+TEST(Engine, AWorkerThatFailsToStartDoesNotHoldUpTheOthers) {
+  Engine engine;
+  std::atomic<int> made{0};
+  engine.setRowRendererFactory([&](const RenderJob& job) {
+    if (made++ == 1) throw Error("the second worker's row renderer");
+    return makeRowRenderer(job);
+  });
+  engine.start(smallJob(), RenderLimits{}, 3);
+  ASSERT_TRUE(eventually([&] { return engine.progress().finished; }));
+  EXPECT_THROW(engine.wait(), Error);
+}
+
+TEST(Engine, AFailureDuringThePreviewEndsTheRender) {
+  Engine engine;
+  engine.setRowRendererFactory([](const RenderJob& job) {
+    RowRenderer rows = makeRowRenderer(job);
+    rows.preview = [](int, int, Sampler&, Image&) { throw std::bad_alloc(); };
+    return rows;
+  });
+  RenderLimits limits;
+  limits.preview = true;
+  engine.start(smallJob(), limits, 2);
+  ASSERT_TRUE(eventually([&] { return engine.progress().finished; }));
+  EXPECT_THROW(engine.wait(), std::bad_alloc);
+  EXPECT_EQ(engine.progress().spp, 0u);
 }
 
 }  // namespace

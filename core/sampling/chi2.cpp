@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <numeric>
 
 #include "core/sampling/rng.h"
@@ -15,6 +16,8 @@ namespace {
 
 constexpr double kBinSlack = 1e-5;  // relative slack for samples rounded just past the domain edge
 constexpr int kRefineMinDepth = 6;  // forced depth when re-checking a "zero" cell that got samples
+constexpr int kBlockCells = 16;     // expected counts: blocks of 16 x 16 cells (see expectedCounts)
+constexpr uint64_t kSamplesPerCancelCheck = 1 << 16;
 
 // ---- nested adaptive Gauss-Lobatto quadrature ----------------------------------------------------
 // Densities are >= 0, so a relative tolerance per subinterval bounds the relative error of the cell;
@@ -124,7 +127,74 @@ double integrateOutside(const Chi2Domain& d, const PdfFunction& pdf) {
   return sum;
 }
 
+// Expected counts of every cell for n samples, block by block. A block is light when its integral
+// and its cells' midpoint sum both expect fewer than minExpected samples: each of its cells then
+// expects fewer too, so pooling puts them all in the pooled cell, whose expectation needs only
+// their sum. A light block's cells that received samples get their own integral (the zero-support
+// check needs it); the others share the rest of the block's integral in proportion to their
+// midpoint values, which is all a plot of `expected` needs. Every other cell is integrated alone.
+std::vector<double> expectedCounts(const Chi2Domain& d, const PdfFunction& pdf, const Grid& g, double n,
+                                   double minExpected, const std::vector<double>& observed,
+                                   CancelFlag cancel) {
+  std::vector<double> expected(static_cast<size_t>(g.resX) * g.resY, 0.0);
+  auto f = [&](double x, double y) {
+    double p = pdf(domainPoint(d, x, y));
+    return std::isfinite(p) ? p : 0.0;
+  };
+  const double cellArea = g.dx * g.dy;
+  for (int by = 0; by < g.resY; by += kBlockCells) {
+    const int yEnd = std::min(by + kBlockCells, g.resY);
+    for (int bx = 0; bx < g.resX; bx += kBlockCells) {
+      throwIfCancelled(cancel);
+      const int xEnd = std::min(bx + kBlockCells, g.resX);
+      auto cell = [&](int ix, int iy) -> double& { return expected[static_cast<size_t>(iy) * g.resX + ix]; };
+      double midpoints = 0.0;
+      bool negative = false;
+      for (int iy = by; iy < yEnd; ++iy)
+        for (int ix = bx; ix < xEnd; ++ix) {
+          double m = f(g.x0 + (ix + 0.5) * g.dx, g.y0 + (iy + 0.5) * g.dy) * cellArea;
+          cell(ix, iy) = m;
+          midpoints += m;
+          negative = negative || m < 0.0;
+        }
+      const double mass = negative ? 0.0
+                                   : integrate2D(f, g.x0 + bx * g.dx, g.x0 + xEnd * g.dx, g.y0 + by * g.dy,
+                                                 g.y0 + yEnd * g.dy, 0);
+      if (negative || !(n * mass < minExpected && n * midpoints < minExpected)) {
+        for (int iy = by; iy < yEnd; ++iy)
+          for (int ix = bx; ix < xEnd; ++ix) cell(ix, iy) = n * integrateCell(d, pdf, g, ix, iy, 0);
+        continue;
+      }
+      double rest = mass, restMidpoints = 0.0;
+      int restCells = 0;
+      for (int iy = by; iy < yEnd; ++iy)
+        for (int ix = bx; ix < xEnd; ++ix) {
+          if (observed[static_cast<size_t>(iy) * g.resX + ix] > 0.0) {
+            cell(ix, iy) = integrateCell(d, pdf, g, ix, iy, 0);
+            rest -= cell(ix, iy);
+          } else {
+            restMidpoints += cell(ix, iy);
+            ++restCells;
+          }
+        }
+      rest = std::max(rest, 0.0);
+      for (int iy = by; iy < yEnd; ++iy)
+        for (int ix = bx; ix < xEnd; ++ix) {
+          double& c = cell(ix, iy);
+          if (observed[static_cast<size_t>(iy) * g.resX + ix] <= 0.0)
+            c = restMidpoints > 0.0 ? rest * c / restMidpoints : rest / restCells;
+          c *= n;
+        }
+    }
+  }
+  return expected;
+}
+
 }  // namespace
+
+const char* chi2Verdict(const Chi2Result& r) {
+  return r.accepted ? "accept" : r.inconclusive ? "inconclusive" : "REJECT";
+}
 
 double sidakAlpha(double alpha, int testCount) {
   return testCount <= 1 ? alpha : 1.0 - std::pow(1.0 - alpha, 1.0 / testCount);
@@ -211,6 +281,7 @@ Chi2Result chi2Run(const Chi2Domain& domain, uint64_t count, Next&& next, const 
   const double spanX = g.dx * g.resX, spanY = g.dy * g.resY;
   const double slackX = kBinSlack * spanX, slackY = kBinSlack * spanY;
   for (uint64_t i = 0; i < count; ++i) {
+    if (i % kSamplesPerCancelCheck == 0) throwIfCancelled(options.cancel);
     Vec3 v = next();
     if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z)) {
       ++r.invalidSamples;
@@ -240,10 +311,9 @@ Chi2Result chi2Run(const Chi2Domain& domain, uint64_t count, Next&& next, const 
 
   // ---- expected counts ----
   const double n = static_cast<double>(count);
-  Chi2Expected e = integrateCells(domain, pdf, options.resolution);
-  r.expected.resize(cellCount);
-  for (size_t c = 0; c < cellCount; ++c) r.expected[c] = n * e.cells[c];
-  r.expectedOutside = n * e.outside;
+  r.expected = expectedCounts(domain, pdf, g, n, options.minExpected, r.observed, options.cancel);
+  r.expectedOutside = n * integrateOutside(domain, pdf);
+  throwIfCancelled(options.cancel);
 
   auto reject = [&](std::string why) {
     r.accepted = false;
@@ -307,7 +377,17 @@ Chi2Result chi2Run(const Chi2Domain& domain, uint64_t count, Next&& next, const 
   }
   r.chi2 = chi2;
   r.dof = used - 1;
-  if (r.dof < 1) return reject("fewer than two cells with expected counts: enlarge the sample count");
+  if (r.dof < 1) {
+    r.accepted = false;
+    r.inconclusive = true;
+    r.pValue = std::numeric_limits<double>::quiet_NaN();
+    std::snprintf(buf, sizeof buf,
+                  "too few samples to test: pooling the cells that expect fewer than %g samples "
+                  "leaves fewer than two cells; enlarge the sample count or lower the resolution",
+                  options.minExpected);
+    r.message = buf;
+    return r;
+  }
   r.pValue = boost::math::gamma_q(0.5 * r.dof, 0.5 * r.chi2);
   r.accepted = r.pValue >= r.alphaEffective;
   if (!r.accepted) {

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "core/math/cancellation.h"
 #include "core/math/vec.h"
 #include "core/sampling/warp.h"
 
@@ -43,9 +44,10 @@ struct Chi2Options {
   uint64_t sampleCount = 1'000'000;
   int resolution = 51;  // Square: res x res cells; Sphere: 2 res (phi) x res (w) cells
   uint64_t seed = 1;
-  double alpha = 0.01;       // significance level of the whole run
-  int testCount = 1;         // number of tests in the run (Sidak correction)
-  double minExpected = 5.0;  // cells expecting fewer samples are pooled
+  double alpha = 0.01;          // significance level of the whole run
+  int testCount = 1;            // number of tests in the run (Sidak correction)
+  double minExpected = 5.0;     // cells expecting fewer samples are pooled
+  CancelFlag cancel = nullptr;  // set: the test throws Cancelled within a fraction of a second
 };
 
 // Sidak-corrected per-test level: 1 - (1 - alpha)^(1 / testCount).
@@ -57,7 +59,10 @@ struct Chi2Result {
   double pValue = 0.0;
   double alphaEffective = 0.0;
   bool accepted = false;
-  std::string message;  // why it was rejected (empty when accepted)
+  // Too few samples to test: after pooling the cells that expect fewer than minExpected samples,
+  // fewer than two cells remain (dof < 1). Neither accepted nor rejected; pValue is NaN.
+  bool inconclusive = false;
+  std::string message;  // why it was rejected or inconclusive (empty when accepted)
 
   // Grids, row-major with x fastest: Square (x, y); Sphere (phi, w). Counts, not densities.
   int resX = 0, resY = 0;
@@ -67,7 +72,14 @@ struct Chi2Result {
   uint64_t invalidSamples = 0;  // NaN/inf samples (any of them rejects)
 };
 
-// Runs the test: sampleCount samples from PCG32(seed) through `sample`, judged by `pdf`.
+// "accept", "REJECT" or "inconclusive": the CLI's word for the outcome.
+const char* chi2Verdict(const Chi2Result& r);
+
+// Runs the test: sampleCount samples from PCG32(seed) through `sample`, judged by `pdf`. The expected
+// counts are integrated in blocks of cells: a block expecting fewer than minExpected samples in all
+// can only join the pooled cell, so its cells share the block's integral by their midpoint values
+// (what `expected` shows) instead of each getting its own quadrature; small sample counts on fine
+// grids cost milliseconds instead of seconds. Cells that received samples always get their own.
 Chi2Result chi2Test(const Chi2Domain& domain, const SampleFunction& sample, const PdfFunction& pdf,
                     const Chi2Options& options);
 

@@ -2,7 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <atomic>
+#include <cmath>
 #include <numeric>
+#include <utility>
 
 namespace penumbra {
 namespace {
@@ -122,5 +126,68 @@ TEST(Chi2, ZeroExpectedCellWithSamplesRejectsImmediately) {
   EXPECT_NE(r.message.find("integrates to 0"), std::string::npos) << r.message;
 }
 
+// ---- few samples on a fine grid -------------------------------------------------------------------
+
+Chi2Options fewSamples(uint64_t n, int res) {
+  Chi2Options o;
+  o.sampleCount = n;
+  o.resolution = res;
+  return o;
+}
+
+TEST(Chi2, TooFewSamplesForTheGridIsInconclusiveNotRejected) {
+  // 100 samples in 2000 x 1000 cells: every cell expects 5e-5 samples; pooled, one cell remains.
+  Chi2Result r = chi2Test(chi2DomainFor(WarpType::CosineHemisphere, 0.f),
+                          warpSampleFunction(WarpType::CosineHemisphere, 0.f),
+                          warpPdfFunction(WarpType::CosineHemisphere, 0.f), fewSamples(100, 1000));
+  EXPECT_TRUE(r.inconclusive);
+  EXPECT_FALSE(r.accepted);
+  EXPECT_STREQ(chi2Verdict(r), "inconclusive");
+  EXPECT_EQ(r.dof, 0);
+  EXPECT_TRUE(std::isnan(r.pValue));
+  EXPECT_NE(r.message.find("too few samples"), std::string::npos) << r.message;
+  // The expected counts still cover the whole grid (for plots) and sum to the samples.
+  EXPECT_NEAR(std::accumulate(r.expected.begin(), r.expected.end(), 0.0) + r.expectedOutside, 100.0, 1e-3);
+  EXPECT_GT(*std::min_element(r.expected.begin(), r.expected.end() - 2000), 0.0);  // all but the horizon row
+}
+
+TEST(Chi2, FewSamplesWherePdfIsZeroStillReject) {
+  // Samples of the whole square judged by the disk's pdf: the corners' samples are impossible, which
+  // rejects at any sample count, even when every cell can only be pooled.
+  Chi2Result r = chi2Test(
+      Chi2Domain::square(-1, 1), [](Vec2 u) { return Vec3(2.f * u.x - 1.f, 2.f * u.y - 1.f, 0.f); },
+      warpPdfFunction(WarpType::UniformDisk, 0.f), fewSamples(100, 1000));
+  EXPECT_FALSE(r.accepted);
+  EXPECT_FALSE(r.inconclusive);
+  EXPECT_NE(r.message.find("integrates to 0"), std::string::npos) << r.message;
+}
+
+TEST(Chi2, BlocksThatCanOnlyBePooledGiveTheSameVerdictAndStatistic) {
+  // 3000 samples over 100 x 100 cells (0.3 expected each): the sparse blocks share their integral
+  // instead of integrating each cell; the pooled statistic is that of integrating every cell.
+  for (auto [type, param] : {std::pair{WarpType::Tent, 0.f}, std::pair{WarpType::Beckmann, 0.05f}}) {
+    Chi2Options o = fewSamples(3000, 100);
+    Chi2Result r = chi2Test(chi2DomainFor(type, param), warpSampleFunction(type, param),
+                            warpPdfFunction(type, param), o);
+    Chi2Expected exact = integrateCells(chi2DomainFor(type, param), warpPdfFunction(type, param), 100);
+    double pooledExpected = 0.0;
+    for (size_t c = 0; c < exact.cells.size(); ++c)
+      if (3000 * exact.cells[c] < o.minExpected) pooledExpected += 3000 * exact.cells[c];
+    double ours = 0.0;
+    for (double e : r.expected)
+      if (e < o.minExpected) ours += e;
+    EXPECT_NEAR(ours, pooledExpected, 1e-6 * 3000) << warpTypeName(type);
+    EXPECT_FALSE(r.inconclusive && r.accepted);
+  }
+}
+
+TEST(Chi2, CancelStopsTheTest) {
+  std::atomic<bool> cancel{true};
+  Chi2Options o = fewSamples(1'000'000'000, 1000);
+  o.cancel = &cancel;
+  EXPECT_THROW(chi2Test(chi2DomainFor(WarpType::Tent, 0.f), warpSampleFunction(WarpType::Tent, 0.f),
+                        warpPdfFunction(WarpType::Tent, 0.f), o),
+               Cancelled);
+}
 }  // namespace
 }  // namespace penumbra

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -13,6 +14,7 @@
 
 #include "core/math/bounded_read.h"
 #include "core/math/error.h"
+#include "core/math/utf8.h"
 #include "core/render/render_settings.h"
 
 namespace penumbra {
@@ -338,9 +340,30 @@ glm::mat4 parseTransformElement(const tinyxml2::XMLElement& element, const std::
   return m;
 }
 
+namespace {
+
+// tinyxml2 passes any bytes through: scene files must be UTF-8 text, so that every name and value
+// read from them is text for the messages and for Python (a NUL is refused before this).
+void checkSceneText(const std::string& xml, const std::string& file) {
+  const size_t at = invalidUtf8Offset(xml);
+  if (at == std::string::npos) return;
+  const int line = 1 + int(std::count(xml.begin(), xml.begin() + std::ptrdiff_t(at), '\n'));
+  const size_t lineStart = at == 0 ? std::string::npos : xml.rfind('\n', at - 1);
+  const size_t column = lineStart == std::string::npos ? at + 1 : at - lineStart;
+  char what[160];
+  std::snprintf(what, sizeof what,
+                "byte 0x%02X at column %zu is not UTF-8: a scene file is UTF-8 text (convert it, e.g. "
+                "with iconv -f latin1 -t utf-8)",
+                unsigned(uint8_t(xml[at])), column);
+  throw Error(file, line, what);
+}
+
+}  // namespace
+
 SceneNode parseSceneString(const std::string& xml, const std::string& nameForErrors,
                            const std::string& baseDir) {
   checkNoNulCharacter(xml, nameForErrors);
+  checkSceneText(xml, nameForErrors);
   tinyxml2::XMLDocument doc;
   if (doc.Parse(xml.c_str(), xml.size()) != tinyxml2::XML_SUCCESS) {
     std::string msg = doc.ErrorStr() ? doc.ErrorStr() : "unknown error";
@@ -370,7 +393,11 @@ std::string writeSceneXml(const SceneNode& root) {
 }
 
 void applyOverride(SceneNode& root, std::string_view key, std::string_view value) {
-  std::string setText = "--set " + std::string(key) + "=" + std::string(value);
+  std::string setText = "--set " + escapeInvalidUtf8(key) + "=" + escapeInvalidUtf8(value);
+  if (invalidUtf8Offset(key) != std::string_view::npos || invalidUtf8Offset(value) != std::string_view::npos)
+    throw Error(setText + ": not UTF-8 text");
+  if (key.find('\0') != std::string_view::npos || value.find('\0') != std::string_view::npos)
+    throw Error(setText + ": contains a NUL character");
   size_t dot = key.find('.');
   if (dot == std::string_view::npos || dot == 0 || dot + 1 == key.size())
     throw Error(setText + ": expected a key of the form object.property, e.g. sampler.sampleCount");

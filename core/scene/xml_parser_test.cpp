@@ -171,6 +171,39 @@ TEST(XmlParser, ScenePathWithANulByteIsRefused) {
   }
 }
 
+// tinyxml2 passes any bytes through (and stops at a NUL): the parser names the line of the first
+// byte that is not UTF-8 text, before anything else is read.
+TEST(XmlParser, TextThatIsNotUtf8IsRefusedWithItsLine) {
+  std::string msg;
+  EXPECT_EQ(errorLine("<scene>\n<shape type=\"sphere\">\n  <string name=\"caf\xE9\" value=\"x\"/>\n"
+                      "</shape>\n</scene>",
+                      &msg),
+            3);
+  EXPECT_NE(msg.find("t.xml:3: byte 0xE9 at column 20 is not UTF-8"), std::string::npos) << msg;
+  EXPECT_EQ(errorLine("<scene>\n<!-- \xC0\xAF -->\n</scene>", &msg), 2);  // overlong, even in a comment
+  EXPECT_EQ(
+      errorLine(std::string("<scene>\n\n<sampler type=\"independent\"/>\0<bogus/>\n</scene>", 56), &msg), 3);
+  EXPECT_NE(msg.find("column 30: a NUL character"), std::string::npos) << msg;
+  EXPECT_EQ(errorLine("\xFF<scene/>", &msg), 1);
+  EXPECT_NE(msg.find("column 1"), std::string::npos) << msg;
+  // Valid UTF-8 (a byte-order mark, accents) is fine.
+  SceneNode root =
+      parseSceneString("\xEF\xBB\xBF<scene>\n<shape type=\"caf\xC3\xA9\"/>\n</scene>", "t.xml", ".");
+  EXPECT_EQ(root.children.at(0).type, "caf\xC3\xA9");
+}
+
+TEST(Override, ValuesThatAreNotUtf8TextAreRefused) {
+  SceneNode root = parseSceneString("<scene>\n<sampler type=\"independent\"/>\n</scene>", "t.xml", ".");
+  try {
+    applyOverride(root, "sampler.name", "caf\xE9");
+    FAIL() << "a Latin-1 value was accepted";
+  } catch (const Error& e) {
+    EXPECT_STREQ(e.what(), "--set sampler.name=caf\\xE9: not UTF-8 text");
+  }
+  EXPECT_THROW(applyOverride(root, "sampler.name", std::string("a\0b", 3)), Error);
+  EXPECT_THROW(applyOverride(root, std::string("sampler.sample\0Count", 20), "4"), Error);
+}
+
 TEST(XmlParser, MissingFile) {
   try {
     parseSceneFile("/nonexistent/dir/scene.xml");

@@ -24,6 +24,14 @@ TINY_SCENE = """<scene>
 </scene>"""
 
 
+def child_env(**extra):
+    """The environment of a child interpreter that imports this same module from any directory."""
+    import penumbra
+    module_dir = os.path.dirname(os.path.abspath(penumbra.__file__))
+    path = os.pathsep.join(p for p in (module_dir, os.environ.get("PYTHONPATH", "")) if p)
+    return {**os.environ, "PYTHONPATH": path, **extra}
+
+
 @pytest.fixture
 def cli():
     """Runs the penumbra CLI; returns the CompletedProcess (text)."""

@@ -48,6 +48,74 @@ def test_converge_against_closed_form_reference():
     assert runs["solid-angle"]["rmse"][-1] > 0
 
 
+def _small_sphere_scene():
+    scene = penumbra.load_scene(str(SPHERE_SCENE), overrides={"camera.width": 24, "camera.height": 16})
+    return scene, scene.render(spp=16, seed=99).mean
+
+
+def test_converge_refuses_empty_strategy_and_sampler_lists():
+    # An empty list would otherwise mean the default: every strategy, or the scene's sampler.
+    scene, ref = _small_sphere_scene()
+    for empty in ([], "", (), ",", " "):
+        with pytest.raises(ValueError, match="strategies: expected 'all' or at least one name"):
+            penumbra.converge(scene, strategies=empty, spp=1, reference=ref)
+        with pytest.raises(ValueError, match="samplers: expected 'all' or at least one name"):
+            penumbra.converge(scene, strategies="area", samplers=empty, spp=1, reference=ref)
+    with pytest.raises(TypeError, match="strategies"):
+        penumbra.converge(scene, strategies=["area", 3], spp=1, reference=ref)
+    with pytest.raises(ValueError, match="strategies: unknown strategy"):
+        penumbra.converge(scene, strategies="nope", spp=1, reference=ref)
+
+
+def test_converge_accepts_samplers_all_as_the_cli_does():
+    scene, ref = _small_sphere_scene()
+    runs = penumbra.converge(scene, strategies="area", samplers="all", spp=2, reference=ref)
+    assert list(runs) == [("area", s["name"]) for s in penumbra.samplers()]
+    assert all(m["sampler"] == name for (_, name), m in runs.items())
+
+
+@pytest.mark.parametrize("time", [math.inf, -math.inf, math.nan, 0.0, -1.0])
+def test_converge_time_is_checked_as_the_cli_checks_it(time):
+    scene, ref = _small_sphere_scene()
+    with pytest.raises(ValueError, match=r"^time: expected a finite number > 0, got "):
+        penumbra.converge(scene, strategies="area", time=time, reference=ref)
+
+
+@pytest.mark.parametrize("call", [
+    lambda v: penumbra.closed_form.sphere_light_irradiance_factor(v, 0.5),
+    lambda v: penumbra.closed_form.sphere_light_irradiance_factor(0.5, v),
+    lambda v: penumbra.closed_form.sphere_light_irradiance_factor(np.array([0.5, v]), 0.5),
+    lambda v: penumbra.closed_form.ao_plane_with_sphere(v, 0.5),
+    lambda v: penumbra.closed_form.ao_plane_near_resting_sphere(v, 1.0),
+    lambda v: penumbra.closed_form.ao_plane_near_resting_sphere(1.0, v),
+    lambda v: penumbra.closed_form.ao_on_resting_convex_body(v),
+    lambda v: penumbra.closed_form.sphere_light_irradiance_factor_at([0, 0, v], [0, 0, 1], [0, 0, 2], 1.0),
+    lambda v: penumbra.closed_form.sphere_light_irradiance_factor_at([0, 0, 0], [0, 0, 1], [0, 0, 2], v),
+])
+@pytest.mark.parametrize("value", [math.nan, math.inf, -math.inf])
+def test_closed_forms_refuse_non_finite_arguments(call, value):
+    with pytest.raises(ValueError, match="expected a finite number"):
+        call(value)
+
+
+def test_closed_forms_refuse_arguments_outside_their_domain():
+    cf = penumbra.closed_form
+    with pytest.raises(ValueError, match="cos_theta"):
+        cf.sphere_light_irradiance_factor(1.5, 0.5)
+    with pytest.raises(ValueError, match="sin_alpha"):
+        cf.ao_plane_with_sphere(0.5, -0.5)
+    with pytest.raises(ValueError, match="radius"):
+        cf.ao_plane_near_resting_sphere(1.0, 0.0)
+    with pytest.raises(ValueError, match="rho"):
+        cf.ao_plane_near_resting_sphere(-1.0, 1.0)
+    with pytest.raises(ValueError, match="radius"):
+        cf.sphere_light_irradiance_factor_at([0, 0, 0], [0, 0, 1], [0, 0, 2], -1.0)
+    with pytest.raises(ValueError, match="n: expected a non-zero normal"):
+        cf.sphere_light_irradiance_factor_at([0, 0, 0], [0, 0, 0], [0, 0, 2], 1.0)
+    # Rounding past the domain's edge (a cosine from a dot product) is not an error.
+    assert cf.sphere_light_irradiance_factor(1.0 + 2e-16, 0.5) == pytest.approx(math.pi * 0.25)
+
+
 def test_closed_forms():
     cf = penumbra.closed_form
     # Fully above the horizon: pi sin^2(alpha) cos(theta).

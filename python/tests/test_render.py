@@ -95,6 +95,16 @@ def test_bad_arguments_name_the_argument():
         penumbra.load_scene(str(SPHERE_SCENE), overrides=["camera.width=4"])
 
 
+@pytest.mark.parametrize("time", [float("inf"), float("nan"), float("-inf"), 0.0, -2.5])
+def test_render_time_is_checked_as_the_cli_checks_it(cli, tmp_path, time):
+    # render(time=inf) would never end; the CLI refuses it with the same words.
+    scene = penumbra.scene_from_string(TINY_SCENE)
+    with pytest.raises(ValueError, match=r"^time: expected a finite number > 0, got "):
+        scene.render(time=time)
+    done = cli("render", SPHERE_SCENE, f"--time={time!r}", "-o", tmp_path / "out.exr", check=False)
+    assert done.returncode == 2 and "expected a finite number > 0, got '" in done.stderr, done.stderr
+
+
 def test_progress_callback_sees_every_pass():
     seen = []
     result = penumbra.scene_from_string(TINY_SCENE).render(spp=5, progress=lambda spp, s: seen.append(spp))

@@ -1,4 +1,7 @@
 """Warps, pdfs and chi-square tests against the CLI's values; the samplers' point sets."""
+import math
+import time
+
 import numpy as np
 import pytest
 
@@ -62,10 +65,30 @@ def test_chi2_matches_cli(cli, name, param):
 
 
 def test_chi2_rejects_what_the_cli_rejects(cli):
-    # Too few samples for the cells: the CLI and the module agree on the verdict and its numbers.
+    # A pdf that does not match the samples: the CLI and the module agree on the verdict and its numbers.
+    out = cli("warp", "cosine-hemisphere", "--mismatch", "--samples", 20000, "--seed", 1, "--res", 10,
+              check=False).stdout
+    assert "REJECT" in out
     chi2, dof, p, verdict = _cli_chi2(cli, "tent", None, 100, 1, 200)
     r = penumbra.chi2_test("tent", samples=100, seed=1, res=200)
-    assert r.verdict == verdict and r.dof == dof and round(r.chi2, 2) == chi2
+    assert r.verdict == verdict == "inconclusive" and r.dof == dof and round(r.chi2, 2) == chi2
+
+
+def test_chi2_with_too_few_samples_is_inconclusive_not_rejected():
+    # 100 samples over 2000 x 1000 cells: every cell expects 5e-5 samples, so after pooling no two cells
+    # remain to compare. The test cannot decide (the warp is correct).
+    start = time.monotonic()
+    r = penumbra.chi2_test("cosine-hemisphere", samples=100, res=1000)
+    seconds = time.monotonic() - start
+    assert r.verdict == "inconclusive" and r.inconclusive and not r.accepted
+    assert r.dof == 0 and math.isnan(r.p_value) and "too few samples" in r.message
+    assert r.observed.sum() == 100 and r.expected.sum() + 0 == pytest.approx(100, rel=1e-4)
+    # A bound on hangs, not a benchmark: integrating every one of the 2e6 cells took 18 s; the cells of
+    # blocks that can only be pooled are not integrated one by one.
+    assert seconds < 10, f"{seconds:.1f} s for 100 samples"
+    # Enough samples for the same grid: a real verdict.
+    r = penumbra.chi2_test("cosine-hemisphere", samples=20000, res=5)
+    assert r.verdict == "accept" and not r.inconclusive and r.dof > 0
 
 
 def test_warp_arguments_are_checked():
@@ -102,6 +125,35 @@ def test_sample_points():
         penumbra.sample_points("nope", 4)
     with pytest.raises(ValueError, match="dims"):
         penumbra.sample_points("independent", 4, dims=(1, 2))
+
+
+@pytest.mark.parametrize("name", ["tent", "uniform-sphere"])
+def test_warp_out_may_overlap_the_input(name):
+    # NumPy's rule for ufuncs: the result is as if the input had been copied first.
+    u = penumbra.random_points(1000, seed=5)
+    expected = penumbra.warp(name, u)
+    cols = expected.shape[1]
+    flat = np.zeros(1000 + 1000 * cols, np.float32)
+    u_alias = flat[:2000].reshape(1000, 2)
+    u_alias[:] = u
+    out = flat[1000:].reshape(1000, cols)  # starts inside u: each point written lands on points not yet read
+    assert np.may_share_memory(u_alias, out)
+    assert penumbra.warp(name, u_alias, out=out) is out
+    assert np.array_equal(out, expected)
+    if cols == 2:
+        same = u.copy()
+        assert penumbra.warp(name, same, out=same) is same  # in place
+        assert np.array_equal(same, expected)
+
+
+def test_pdf_out_may_overlap_the_input():
+    v = penumbra.warp("uniform-hemisphere", penumbra.random_points(500, seed=6))
+    expected = penumbra.pdf("cosine-hemisphere", v)
+    flat = np.zeros(1500, np.float32)
+    flat[:] = v.ravel()
+    out = flat[1000:]  # the last third of v's own bytes: written before the points there are read
+    assert penumbra.pdf("cosine-hemisphere", flat.reshape(500, 3), out=out) is out
+    assert np.array_equal(out, expected)
 
 
 def test_out_arrays_are_filled_and_checked():
