@@ -5,7 +5,9 @@
 // wrong library). `penumbra view --offscreen`, and `penumbra view` on a machine without a display,
 // re-execute the sibling penumbra-offscreen with the same options, so users see one command.
 // This file is compiled into each executable (not into penumbra_cli, which the tests link without GL).
+#include <algorithm>
 #include <chrono>
+#include <cstdint>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -15,6 +17,8 @@
 #include "app/cli/scene_options.h"
 #include "app/platform/offscreen_exec.h"
 #include "app/platform/platform.h"
+#include "app/ui/id_audit.h"
+#include "app/ui/monkey_driver.h"
 #include "app/ui/viewer_app.h"
 #include "core/math/error.h"
 
@@ -36,6 +40,11 @@ struct ViewOptions {
   std::string window;  // WxH
   std::string view;    // colour | mis-light-share
   DisplayServerOption display;
+  // Robustness harness (docs/viewer.md, "Robustness"); hidden options.
+  std::int64_t monkeySeed = -1;  // >= 0: run the monkey with this seed
+  std::string monkeyLog, monkeyReplay, monkeyOpen;
+  double monkeyFrameLimit = 1.0;
+  bool auditIds = false;
 };
 
 constexpr const char* kFallbackScreenshot = "penumbra-view.png";
@@ -51,15 +60,22 @@ void streamToTev(net::TevStreamer& tev, const ui::ViewerController& c, bool last
     tev.send(net::TevFrame{name, c.snapshot().mean, Image()});
 }
 
+// Whether a program drives the viewer instead of a person (the monkey, the ID audit).
+bool driven(const ViewOptions& o) {
+  return o.monkeySeed >= 0 || !o.monkeyReplay.empty() || o.auditIds;
+}
+
 // This command's arguments for penumbra-offscreen.
 std::vector<std::string> offscreenArgs(const ViewOptions& o) {
   std::vector<std::string> args = {"view"};
   if (!o.scene.scenePath.empty()) args.push_back(o.scene.scenePath);
   for (const std::string& s : o.scene.sets) args.insert(args.end(), {"--set", s});
   if (o.frames >= 0) args.insert(args.end(), {"--frames", std::to_string(o.frames)});
-  args.insert(args.end(),
-              {"--screenshot", o.screenshot.empty() && !o.bench ? kFallbackScreenshot : o.screenshot});
-  if (args.back().empty()) args.resize(args.size() - 2);
+  if (!driven(o)) {
+    args.insert(args.end(),
+                {"--screenshot", o.screenshot.empty() && !o.bench ? kFallbackScreenshot : o.screenshot});
+    if (args.back().empty()) args.resize(args.size() - 2);
+  }
   if (o.bench) args.push_back("--bench");
   if (o.noWait) args.push_back("--no-wait");
   if (o.printLayout) args.push_back("--print-layout");
@@ -69,12 +85,31 @@ std::vector<std::string> offscreenArgs(const ViewOptions& o) {
   if (!o.compare.empty()) args.insert(args.end(), {"--compare", o.compare});
   if (!o.view.empty()) args.insert(args.end(), {"--view", o.view});
   if (!o.display.spec.empty()) args.insert(args.end(), {"--display-server", o.display.spec});
+  if (o.monkeySeed >= 0) args.insert(args.end(), {"--monkey", std::to_string(o.monkeySeed)});
+  if (!o.monkeyLog.empty()) args.insert(args.end(), {"--monkey-log", o.monkeyLog});
+  if (!o.monkeyReplay.empty()) args.insert(args.end(), {"--monkey-replay", o.monkeyReplay});
+  if (!o.monkeyOpen.empty()) args.insert(args.end(), {"--monkey-open", o.monkeyOpen});
+  if (o.monkeySeed >= 0 || !o.monkeyReplay.empty())
+    args.insert(args.end(), {"--monkey-frame-limit", std::to_string(o.monkeyFrameLimit)});
+  if (o.auditIds) args.push_back("--audit-ids");
   return args;
+}
+
+// The command line that runs this monkey again (printed when it fails).
+std::string replayCommand(const ViewOptions& o) {
+  std::string line = platform::offscreenBinary();
+  for (const std::string& a : offscreenArgs(o)) {
+    const bool plain = !a.empty() && a.find_first_not_of(
+                                         "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789"
+                                         "._-+=/:,") == std::string::npos;
+    line += " " + (plain ? a : "'" + a + "'");
+  }
+  return line;
 }
 
 int runView(ViewOptions o) {
   const bool offscreenBuild = platform::isOffscreenBuild();
-  platform::runOffscreenUnlessWindowed("penumbra view", o.offscreen,
+  platform::runOffscreenUnlessWindowed("penumbra view", o.offscreen || driven(o),
                                        o.screenshot.empty() ? kFallbackScreenshot : o.screenshot,
                                        [&] { return offscreenArgs(o); });
 
@@ -102,6 +137,19 @@ int runView(ViewOptions o) {
   std::unique_ptr<net::TevStreamer> tev = openStream(displayServer);
   if (tev) vo.onSnapshot = [&tev](const ui::ViewerController& c, bool last) { streamToTev(*tev, c, last); };
   vo.loadSeconds = loadSeconds;
+  if (o.auditIds) {
+    vo.driver = ui::makeIdAuditDriver();
+  } else if (driven(o)) {
+    ui::MonkeyOptions mo;
+    mo.seed = std::uint64_t(std::max<std::int64_t>(o.monkeySeed, 0));
+    mo.frames = o.frames >= 0 ? o.frames : 1000;
+    mo.frameLimitSeconds = o.monkeyFrameLimit;
+    mo.logPath = o.monkeyLog;
+    mo.replayPath = o.monkeyReplay;
+    mo.openScene = o.monkeyOpen;
+    mo.replayCommand = replayCommand(o);
+    vo.driver = ui::makeMonkeyDriver(mo);
+  }
   return ui::runViewer(std::move(loaded), o.scene.overrides(), vo);
 }
 
@@ -135,6 +183,22 @@ void addViewCommand(CLI::App& app, int& exitCode) {
   cmd->add_flag("--print-layout", opts->printLayout, "Print where the image is drawn (for tests)")->group("");
   cmd->add_flag("--open-warp-inspector", opts->openWarpInspector,
                 "Start with the warp inspector open (screenshots)")
+      ->group("");
+  // The robustness harness (docs/viewer.md, "Robustness"): offscreen only, for tests and replays.
+  cmd->add_option("--monkey", opts->monkeySeed,
+                  "Drive the UI with seeded random input for --frames frames (default 1000) and check it")
+      ->check(CLI::NonNegativeNumber)
+      ->group("");
+  cmd->add_option("--monkey-log", opts->monkeyLog, "Write the monkey's input, one line per frame")->group("");
+  cmd->add_option("--monkey-replay", opts->monkeyReplay, "Play back a --monkey-log instead of random input")
+      ->group("");
+  cmd->add_option("--monkey-open", opts->monkeyOpen, "Open this scene at the monkey's first frame")
+      ->group("");
+  cmd->add_option("--monkey-frame-limit", opts->monkeyFrameLimit, "Longest frame in seconds (default 1)")
+      ->check(CLI::PositiveNumber)
+      ->group("");
+  cmd->add_flag("--audit-ids", opts->auditIds,
+                "Draw every panel state, click every widget, fail on two widgets of a window with one ID")
       ->group("");
   cmd->callback([opts, &exitCode] { exitCode = runView(*opts); });
 }

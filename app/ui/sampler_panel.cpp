@@ -43,7 +43,10 @@ void drawSamplerPanel(ViewerController& c, PanelState&) {
   ImGui::RadioButton("time budget", &mode, 1);
   if (mode == 0) {
     int spp = int(l.targetSpp);
-    if (ImGui::InputInt("target spp", &spp, 16, 256, ImGuiInputTextFlags_EnterReturnsTrue) || l.seconds > 0) {
+    // "##value": the radio button above is also labelled "target spp"; with one ID ImGui takes the two
+    // for one widget, and a click in this box trips its assert.
+    if (ImGui::InputInt("target spp##value", &spp, 16, 256, ImGuiInputTextFlags_EnterReturnsTrue) ||
+        l.seconds > 0) {
       l.targetSpp = uint32_t(std::max(spp, 0));
       l.seconds = 0;
     }

@@ -15,9 +15,11 @@
 #include <imgui_impl_opengl3.h>
 
 #include "app/platform/platform.h"
+#include "app/ui/frame_driver.h"
 #include "app/ui/image_display.h"
 #include "app/ui/key_bindings.h"
 #include "app/ui/panels.h"
+#include "app/ui/run_queue_wait.h"
 #include "app/ui/ui_clock.h"
 #include "app/ui/viewer_bench.h"
 #include "app/ui/warp_inspector.h"
@@ -43,7 +45,7 @@ constexpr double kIdleWaitSeconds = 0.25;       // longest sleep (paces the scen
 constexpr double kStatsRefreshMs = 500;         // while rendering, a frame at least this often
 constexpr int kFramesAfterInput = 2;            // ImGui settles hover and click state a frame later
 
-class ViewerApp : public BenchViewer {
+class ViewerApp : public BenchViewer, public DrivenViewer {
  public:
   ViewerApp(platform::Platform& p, ViewerController& c) : platform_(p), c_(c) {
     platform_.onDrop = [this](const std::vector<std::string>& files) {
@@ -237,6 +239,47 @@ class ViewerApp : public BenchViewer {
       frame();
     }
   }
+
+  // Frames under a driver's input and checks (--monkey, --audit-ids), back to back: no pacing, so
+  // that thousands of frames take minutes. Returns the driver's exit code.
+  int runDriven(FrameDriver& driver) {
+    FrameStageTimer stages;  // each frame's breakdown, for the report of a slow one
+    stageTimer_ = &stages;
+    for (int f = 0; driver.beforeFrame(f, *this); ++f) {
+      const auto t0 = Clock::now();
+      const double loading0 = c_.blockingLoadSeconds(), waiting0 = runQueueWaitSeconds();
+      stages = FrameStageTimer();
+      try {
+        update();
+        updateMs_ = msSince(t0);
+        frame();
+      } catch (const std::exception& e) {
+        driver.frameThrew(f, e.what());
+        break;
+      }
+      const double loading = c_.blockingLoadSeconds() - loading0, waiting = runQueueWaitSeconds() - waiting0;
+      const double wall = msSince(t0) * 1e-3;
+      char buf[300];
+      std::snprintf(
+          buf, sizeof buf,
+          "wall %.0f ms: snapshot poll %.0f, panels %.0f, tone mapping %.0f, image %.0f, ImGui drawing "
+          "%.0f, present %.0f; of which loading scenes %.0f, waiting for a CPU %.0f",
+          wall * 1e3, updateMs_, stages.wallMs[kUi], stages.wallMs[kTonemap], stages.wallMs[kImage],
+          stages.wallMs[kPanels], stages.wallMs[kPresent], loading * 1e3, waiting * 1e3);
+      frameBreakdown_ = buf;
+      if (!driver.afterFrame(f, *this, wall - loading - waiting)) break;
+    }
+    stageTimer_ = nullptr;
+    return driver.exitCode();
+  }
+
+  // DrivenViewer.
+  ViewerController& controller() override { return c_; }
+  void setWarpInspectorOpen(bool open) override { showWarpInspector_ = open; }
+  bool warpInspectorOpen() const override { return showWarpInspector_; }
+  void setHelpOpen(bool open) override { st_.showHelp = open; }
+  void windowSize(int& width, int& height) const override { platform_.framebufferSize(width, height); }
+  std::string lastFrameBreakdown() const override { return frameBreakdown_; }
 
   const ImageLayout& layout() const { return layout_; }
   void openWarpInspector() { showWarpInspector_ = true; }
@@ -467,7 +510,9 @@ class ViewerApp : public BenchViewer {
   double frameCostMs_ = 0;  // running average of lastFrameMs_ (paces pass-only frames)
   uint64_t framesDrawn_ = 0;
   uint64_t shownRestart_ = 0;
-  FrameStageTimer* stageTimer_ = nullptr;  // the bench's frame breakdown
+  FrameStageTimer* stageTimer_ = nullptr;  // the bench's (and runDriven's) frame breakdown
+  double updateMs_ = 0;
+  std::string frameBreakdown_;
   bool fontNearest_ = false;
   int sidebarWidth_ = 0;  // the panel column (0: not yet chosen)
   int panelHeight_ = -1;
@@ -523,6 +568,8 @@ int runViewer(LoadedScene scene, ViewerController::Overrides overrides, const Vi
     }
     if (o.bench) {
       rc = runViewerBench(*p, controller, app);
+    } else if (o.driver) {
+      rc = app.runDriven(*o.driver);
     } else {
       if (o.frames > 0)
         app.runFrames(o.frames, o.waitForTarget);

@@ -4,8 +4,10 @@
 #pragma once
 
 #include <functional>
+#include <memory>
 #include <string>
 
+#include "app/ui/frame_driver.h"
 #include "app/ui/viewer_controller.h"
 
 namespace penumbra::ui {
@@ -24,6 +26,8 @@ struct ViewerOptions {
   bool lightShareView = false;     // start in the "MIS light share" view (a mis strategy, no compare)
   // After every snapshot poll (last = false) and once when the viewer closes (last = true).
   std::function<void(const ViewerController&, bool last)> onSnapshot;
+  // Runs the viewer under this driver's input and checks instead of a person's (--monkey, --audit-ids).
+  std::shared_ptr<FrameDriver> driver;
 };
 
 // Width of the panel column on the left, in pixels.

@@ -488,19 +488,25 @@ static double secondsSince(std::chrono::steady_clock::time_point t0) {
 }
 
 bool ViewerController::openScene(const std::string& path) {
+  auto t0 = std::chrono::steady_clock::now();
   try {
-    auto t0 = std::chrono::steady_clock::now();
     LoadedScene loaded = loadScene(path, overrides_);
+    blockingLoadSeconds_ += secondsSince(t0);
     adoptLoaded(std::move(loaded), path, secondsSince(t0));
     return true;
   } catch (const std::exception& e) {
+    blockingLoadSeconds_ += secondsSince(t0);
     sceneError_ = e.what();
     return false;
   }
 }
 
 void ViewerController::openSceneAsync(const std::string& path) {
-  if (loading_.valid()) loading_.wait();  // one load at a time; the newest request wins below
+  if (loading_.valid()) {  // one load at a time; the newest request wins below
+    auto t0 = std::chrono::steady_clock::now();
+    loading_.wait();
+    blockingLoadSeconds_ += secondsSince(t0);
+  }
   loadingPath_ = path;
   loadStart_ = std::chrono::steady_clock::now();
   sceneStatus_ = "loading " + path + " ...";
@@ -537,9 +543,12 @@ bool ViewerController::reloadScene() {
   const RenderLimits oldLimits = limits_;
   const OrbitCamera oldOrbit = orbit_;
   LoadedScene loaded;
+  const auto t0 = std::chrono::steady_clock::now();
   try {
     loaded = loadScene(path, overrides_);
+    blockingLoadSeconds_ += secondsSince(t0);
   } catch (const std::exception& e) {
+    blockingLoadSeconds_ += secondsSince(t0);
     sceneError_ = e.what();
     sceneMtime_ = mtimeOf(path);  // do not retry until the file changes again
     return false;
