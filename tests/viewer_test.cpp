@@ -9,8 +9,10 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "core/image/image_io.h"
 #include "core/image/tonemap.h"
@@ -49,6 +51,9 @@ RunResult run(const std::string& cmd) {
 struct Layout {
   float x = -1, y = -1, zoom = 0;
   int w = 0, h = 0;
+  int sidebar = 0;            // the panel column's width
+  float panelOverflow = 1e9;  // how far the panels' widest item passes the column's content region
+  std::map<std::string, float> sections;  // each section header's top
 };
 
 Layout parseLayout(const std::string& out) {
@@ -56,6 +61,15 @@ Layout parseLayout(const std::string& out) {
   size_t p = out.find("image-rect ");
   if (p != std::string::npos)
     std::sscanf(out.c_str() + p, "image-rect %f %f %d %d %f", &l.x, &l.y, &l.w, &l.h, &l.zoom);
+  if ((p = out.find("sidebar ")) != std::string::npos) std::sscanf(out.c_str() + p, "sidebar %d", &l.sidebar);
+  if ((p = out.find("panel-overflow ")) != std::string::npos)
+    std::sscanf(out.c_str() + p, "panel-overflow %f", &l.panelOverflow);
+  std::istringstream lines(out);
+  for (std::string line; std::getline(lines, line);) {
+    char name[64];
+    float y = 0;
+    if (std::sscanf(line.c_str(), "section %63s %f", name, &y) == 2) l.sections[name] = y;
+  }
   return l;
 }
 
@@ -71,13 +85,14 @@ void checkScreenshot(const std::string& shot, const Layout& l, const std::string
   ASSERT_EQ(l.w, ref.width);
   ASSERT_EQ(l.h, ref.height);
   ASSERT_GT(l.zoom, 0.f);
-  ASSERT_GE(l.x, 400.f) << "the image must be right of the 400-pixel panel column";
+  ASSERT_GT(l.sidebar, 0);
+  ASSERT_GE(l.x, float(l.sidebar)) << "the image must be right of the panel column";
 
   // Panels: the sidebar is not the background, and has text (bright) pixels.
   const uint8_t bg[3] = {41, 41, 43};  // glClearColor 0.16, 0.16, 0.17
   int notBg = 0, bright = 0, total = 0;
   for (int y = 0; y < ui.height; y += 2)
-    for (int x = 0; x < 400; x += 2) {
+    for (int x = 0; x < l.sidebar; x += 2) {
       ++total;
       bool isBg = true;
       for (int c = 0; c < 3; ++c) isBg = isBg && std::abs(int(byteAt(ui, x, y, c)) - bg[c]) <= 1;
@@ -220,4 +235,99 @@ TEST(ViewerOffscreen, LightShareViewWithoutAMisStrategyExitsWithCode2) {
                     " --view mis-light-share --frames 1");
   EXPECT_EQ(r.exitCode, 2) << r.out;
   EXPECT_NE(r.out.find("needs a mis strategy"), std::string::npos) << r.out;
+}
+
+// docs/viewer.md: nothing below the integrator section moves when the strategy changes. Every
+// strategy of the list (and the rows a light selection, a fallback and no shading samples add or
+// take away) puts the sections below at the same height.
+TEST(ViewerOffscreen, SectionsBelowTheIntegratorStayPutWhateverTheStrategy) {
+  const std::vector<std::string> strategies = {
+      "--set integrator.measure=solid-angle",
+      "--set integrator.measure=area --set integrator.lightSelection=power",
+      "--set integrator.measure=hemisphere --set integrator.warp-type=uniform-hemisphere",
+      "--set integrator.measure=mis",
+      "--set integrator.type=ao",
+      "--set integrator.type=simple",
+      "--set integrator.type=normals"};
+  std::map<std::string, float> first;
+  for (const std::string& sets : strategies) {
+    RunResult r = run(std::string(PENUMBRA_OFFSCREEN_BINARY) + " view " + defaultSceneFile() + " " + kSets +
+                      " " + sets + " --frames 2 --no-wait --window 1280x800 --print-layout --screenshot " +
+                      tempDir() + "/sections.png");
+    ASSERT_EQ(r.exitCode, 0) << sets << "\n" << r.out;
+    const Layout l = parseLayout(r.out);
+    ASSERT_EQ(l.sections.size(), 7u) << r.out;
+    if (first.empty()) {
+      first = l.sections;
+      continue;
+    }
+    // Measured from the integrator's header: a --set of another integrator type leaves unused
+    // properties, whose warnings line in the Scene panel above moves everything alike.
+    for (const char* below : {"Sampler", "Camera", "Display", "Stats", "Convergence"})
+      EXPECT_EQ(l.sections.at(below) - l.sections.at("Integrator"), first.at(below) - first.at("Integrator"))
+          << below << " moved with " << sets;
+  }
+}
+
+// A small window keeps most of its width for the image, and no panel text is cut off at the
+// column's edge (it wraps), at every size the docs show.
+TEST(ViewerOffscreen, PanelsShrinkWithTheWindowAndNothingIsCutOff) {
+  for (const char* window : {"640x480", "1280x800", "1920x1080"}) {
+    RunResult r = run(std::string(PENUMBRA_OFFSCREEN_BINARY) + " view " + defaultSceneFile() + " " + kSets +
+                      " --frames 3 --no-wait --window " + window + " --print-layout --screenshot " +
+                      tempDir() + "/fit.png");
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    const Layout l = parseLayout(r.out);
+    const int width = std::atoi(window);
+    EXPECT_LE(l.sidebar, width * 2 / 5) << window << ": the panels take most of the window";
+    EXPECT_GE(l.x, float(l.sidebar)) << window;
+    EXPECT_LE(l.panelOverflow, 0.5f) << window << ": an item passes the column's edge (cut off)";
+  }
+}
+
+// The compare divider is a light line between dark outlines: visible over a white floor.
+TEST(ViewerOffscreen, CompareDividerHasAContrastingOutline) {
+  const std::string shot = tempDir() + "/divider.png";
+  RunResult r =
+      run(std::string(PENUMBRA_OFFSCREEN_BINARY) + " view " + defaultSceneFile() + " " + kSets +
+          " --compare area --frames 3 --no-wait --window 720x560 --print-layout --screenshot " + shot);
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  const Layout l = parseLayout(r.out);
+  const Image ui = readPng(shot);
+  // The divider sits at half the image (the default); find its light core on the middle row.
+  const int y = int(l.y + l.h * l.zoom * 0.5f);
+  const int mid = int(l.x + l.w * l.zoom * 0.5f);
+  int core = -1;
+  for (int x = mid - 3; x <= mid + 3 && core < 0; ++x)
+    if (byteAt(ui, x, y, 0) >= 240 && byteAt(ui, x + 1, y, 0) >= 240 && byteAt(ui, x, y, 1) >= 240) core = x;
+  ASSERT_GE(core, 0) << "no divider core near x = " << mid;
+  // Below the labels above each side (they are drawn over the top of the image).
+  for (int row = int(l.y) + 48; row < int(l.y + l.h * l.zoom) - 1; ++row) {
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_LE(byteAt(ui, core - 1, row, c), 20) << "left outline, row " << row;
+      EXPECT_LE(byteAt(ui, core + 2, row, c), 20) << "right outline, row " << row;
+      EXPECT_GE(byteAt(ui, core, row, c), 235) << "core, row " << row;
+    }
+    if (HasFailure()) break;
+  }
+}
+
+// A --set value the scene builder refuses is blamed on the --set (exit code 2), not on a line of
+// the file; malformed XML is described in words.
+TEST(ViewerOffscreen, InvalidSetAndMalformedXmlAreReportedInWords) {
+  RunResult r = run(std::string(PENUMBRA_OFFSCREEN_BINARY) + " view " + defaultSceneFile() +
+                    " --set sampler.sampleCount=0 --frames 1");
+  EXPECT_EQ(r.exitCode, 2) << r.out;
+  EXPECT_NE(r.out.find("--set sampler.sampleCount=0: sampleCount must be an integer in [1, 16777216], got 0"),
+            std::string::npos)
+      << r.out;
+  EXPECT_EQ(r.out.find(".xml:"), std::string::npos) << "blamed on a line of the file: " << r.out;
+  const std::string bad = tempDir() + "/malformed.xml";
+  std::ofstream(bad) << "<scene>\n  <integrator type=\"direct\">\n</scene>\n";
+  r = run(std::string(PENUMBRA_OFFSCREEN_BINARY) + " view " + bad + " --frames 1");
+  EXPECT_EQ(r.exitCode, 2) << r.out;
+  EXPECT_NE(r.out.find("malformed.xml:2: malformed XML: <integrator> starting on this line is not closed"),
+            std::string::npos)
+      << r.out;
+  EXPECT_EQ(r.out.find("XML_ERROR"), std::string::npos) << r.out;
 }

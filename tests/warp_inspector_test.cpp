@@ -130,6 +130,27 @@ TEST(WarpInspectorCli, GuiOptionsNeedGui) {
   EXPECT_EQ(r.exitCode, 2) << r.out;
 }
 
+// The inspector's inputs are checked as the CLI's (core/sampling/warp_params.h): the same messages
+// from `penumbra warp --gui` as from the window's controls (app/ui/warp_inspector_model_test.cpp).
+TEST(WarpInspectorCli, InvalidInspectorValuesAreRefusedWithTheSharedMessages) {
+  RunResult r = run(std::string(PENUMBRA_BINARY) +
+                    " warp cosine-hemisphere --gui --offscreen --point-set sampler --pixel=-5,0");
+  EXPECT_EQ(r.exitCode, 2) << r.out;
+  EXPECT_NE(r.out.find("--pixel -5,0: expected a pixel X,Y with each coordinate 0 to 16383"),
+            std::string::npos)
+      << r.out;
+  r = run(std::string(PENUMBRA_BINARY) + " warp cosine-hemisphere --gui --offscreen --points 25");
+  EXPECT_EQ(r.exitCode, 2) << r.out;
+  EXPECT_NE(r.out.find("--points 25: expected the number of points as a power of two, 5 to 20"),
+            std::string::npos)
+      << r.out;
+  r = run(std::string(PENUMBRA_BINARY) + " warp beckmann --gui --offscreen --param 0");
+  EXPECT_EQ(r.exitCode, 2) << r.out;
+  EXPECT_NE(r.out.find("beckmann: --param is the roughness alpha and must be in [1e-06, 1000], got 0"),
+            std::string::npos)
+      << r.out;
+}
+
 TEST(WarpInspectorWindow, RealWindowUnderXvfb) {
   if (std::system("command -v xvfb-run > /dev/null 2>&1") != 0)
     GTEST_SKIP() << "xvfb-run is not installed (apt-get install xvfb xauth): skipping the real-window test";

@@ -227,9 +227,10 @@ void addWarpCommand(CLI::App& app, int& exitCode, WarpGuiRunner gui) {
   // The warp inspector (a window of the viewer; offscreen with --offscreen or without a display).
   auto* guiFlag = cmd->add_flag(
       "--gui", args->gui, "Open the warp inspector: points, histogram vs density and the chi-square verdict");
-  cmd->add_option("--points", args->points, "--gui: number of points as a power of two, 2^K")
-      ->capture_default_str()
-      ->check(CLI::Range(5, 20));
+  cmd->add_option("--points", args->points,
+                  "--gui: number of points as a power of two, 2^K (K " + std::to_string(kMinLog2Points) +
+                      " to " + std::to_string(kMaxLog2Points) + ")")
+      ->capture_default_str();
   cmd->add_option("--point-set", args->pointSet,
                   "--gui: independent, grid, stratified or sampler (the first 2^K samples of --sampler's "
                   "--request at --pixel)")
@@ -239,8 +240,7 @@ void addWarpCommand(CLI::App& app, int& exitCode, WarpGuiRunner gui) {
   cmd->add_option("--request", args->view.request,
                   "--gui --point-set sampler: which 2-D request (0: the pixel filter's, 1: the first "
                   "light or direction pair)")
-      ->capture_default_str()
-      ->check(CLI::Range(0, 64));
+      ->capture_default_str();
   cmd->add_option("--pixel", args->pixel, "--gui --point-set sampler: the pixel, X,Y")->capture_default_str();
   cmd->add_flag("--grid-lines", args->gridLines, "--gui: draw the warped grid lines");
   cmd->add_flag("--offscreen", args->view.offscreen, "--gui: render offscreen (OSMesa) instead of a window");
@@ -259,14 +259,19 @@ void addWarpCommand(CLI::App& app, int& exitCode, WarpGuiRunner gui) {
       WarpGuiArgs g = a.view;
       g.type = a.type.empty() ? WarpType::CosineHemisphere : parseWarpTypeOrThrow(a.type);
       g.param = checkedWarpParam(g.type, cmd->count("--param") > 0, a.param, "--param");
-      g.log2Points = a.points;
+      g.log2Points = checkedLog2Points(a.points, "--points");
+      g.request = checkedSamplerRequest(a.view.request, "--request");
       g.pointSet = a.pointSet;
       g.mismatch = a.mismatch;
       g.gridLines = a.gridLines;
       g.seed = a.seed;
       g.res = cmd->count("--res") ? a.res : 0;
-      if (std::sscanf(a.pixel.c_str(), "%d,%d", &g.pixelX, &g.pixelY) != 2)
+      long long x = 0, y = 0;
+      char rest = 0;
+      if (std::sscanf(a.pixel.c_str(), "%lld,%lld%c", &x, &y, &rest) != 2)
         throw Error("--pixel " + a.pixel + ": expected X,Y, e.g. 3,5");
+      const IVec2 pixel = checkedSamplerPixel(x, y, "--pixel");
+      g.pixelX = pixel.x, g.pixelY = pixel.y;
       exitCode = gui(g);
       return;
     }

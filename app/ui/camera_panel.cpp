@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "app/ui/number_input.h"
 #include "app/ui/panel_text.h"
 #include "app/ui/panels.h"
 
@@ -21,7 +22,7 @@ glm::vec3 forDisplay(glm::vec3 p, float scale) {
 void drawCameraPanel(ViewerController& c, PanelState&) {
   if (!ImGui::CollapsingHeader("Camera", ImGuiTreeNodeFlags_DefaultOpen)) return;
   float fov = c.settings().camera.fovDegrees;
-  if (ImGui::SliderFloat("fov", &fov, 5.f, 120.f, "%.1f deg")) c.setFov(fov);
+  if (numberSlider("fov", fields::kFov, fov, 5.f, 120.f, "%.1f deg")) c.setFov(fov);
   const glm::mat4& m = c.settings().camera.toWorld;
   const OrbitCamera& o = c.orbitCamera();
   const float scale = glm::length(glm::vec3(m[3])) + o.distance;
@@ -33,7 +34,17 @@ void drawCameraPanel(ViewerController& c, PanelState&) {
   const float elevationDeg = glm::degrees(std::asin(std::clamp(glm::dot(dir, o.worldUp), -1.f, 1.f)));
   ImGui::Text("elevation %.1f deg%s", elevationDeg, o.minElevationSin >= 0.f ? " (orbit stays above 0)" : "");
   if (ImGui::Button("Reset to the scene's camera")) c.resetCamera();
-  hintText("left drag: orbit, right/middle drag: pan, wheel: dolly");
+  // The drag help, or why the last move stopped, in a block as tall as the taller of the two.
+  const char* help = "left drag: orbit, right/middle drag: pan, wheel: dolly";
+  const std::string& note = c.cameraLimitNote();
+  const float top = ImGui::GetCursorPosY();
+  if (note.empty())
+    hintText("%s", help);
+  else
+    ImGui::TextColored(ImVec4(1.f, 0.8f, 0.3f, 1.f), "%s", note.c_str());
+  float height = textBlockHeight(help);
+  for (const char* limit : kCameraLimitNotes) height = std::max(height, textBlockHeight(limit));
+  padBlockTo(top, height);
 }
 
 }  // namespace penumbra::ui

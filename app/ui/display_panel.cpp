@@ -5,6 +5,7 @@
 #include <imgui.h>
 
 #include "app/ui/light_share_map.h"
+#include "app/ui/number_input.h"
 #include "app/ui/panel_text.h"
 #include "app/ui/panels.h"
 #include "app/ui/readouts.h"
@@ -73,7 +74,7 @@ void drawDisplayPanel(ViewerController& c, PanelState& st) {
     ImGui::PopTextWrapPos();
     drawLightShareLegend();
   }
-  ImGui::SliderFloat("exposure", &d.exposure, -10.f, 10.f, "%+.2f stops");
+  numberSlider("exposure", fields::kExposure, d.exposure, -10.f, 10.f, "%+.2f stops");
   int tm = int(d.tonemap);
   const char* tms[] = {"sRGB", "gamma 2.2"};
   if (ImGui::Combo("tonemap", &tm, tms, 2)) d.tonemap = Tonemap(tm);
@@ -85,7 +86,7 @@ void drawDisplayPanel(ViewerController& c, PanelState& st) {
   if (!share && d.falseColour == FalseColour::RelativeError) hintText("log scale: blue 0.1%% .. red 100%%");
   if (!share && d.falseColour == FalseColour::BadPixels) hintText("magenta: NaN/Inf, cyan: negative");
   float zoomLog = std::log2(d.zoom);
-  if (ImGui::SliderFloat("zoom", &zoomLog, -4.f, 4.f, "")) {
+  if (numberSlider("zoom", fields::kZoomStops, zoomLog, -4.f, 4.f, "")) {
     d.zoom = std::exp2(zoomLog);
     d.fit = false;
   }
@@ -149,12 +150,12 @@ void drawDisplayPanel(ViewerController& c, PanelState& st) {
   ImGui::SameLine();
   if (ImGui::Button("Save as")) {
     try {
-      st.status = c.saveSceneAs(st.sceneSavePath);
+      c.setOutputStatus(c.saveSceneAs(st.sceneSavePath));
     } catch (const std::exception& e) {
-      st.status = e.what();
+      c.setOutputStatus(e.what());
     }
   }
-  if (!st.status.empty()) ImGui::TextWrapped("%s", st.status.c_str());
+  if (!c.outputStatus().empty()) ImGui::TextWrapped("%s", c.outputStatus().c_str());
 }
 
 }  // namespace penumbra::ui

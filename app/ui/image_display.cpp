@@ -10,6 +10,7 @@
 #include <GL/gl.h>
 #include <GL/glext.h>
 
+#include "app/ui/divider_columns.h"
 #include "app/ui/gl_program.h"
 #include "core/math/error.h"
 #include "penumbra_shaders.h"  // generated from shaders/
@@ -17,8 +18,6 @@
 namespace penumbra::ui {
 
 namespace {
-
-constexpr float kDivider[3] = {0.95f, 0.95f, 0.95f};
 
 GLuint makeTexture() {
   GLuint tex = 0;
@@ -304,18 +303,17 @@ void ImageDisplay::draw(const ImageLayout& l, int fbWidth, int fbHeight, int are
     blit(a, l, v, fbHeight, vx0, vx1, vy0, vy1);
     return;
   }
-  // Compare: screen column x (pixel centre x + 0.5) is the divider line when |x + 0.5 - dividerX| < 1,
-  // the right side's image when x + 0.5 >= dividerX, the left side's otherwise.
-  int lineStart = int(std::floor(dividerX - 1.5f)) + 1, lineEnd = int(std::ceil(dividerX + 0.5f));
-  lineStart = std::clamp(lineStart, vx0, vx1);
-  lineEnd = std::clamp(lineEnd, lineStart, vx1);
-  blit(a, l, v, fbHeight, vx0, lineStart, vy0, vy1);
-  clearRect(fbHeight, lineStart, vy0, lineEnd, vy1, kDivider);
+  // Compare: the left side's image, the divider (a light core in dark outlines), the right side's.
+  const DividerColumns d = dividerColumns(dividerX, vx0, vx1);
+  blit(a, l, v, fbHeight, vx0, d.leftImageEnd, vy0, vy1);
+  clearRect(fbHeight, d.leftImageEnd, vy0, d.coreStart, vy1, kDividerOutlineRgb);
+  clearRect(fbHeight, d.coreStart, vy0, d.coreEnd, vy1, kDividerCoreRgb);
+  clearRect(fbHeight, d.coreEnd, vy0, d.rightImageStart, vy1, kDividerOutlineRgb);
   Side& b = sides_[1];
   if (b.rgba.width == a.rgba.width && b.rgba.height == a.rgba.height)
-    blit(b, l, v, fbHeight, lineEnd, vx1, vy0, vy1);
+    blit(b, l, v, fbHeight, d.rightImageStart, vx1, vy0, vy1);
   else  // the right side has no image yet
-    clearRect(fbHeight, lineEnd, vy0, vx1, vy1, kBackgroundRgb);
+    clearRect(fbHeight, d.rightImageStart, vy0, vx1, vy1, kBackgroundRgb);
 }
 
 void ImageDisplay::fillRect(int fbHeight, int x0, int y0, int x1, int y1, const float* rgb) {

@@ -3,34 +3,57 @@
 
 #include <imgui.h>
 
+#include "app/ui/number_input.h"
 #include "app/ui/panel_text.h"
 #include "app/ui/panels.h"
 #include "core/render/light_selection_rows.h"
 
 namespace penumbra::ui {
 
+namespace {
+
+// The line under the light selection for `s`: why it renders another strategy, or why it cannot
+// light this scene ("" when neither).
+std::string strategyNote(const ViewerController& c, Strategy s) {
+  const Strategy rendered = applicableStrategy(s, c.sceneHasAreaLights());
+  if (rendered != s)
+    return std::string(strategyRow(s).label) + " " + sceneNeedText(strategyRow(s).needs) + ": " +
+           std::string(strategyRow(rendered).label);
+  const std::string reason = c.strategyUnavailableReason(s);
+  return reason.empty() ? "" : std::string(strategyRow(s).label) + " " + reason;
+}
+
+}  // namespace
+
 void drawIntegratorPanel(ViewerController& c, PanelState&) {
   if (!ImGui::CollapsingHeader("Integrator", ImGuiTreeNodeFlags_DefaultOpen)) return;
-  const bool areaLights = c.sceneHasAreaLights();
 
-  // One entry per measure (its all-lights row), in table order; those the scene cannot use are
-  // disabled. The light selection is the control below, so picking a measure keeps it.
+  // One entry per measure (its all-lights row), in table order; those that cannot light the scene
+  // are greyed out. The light selection is the control below, so picking a measure keeps it.
   const Strategy live = c.settings().integrator.strategy;
   if (ImGui::BeginCombo("strategy", std::string(strategyRow(allLightsRow(live)).label).c_str())) {
     for (Strategy choice : c.strategyChoices()) {
       const StrategyRow& row = strategyRow(choice);
-      bool applies = strategyApplies(choice, areaLights);
-      if (ImGui::Selectable(std::string(row.label).c_str(), choice == allLightsRow(live),
-                            applies ? 0 : ImGuiSelectableFlags_Disabled))
+      // Greyed out, with the reason, where the strategy cannot light this scene.
+      const std::string reason = c.strategyUnavailableReason(choice);
+      std::string label(row.label);
+      if (!reason.empty()) label += "  (cannot light this scene)";
+      if (ImGui::Selectable(label.c_str(), choice == allLightsRow(live),
+                            reason.empty() ? 0 : ImGuiSelectableFlags_Disabled))
         c.setStrategy(choice);
       if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
         ImGui::SetTooltip("%s%s", std::string(row.description).c_str(),
-                          applies ? "" : (std::string(" (") + sceneNeedText(row.needs) + ")").c_str());
+                          reason.empty() ? "" : ("\n" + reason).c_str());
     }
     ImGui::EndCombo();
   }
-  // Which lights each shading sample samples: a row of the table each, switched live. Two rows
-  // whatever the strategy, so the sections below never move.
+
+  // Every block below keeps one height whatever the strategy, so the sections below never move
+  // when it changes.
+  // Which lights each shading sample samples: a row of the table each, switched live; the line
+  // under it says the scene's default (a text that depends on the scene only).
+  const std::string defaultText = c.lightSelectionDefaultText();
+  float top = ImGui::GetCursorPosY();
   if (c.takesLightSelection()) {
     const Strategy now = c.settings().integrator.strategy;
     const LightSelection selected = lightSelectionOf(now);
@@ -44,65 +67,61 @@ void drawIntegratorPanel(ViewerController& c, PanelState&) {
       }
       ImGui::EndCombo();
     }
-    hintText("%s", c.lightSelectionDefaultText().c_str());
+    hintText("%s", defaultText.c_str());
   } else {
+    ImGui::AlignTextToFramePadding();
     ImGui::TextDisabled("(no light selection)");
-    ImGui::TextUnformatted("");
   }
+  padBlockTo(top, frameRowHeight() + textBlockHeight(defaultText.c_str()));
 
   RenderSettings s = c.settings();
   IntegratorDesc& d = s.integrator;
-  // Fixed height: the fallback line and the strategy's settings keep their rows whatever the
-  // strategy, so the sections below never move when it changes.
-  Strategy rendered = applicableStrategy(d.strategy, areaLights);
-  if (rendered == d.strategy) ImGui::TextUnformatted("");
-  if (rendered != d.strategy) {
-    hintText("%s %s: %s", std::string(strategyRow(d.strategy).label).c_str(),
-             sceneNeedText(strategyRow(d.strategy).needs), std::string(strategyRow(rendered).label).c_str());
-    d.strategy = rendered;
-  }
+  // The note on the strategy (what renders instead, or why it cannot light the scene): as tall as
+  // the tallest note any strategy has on this scene.
+  float noteHeight = textBlockHeight(" ");
+  for (const StrategyRow& row : strategyTable())
+    noteHeight = std::max(noteHeight, textBlockHeight(strategyNote(c, row.strategy).c_str()));
+  top = ImGui::GetCursorPosY();
+  const std::string note = strategyNote(c, d.strategy);
+  if (!note.empty()) hintText("%s", note.c_str());
+  padBlockTo(top, noteHeight);
+  d.strategy = applicableStrategy(d.strategy, c.sceneHasAreaLights());
+
+  // The strategy's settings, one row each: the mis rows' counts and heuristic, or the shading
+  // samples; as many rows as the strategy with the most.
   const StrategyRow& row = strategyRow(d.strategy);
   const Spellings& samples = row.samplesProperty;
-  // The same number of rows for every strategy: the mis rows' counts and heuristic instead of the
-  // shading samples; blank rows below the others.
-  int settingRows = 0;
-  const bool hasCounts = !row.counts[0].name.empty();
-  if (hasCounts) {
+  top = ImGui::GetCursorPosY();
+  if (!row.counts[0].name.empty()) {
     for (const CountProperty& count : row.counts) {
       if (count.name.empty()) continue;
-      int n = d.*count.field;
-      if (ImGui::InputInt(std::string(count.name.canonical()).c_str(), &n, 1, 8,
-                          ImGuiInputTextFlags_EnterReturnsTrue) ||
-          ImGui::IsItemDeactivatedAfterEdit())
-        d.*count.field = std::clamp(n, 1, 1 << 16);
-      ++settingRows;
+      const std::string name(count.name.canonical());
+      if (auto n = numberInput(name.c_str(), shadingSamplesField(name), d.*count.field, 1, 8))
+        d.*count.field = int(*n);
     }
     for (const StrategyProperty& p : row.select)
       if (p.name.canonical() == "heuristic") {
+        ImGui::AlignTextToFramePadding();
         ImGui::Text("heuristic: %s", std::string(p.value.canonical()).c_str());
-        ++settingRows;
       }
   } else if (!samples.empty()) {
-    int n = d.samples;
-    if (ImGui::InputInt(std::string(samples.canonical()).c_str(), &n, 1, 8,
-                        ImGuiInputTextFlags_EnterReturnsTrue) ||
-        ImGui::IsItemDeactivatedAfterEdit())
-      d.samples = std::clamp(n, 1, 1 << 16);
-    ++settingRows;
+    const std::string name(samples.canonical());
+    if (auto n = numberInput(name.c_str(), shadingSamplesField(name), d.samples, 1, 8)) d.samples = int(*n);
   } else {
+    ImGui::AlignTextToFramePadding();
     ImGui::TextDisabled("(no shading samples)");
-    ++settingRows;
   }
-  for (; settingRows < int(kMaxCounts) + 1; ++settingRows) ImGui::TextUnformatted("");
+  padBlockTo(top, float(kMaxCounts + 1) * frameRowHeight());
   c.setSettings(s);  // restarts only if something changed
 
   // Compare mode: a second strategy right of a draggable divider, equal shares of time.
   ImGui::Separator();
   ImGui::TextUnformatted("Compare");
+  top = ImGui::GetCursorPosY();
   if (c.compareChoices().empty()) {  // e.g. simple, normals: nothing to compare with
     hintText("%s has no sampling strategies to compare", strategyLabel(c.settings().integrator).c_str());
     if (c.compareEnabled()) c.setCompare(false);
-    ImGui::TextUnformatted("");  // the rows the checkbox and combo take otherwise
+    padBlockTo(top, 2.f * frameRowHeight());  // the rows the checkbox and combo take otherwise
     return;
   }
   bool on = c.compareEnabled();
@@ -111,17 +130,18 @@ void drawIntegratorPanel(ViewerController& c, PanelState&) {
   // The controller's choices: the left side's integrator type, with shading samples, applicable to
   // the scene; the combo shows exactly what the right side renders.
   if (ImGui::BeginCombo("right side", strategyLabel(c.renderedCompareIntegrator()).c_str())) {
-    for (Strategy s : c.compareChoices()) {
-      const StrategyRow& row = strategyRow(s);
-      if (ImGui::Selectable(std::string(row.label).c_str(), row.strategy == r.strategy))
-        c.setCompareIntegrator(IntegratorDesc{row.strategy, r.samples});
-      if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", std::string(row.description).c_str());
+    for (Strategy choice : c.compareChoices()) {
+      const StrategyRow& choiceRow = strategyRow(choice);
+      if (ImGui::Selectable(std::string(choiceRow.label).c_str(), choiceRow.strategy == r.strategy))
+        c.setCompareIntegrator(IntegratorDesc{choiceRow.strategy, r.samples});
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", std::string(choiceRow.description).c_str());
     }
     ImGui::EndCombo();
   }
   if (c.compareEnabled()) {
     float pct = c.display.compareDivider * 100.f;
-    if (ImGui::SliderFloat("divider", &pct, 0.f, 100.f, "%.0f %%")) c.display.compareDivider = pct / 100.f;
+    if (numberSlider("divider", fields::kDividerPercent, pct, 0.f, 100.f, "%.0f %%"))
+      c.display.compareDivider = pct / 100.f;
     hintText("%d thread(s) per side, equal time; drag the line in the image", c.engineThreads());
   }
 }

@@ -17,4 +17,17 @@ void hintText(const char* fmt, ...) {
   ImGui::PopStyleColor();
 }
 
+float textBlockHeight(const char* text) {
+  return ImGui::CalcTextSize(text, nullptr, false, ImGui::GetContentRegionAvail().x).y +
+         ImGui::GetStyle().ItemSpacing.y;
+}
+
+float frameRowHeight() {
+  return ImGui::GetFrameHeightWithSpacing();
+}
+
+void padBlockTo(float top, float height) {
+  if (ImGui::GetCursorPosY() < top + height) ImGui::SetCursorPosY(top + height);
+}
+
 }  // namespace penumbra::ui

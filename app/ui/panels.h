@@ -14,14 +14,12 @@ struct PanelState {
   char openPath[1024] = "";
   char savePath[1024] = "penumbra.png";
   char sceneSavePath[1024] = "scene-live.xml";
-  std::string status;  // last save / load message
   bool showHelp = false;
   bool hoverValid = false;  // pixel inspector: the cursor is over the image
   int hoverX = 0, hoverY = 0;
   bool requestSavePng = false;
-  double frameMs = 0;
-  float layoutZoom = 1.f;  // the zoom the image was last drawn at (fit computes it)  // time the last UI
-                           // frame took to draw and present
+  double frameMs = 0;      // time the last UI frame took to draw and present
+  float layoutZoom = 1.f;  // the zoom the image was last drawn at (fit computes it)
   // Convergence panel: live RMSE against time for each accumulation since the scene or camera changed.
   ConvergenceTracker convergence;
   char referencePath[1024] = "";

@@ -1,5 +1,6 @@
 #include "app/ui/readouts.h"
 
+#include <algorithm>
 #include <cstdio>
 
 namespace penumbra::ui {
@@ -22,6 +23,34 @@ std::string zoomLabel(const DisplaySettings& d, float layoutZoom) {
   else
     std::snprintf(buf, sizeof buf, "%.3gx", d.zoom);
   return buf;
+}
+
+}  // namespace penumbra::ui
+
+namespace penumbra::ui {
+
+double passElapsed(const RenderProgress& p) {
+  return std::max(0.0, p.seconds - p.passSeconds);
+}
+
+std::string passProgressText(const RenderProgress& p) {
+  const double elapsed = passElapsed(p);
+  if (p.finished || p.rows == 0 || elapsed < kSlowPassSeconds) return "";
+  char buf[160];
+  int n = std::snprintf(buf, sizeof buf, "pass %u: %u of %u rows (%.0f %%)", p.spp + 1, p.passRows, p.rows,
+                        100.0 * p.passRows / p.rows);
+  if (p.passRows > 0 && p.passRows < p.rows)
+    std::snprintf(buf + n, sizeof buf - n, ", ~%.1f s left", elapsed * (p.rows - p.passRows) / p.passRows);
+  return buf;
+}
+
+double samplesPerSecond(const RenderProgress& p, int width) {
+  if (!(p.seconds > 0)) return 0.0;
+  return (double(p.samples) + double(p.passRows) * std::max(width, 0)) / p.seconds;
+}
+
+bool imageIsStale(uint64_t snapshotRestart, uint64_t restartCount, double secondsSinceRestart) {
+  return snapshotRestart != restartCount && secondsSinceRestart >= kStaleImageSeconds;
 }
 
 }  // namespace penumbra::ui

@@ -3,6 +3,7 @@
 
 #include <imgui.h>
 
+#include "app/ui/number_input.h"
 #include "app/ui/panel_text.h"
 #include "app/ui/panels.h"
 
@@ -20,10 +21,9 @@ void drawSamplerPanel(ViewerController& c, PanelState&) {
     }
     ImGui::EndCombo();
   }
-  if (!c.samplerNote().empty()) ImGui::TextWrapped("%s", c.samplerNote().c_str());
-  int count = int(s.sampleCount);
-  if (ImGui::InputInt("sampleCount", &count, 1, 16, ImGuiInputTextFlags_EnterReturnsTrue))
-    s.sampleCount = uint32_t(std::clamp(count, 1, 1 << 24));
+  if (!c.samplerNote().empty()) hintText("%s", c.samplerNote().c_str());
+  if (auto count = numberInput("sampleCount", fields::kSampleCount, s.sampleCount, 1, 16))
+    s.sampleCount = uint32_t(*count);
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip(
         samplerRow(s.samplerKind).usesSampleCount
@@ -31,36 +31,25 @@ void drawSamplerPanel(ViewerController& c, PanelState&) {
               "While the target spp equals it, the target follows it."
             : "The scene's <sampler sampleCount>: the default target spp (this sampler ignores it).\n"
               "While the target spp equals it, the target follows it.");
-  int seed = int(s.seed);
-  if (ImGui::InputInt("seed", &seed, 1, 10, ImGuiInputTextFlags_EnterReturnsTrue))
-    s.seed = uint64_t(std::max(seed, 0));
+  if (auto seed = numberInput("seed", fields::kSeed, double(s.seed), 1, 10)) s.seed = uint64_t(*seed);
   c.setSettings(s);
 
-  RenderLimits l = c.limits();
-  int mode = l.seconds > 0 ? 1 : 0;
-  ImGui::RadioButton("target spp", &mode, 0);
+  // What stops the render; each rule keeps its value while the other rules.
+  const StopRule rule = c.stopRule();
+  if (ImGui::RadioButton("target spp##stop-rule", rule == StopRule::TargetSpp))
+    c.setStopRule(StopRule::TargetSpp);
   ImGui::SameLine();
-  ImGui::RadioButton("time budget", &mode, 1);
-  if (mode == 0) {
-    int spp = int(l.targetSpp);
-    // "##value": the radio button above is also labelled "target spp"; with one ID ImGui takes the two
-    // for one widget, and a click in this box trips its assert.
-    if (ImGui::InputInt("target spp##value", &spp, 16, 256, ImGuiInputTextFlags_EnterReturnsTrue) ||
-        l.seconds > 0) {
-      l.targetSpp = uint32_t(std::max(spp, 0));
-      l.seconds = 0;
-    }
+  if (ImGui::RadioButton("time budget##stop-rule", rule == StopRule::TimeBudget))
+    c.setStopRule(StopRule::TimeBudget);
+  if (c.stopRule() == StopRule::TargetSpp) {
+    if (auto spp = numberInput("target spp", fields::kTargetSpp, c.limits().targetSpp, 16, 256))
+      c.setTargetSpp(uint32_t(*spp));
     if (ImGui::IsItemHovered())
       ImGui::SetTooltip("When the accumulation stops (0: never). This, not sampleCount, stops the render.");
   } else {
-    float sec = l.seconds > 0 ? float(l.seconds) : 10.f;
-    if (ImGui::InputFloat("seconds", &sec, 1.f, 10.f, "%.1f", ImGuiInputTextFlags_EnterReturnsTrue) ||
-        l.seconds <= 0) {
-      l.seconds = std::max(sec, 0.1f);
-      l.targetSpp = 0;
-    }
+    if (auto seconds = numberInput("seconds", fields::kSeconds, c.limits().seconds, 1, 10))
+      c.setTimeBudget(*seconds);
   }
-  c.setLimits(l);
   hintText("%s", c.stopText().c_str());
 
   if (ImGui::Button(c.paused() ? "Resume (space)" : "Pause (space)")) c.setPaused(!c.paused());

@@ -1,9 +1,11 @@
+#include <algorithm>
 #include <string>
 
 #include <imgui.h>
 
 #include "app/ui/panel_text.h"
 #include "app/ui/panels.h"
+#include "app/ui/readouts.h"
 
 namespace penumbra::ui {
 
@@ -22,10 +24,20 @@ void drawStatsPanel(ViewerController& c, PanelState& st) {
   if (c.paused())
     hintText("samples/s: none while paused");
   else
-    ImGui::Text("samples/s %.3g M", p.seconds > 0 ? double(p.samples) / p.seconds * 1e-6 : 0.0);
+    ImGui::Text("samples/s %.3g M", samplesPerSecond(p, c.settings().camera.width) * 1e-6);
+  // One line always: how far a slow pass got (a first pass of 65536 shading samples takes seconds).
+  const std::string pass = passProgressText(p);
+  hintText("%s", pass.empty() ? " " : pass.c_str());
   ImGui::Text("NaN/Inf/negative %llu", (unsigned long long)p.badSamples);
-  ImGui::Text("%s, %d threads, UI frame %.1f ms", strategyLabel(c.settings().integrator).c_str(),
-              c.engine().threadCount(), st.frameMs);
+  // The strategy on a line as tall as the longest label needs (it wraps in a narrow column), so the
+  // sections below stay put when it changes.
+  float labelHeight = 0.f;
+  for (const StrategyRow& row : strategyTable())
+    labelHeight = std::max(labelHeight, textBlockHeight(std::string(row.label).c_str()));
+  const float top = ImGui::GetCursorPosY();
+  ImGui::TextUnformatted(strategyLabel(c.settings().integrator).c_str());
+  padBlockTo(top, labelHeight);
+  ImGui::Text("%d threads, UI frame %.1f ms", c.engine().threadCount(), st.frameMs);
   if (ImGui::TreeNode("Live settings as scene XML")) {
     static std::string xml;
     xml = c.liveSceneXml();

@@ -13,12 +13,16 @@
 #include <GL/gl.h>
 #include <imgui.h>
 #include <imgui_impl_opengl3.h>
+#include <imgui_internal.h>  // the panel window's item extent (--print-layout)
 
 #include "app/platform/platform.h"
 #include "app/ui/frame_driver.h"
 #include "app/ui/image_display.h"
 #include "app/ui/key_bindings.h"
+#include "app/ui/number_input.h"
+#include "app/ui/panel_layout.h"
 #include "app/ui/panels.h"
+#include "app/ui/readouts.h"
 #include "app/ui/run_queue_wait.h"
 #include "app/ui/ui_clock.h"
 #include "app/ui/viewer_bench.h"
@@ -117,8 +121,13 @@ class ViewerApp : public BenchViewer, public DrivenViewer {
     int fbW = 0, fbH = 0;
     platform_.framebufferSize(fbW, fbH);
     if (c_.windowTitle() != title_) platform_.setTitle(title_ = c_.windowTitle());
-    if (sidebarWidth_ <= 0) sidebarWidth_ = defaultSidebarWidth(fbW);
-    sidebarWidth_ = std::clamp(sidebarWidth_, std::min(kMinSidebarWidth, fbW), maxSidebarWidth(fbW));
+    // The column follows the window's width until the user drags its edge.
+    if (!sidebarDragged_ || fbW != sidebarWindowWidth_) {
+      if (!sidebarDragged_) sidebarWidth_ = defaultSidebarWidth(fbW);
+      sidebarWindowWidth_ = fbW;
+      panelHeight_ = -1;  // SetNextWindowSize again
+    }
+    sidebarWidth_ = std::clamp(sidebarWidth_, minSidebarWidth(fbW), maxSidebarWidth(fbW));
     const int sidebar = sidebarWidth_;  // this frame's panel column (resizable: drag its edge)
     layout_ = layoutImage(c_.display, c_.settings().camera.width, c_.settings().camera.height, sidebar,
                           std::max(fbW - sidebar, 1), fbH);
@@ -127,7 +136,10 @@ class ViewerApp : public BenchViewer, public DrivenViewer {
     display_.dividerX = c_.compareEnabled() ? dividerScreenX() : 0.f;
     drawPanels(fbW, fbH);
     if (c_.compareEnabled()) drawCompareLabels();
-    if (c_.loading()) drawLoadingOverlay(fbW, fbH);
+    if (c_.loading())
+      drawLoadingOverlay(fbW, fbH);
+    else
+      drawPassOverlay(fbW, fbH);
     ImGui::Render();
     if (stageTimer_) stageTimer_->end(kUi);
     display_.prepare(c_.shownDisplay(), c_.snapshot(), c_.compareEnabled() ? &c_.compareSnapshot() : nullptr);
@@ -157,9 +169,9 @@ class ViewerApp : public BenchViewer, public DrivenViewer {
     if (st_.requestSavePng) {
       st_.requestSavePng = false;
       try {
-        st_.status = c_.saveImage(st_.savePath);
+        c_.setOutputStatus(c_.saveImage(st_.savePath));
       } catch (const std::exception& e) {
-        st_.status = e.what();
+        c_.setOutputStatus(e.what());
       }
     }
   }
@@ -282,6 +294,9 @@ class ViewerApp : public BenchViewer, public DrivenViewer {
   std::string lastFrameBreakdown() const override { return frameBreakdown_; }
 
   const ImageLayout& layout() const { return layout_; }
+  int sidebarWidth() const { return sidebarWidth_; }
+  const std::vector<std::pair<std::string, float>>& sectionTops() const { return sectionTops_; }
+  float panelOverflow() const { return panelOverflow_; }
   void openWarpInspector() { showWarpInspector_ = true; }
   const ImageDisplay& display() const { return display_; }
 
@@ -294,11 +309,44 @@ class ViewerApp : public BenchViewer, public DrivenViewer {
   void timeStages(FrameStageTimer* timer) override { stageTimer_ = timer; }
 
  private:
-  // The panel column's width when the user has not dragged it: room for the panels' text (400 px at
-  // 1280 wide, up to 560 px on wider windows).
-  static int defaultSidebarWidth(int fbW) { return std::clamp(fbW * 3 / 10, kSidebarWidth, 560); }
-  static constexpr int kMinSidebarWidth = 300;
-  static int maxSidebarWidth(int fbW) { return std::max(fbW - 160, kMinSidebarWidth); }
+  // The image area's rectangle on screen (the image clipped to the area right of the panels).
+  ImVec4 imageRect(int fbW, int fbH) const {
+    const float x0 = std::max(layout_.x, float(sidebarWidth_)), y0 = std::max(layout_.y, 0.f);
+    const float x1 = std::min(layout_.x + layout_.width * layout_.zoom, float(fbW));
+    const float y1 = std::min(layout_.y + layout_.height * layout_.zoom, float(fbH));
+    return ImVec4(x0, y0, x1, y1);
+  }
+
+  // A slow accumulation: an image left over from before the last change is dimmed under what is
+  // coming ("rendering pass 1: 120 of 480 rows ..."); a slow first pass over its preview is labelled.
+  void drawPassOverlay(int fbW, int fbH) {
+    if (c_.snapshot().mean.empty()) return;
+    const RenderProgress p = c_.progress();
+    const bool stale = imageIsStale(c_.snapshotRestart(), c_.restartCount(), c_.secondsSinceRestart());
+    const bool slowFirstPass = p.spp == 0 && !p.finished && passElapsed(p) >= kSlowPassSeconds;
+    if (!stale && !slowFirstPass) return;
+    const ImVec4 r = imageRect(fbW, fbH);
+    if (r.z <= r.x || r.w <= r.y) return;
+    ImDrawList* dl = ImGui::GetBackgroundDrawList();
+    std::string text;
+    if (stale) {
+      dl->AddRectFilled(ImVec2(r.x, r.y), ImVec2(r.z, r.w), IM_COL32(20, 20, 20, 170));
+      text = c_.paused() ? "paused: the image is from before your change (Space resumes)"
+                         : "rendering the new image; this one is from before your change";
+    } else {
+      text = "first pass";
+    }
+    const std::string pass = passProgressText(p);
+    if (!c_.paused() && !pass.empty()) text += "\n" + pass;
+    const float wrap = std::max(r.z - r.x - 24.f, 60.f);
+    const ImVec2 size = ImGui::CalcTextSize(text.c_str(), nullptr, false, wrap);
+    // Centred over a dimmed image; at the bottom of a preview, which is the new estimate.
+    const ImVec2 at(r.x + std::max(12.f, (r.z - r.x - size.x) * 0.5f),
+                    stale ? r.y + std::max(12.f, (r.w - r.y - size.y) * 0.5f) : r.w - size.y - 12.f);
+    dl->AddRectFilled(ImVec2(at.x - 6, at.y - 4), ImVec2(at.x + size.x + 6, at.y + size.y + 4),
+                      IM_COL32(0, 0, 0, 190));
+    dl->AddText(nullptr, 0.f, at, IM_COL32(240, 220, 150, 255), text.c_str(), nullptr, wrap);
+  }
 
   // While a scene loads: the old image dimmed, and what is loading.
   void drawLoadingOverlay(int fbW, int fbH) {
@@ -465,26 +513,45 @@ class ViewerApp : public BenchViewer, public DrivenViewer {
     // The column's height follows the window; its width is the user's (drag the right edge).
     if (fbH != panelHeight_) ImGui::SetNextWindowSize(ImVec2(float(sidebarWidth_), float(fbH)));
     panelHeight_ = fbH;
-    ImGui::SetNextWindowSizeConstraints(ImVec2(float(std::min(kMinSidebarWidth, fbW)), float(fbH)),
+    ImGui::SetNextWindowSizeConstraints(ImVec2(float(minSidebarWidth(fbW)), float(fbH)),
                                         ImVec2(float(maxSidebarWidth(fbW)), float(fbH)));
     ImGui::Begin("Penumbra", nullptr,
                  ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoSavedSettings |
                      ImGuiWindowFlags_NoBackground);  // frame() clears it
-    sidebarWidth_ = int(ImGui::GetWindowWidth());
-    // Labels get a fixed column; widgets take the rest, so wider panels give the values room.
-    ImGui::PushItemWidth(-150);
-    drawScenePanel(c_, st_);
-    drawIntegratorPanel(c_, st_);
-    drawSamplerPanel(c_, st_);
-    drawCameraPanel(c_, st_);
-    drawDisplayPanel(c_, st_);
-    drawStatsPanel(c_, st_);
-    drawConvergencePanel(c_, st_);
+    const int width = int(ImGui::GetWindowWidth());
+    if (width != sidebarWidth_ && ImGui::IsMouseDown(ImGuiMouseButton_Left)) sidebarDragged_ = true;
+    sidebarWidth_ = width;
+    // State about the previous scene ends with it: the fields' notes.
+    if (c_.sceneSerial() != seenScene_) {
+      seenScene_ = c_.sceneSerial();
+      forgetNumberNotes();
+    }
+    // Labels get a column; widgets take the rest, so wider panels give the values room. Every text
+    // wraps at the column's edge instead of being cut off.
+    ImGui::PushItemWidth(-labelColumnWidth(sidebarWidth_));
+    ImGui::PushTextWrapPos(0.f);
+    const std::pair<const char*, void (*)(ViewerController&, PanelState&)> sections[] = {
+        {"Scene", drawScenePanel},
+        {"Integrator", drawIntegratorPanel},
+        {"Sampler", drawSamplerPanel},
+        {"Camera", drawCameraPanel},
+        {"Display", drawDisplayPanel},
+        {"Stats", drawStatsPanel},
+        {"Convergence", drawConvergencePanel}};
+    sectionTops_.clear();
+    for (const auto& [name, draw] : sections) {
+      sectionTops_.emplace_back(name, ImGui::GetCursorScreenPos().y);
+      draw(c_, st_);
+    }
+    ImGui::PopTextWrapPos();
     ImGui::PopItemWidth();
     ImGui::Separator();
     if (ImGui::Button("Help (H)")) st_.showHelp = !st_.showHelp;
     ImGui::SameLine();
     if (ImGui::Button("Warp inspector")) showWarpInspector_ = !showWarpInspector_;
+    // How far the widest item reaches past the column's content region (text cut off at its edge).
+    panelOverflow_ = ImGui::GetCurrentWindow()->DC.CursorMaxPos.x -
+                     (ImGui::GetWindowPos().x + ImGui::GetWindowContentRegionMax().x);
     ImGui::End();
     drawHelpPanel(c_, st_);
     if (showWarpInspector_) {
@@ -514,7 +581,12 @@ class ViewerApp : public BenchViewer, public DrivenViewer {
   double updateMs_ = 0;
   std::string frameBreakdown_;
   bool fontNearest_ = false;
-  int sidebarWidth_ = 0;  // the panel column (0: not yet chosen)
+  int sidebarWidth_ = 0;         // the panel column (0: not yet chosen)
+  int sidebarWindowWidth_ = -1;  // the window width sidebarWidth_ was chosen for
+  bool sidebarDragged_ = false;  // the user chose the width: keep it
+  uint64_t seenScene_ = 0;
+  std::vector<std::pair<std::string, float>> sectionTops_;  // --print-layout: each section's top
+  float panelOverflow_ = 0;  // --print-layout: > 0 when an item of the panels passes the column's edge
   int panelHeight_ = -1;
   std::string title_;
   std::atomic<bool> stopWaker_{false};
@@ -578,6 +650,9 @@ int runViewer(LoadedScene scene, ViewerController::Overrides overrides, const Vi
       if (o.printLayout) {
         const ImageLayout& l = app.layout();
         std::printf("image-rect %g %g %d %d %g\n", l.x, l.y, l.width, l.height, l.zoom);
+        std::printf("sidebar %d\n", app.sidebarWidth());
+        std::printf("panel-overflow %g\n", app.panelOverflow());
+        for (const auto& [name, y] : app.sectionTops()) std::printf("section %s %g\n", name.c_str(), y);
         RenderProgress pr = controller.progress();
         std::printf("spp %u restarts %llu\n", pr.spp, (unsigned long long)controller.restartCount());
         std::printf("tone mapping: %s\n", tonemapperName(app.display().tonemapper()));

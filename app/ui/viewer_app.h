@@ -22,7 +22,7 @@ struct ViewerOptions {
   int threads = 0;
   std::string compare;             // non-empty: start in compare mode with this strategy on the right
   bool openWarpInspector = false;  // start with the warp inspector window open (screenshots)
-  bool printLayout = false;        // print "image-rect X Y W H ZOOM" (tests)
+  bool printLayout = false;        // print "image-rect X Y W H ZOOM", "sidebar W", "section NAME Y" (tests)
   bool lightShareView = false;     // start in the "MIS light share" view (a mis strategy, no compare)
   // After every snapshot poll (last = false) and once when the viewer closes (last = true).
   std::function<void(const ViewerController&, bool last)> onSnapshot;
@@ -30,7 +30,8 @@ struct ViewerOptions {
   std::shared_ptr<FrameDriver> driver;
 };
 
-// Width of the panel column on the left, in pixels.
+// Width of the panel column on the left in a 1280-pixel window, for sizing the default window (the
+// column follows the window's width: app/ui/panel_layout.h).
 constexpr int kSidebarWidth = 400;
 
 // Runs the viewer on the current platform build. Returns the process exit code.

@@ -53,6 +53,8 @@ void ViewerController::adoptScene(LoadedScene loaded) {
   settings_ = scene_.settings;
   limits_ = RenderLimits{};
   limits_.targetSpp = settings_.sampleCount;
+  chosenTargetSpp_ = settings_.sampleCount;
+  chosenSeconds_ = kDefaultSeconds;
   sceneError_.clear();
   sceneMtime_ = scene_.path.empty() ? fs::file_time_type{} : mtimeOf(scene_.path);
   initOrbitFromCamera();
@@ -60,6 +62,17 @@ void ViewerController::adoptScene(LoadedScene loaded) {
 }
 
 namespace {
+// Equal up to float rounding of the same construction (a lookat rebuilt from its parts).
+bool matricesClose(const glm::mat4& a, const glm::mat4& b) {
+  float scale = 1.f;
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 3; ++r) scale = std::max(scale, std::abs(b[c][r]));
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r)
+      if (!(std::abs(a[c][r] - b[c][r]) <= 1e-5f * scale)) return false;
+  return true;
+}
+
 // The scene camera's toWorld property, when it was written with <lookat>.
 const Property* cameraLookAt(const SceneNode& desc) {
   const SceneNode* cam = desc.child("camera");
@@ -75,6 +88,13 @@ void ViewerController::initOrbitFromCamera() {
   Vec3 origin(m[3]), forward = glm::normalize(Vec3(m[2]));
   orbit_.worldUp = glm::normalize(Vec3(m[1]));
   orbit_.moved = false;
+  orbit_.isLookAt = false;
+  cameraLimitNote_.clear();
+  // The horizon plane through the target: the camera stays above it, or at its own height if lower.
+  auto setHorizon = [&] {
+    orbit_.horizonPoint = orbit_.target;
+    orbit_.minHeight = std::min(0.f, glm::dot(origin - orbit_.target, orbit_.worldUp));
+  };
   // The scene names its target: orbit about exactly that point (the camera is the file's).
   const Property* look = cameraLookAt(scene_.desc);
   if (look && settings_.camera.toWorld == scene_.settings.camera.toWorld &&
@@ -84,6 +104,9 @@ void ViewerController::initOrbitFromCamera() {
     Vec3 up = glm::normalize(look->lookAtUp);
     if (std::abs(glm::dot(up, forward)) < 0.999f) orbit_.worldUp = up;
     orbit_.minElevationSin = std::min(0.f, glm::dot(glm::normalize(origin - orbit_.target), orbit_.worldUp));
+    // The camera is exactly the lookat about that target (no transform after the <lookat>).
+    orbit_.isLookAt = matricesClose(lookAt(origin, orbit_.target, orbit_.worldUp), m);
+    setHorizon();
     return;
   }
   float distance = 0.f;
@@ -99,6 +122,7 @@ void ViewerController::initOrbitFromCamera() {
   orbit_.distance = distance;
   orbit_.target = origin + forward * distance;
   orbit_.minElevationSin = std::min(0.f, glm::dot(-forward, orbit_.worldUp));
+  setHorizon();
 }
 
 int ViewerController::engineThreads() const {
@@ -155,6 +179,7 @@ void ViewerController::startLeft() {
   engine_.start(std::move(job), limits, engineThreads());
   if (wasPaused) engine_.setPaused(true);
   ++restarts_;
+  restartTime_ = std::chrono::steady_clock::now();
 }
 
 void ViewerController::startCompare() {
@@ -326,6 +351,8 @@ void ViewerController::setSettings(const RenderSettings& s) {
   if (s.sampleCount != settings_.sampleCount && limits_.seconds <= 0 &&
       limits_.targetSpp == settings_.sampleCount)
     limits_.targetSpp = s.sampleCount;
+  if (s.sampleCount != settings_.sampleCount && chosenTargetSpp_ == settings_.sampleCount)
+    chosenTargetSpp_ = s.sampleCount;
   const IntegratorDesc oldCompare = compareIntegrator_;
   settings_ = s;
   chooseCompareDefault();  // the left side's type may have changed
@@ -355,6 +382,21 @@ void ViewerController::setStrategy(Strategy choice) {
   setSettings(s);
 }
 
+std::string ViewerController::strategyUnavailableReason(Strategy choice) const {
+  const StrategyRow& row = strategyRow(choice);
+  if (!strategyApplies(choice, sceneHasAreaLights()))
+    return std::string(sceneNeedText(row.needs)) + " (renders " +
+           std::string(strategyRow(applicableStrategy(choice, false)).label) + " here)";
+  const bool deltaLights = scene_.scene && scene_.scene->hasDeltaLights();
+  // simple lights with point and directional lights only; the hemisphere strategies find area
+  // lights by chance and add the point and directional ones: without any, both render black.
+  if (choice == Strategy::Simple && !deltaLights) return "needs point or directional lights";
+  const bool hemisphere =
+      choice == Strategy::DirectUniformHemisphere || choice == Strategy::DirectCosineHemisphere;
+  if (hemisphere && !deltaLights && !sceneHasAreaLights()) return "needs lights: the scene has none";
+  return {};
+}
+
 bool ViewerController::takesLightSelection() const {
   return penumbra::takesLightSelection(settings_.integrator.strategy);
 }
@@ -382,10 +424,35 @@ std::string ViewerController::lightSelectionDefaultText() const {
          ")";
 }
 
+void ViewerController::setStopRule(StopRule rule) {
+  if (rule == StopRule::TimeBudget)
+    setTimeBudget(chosenSeconds_);
+  else
+    setTargetSpp(chosenTargetSpp_);
+}
+
+void ViewerController::setTargetSpp(uint32_t spp) {
+  RenderLimits l = limits_;
+  l.targetSpp = spp;
+  l.seconds = 0;
+  setLimits(l);
+}
+
+void ViewerController::setTimeBudget(double seconds) {
+  RenderLimits l = limits_;
+  l.targetSpp = 0;
+  l.seconds = seconds > 0 ? seconds : kDefaultSeconds;
+  setLimits(l);
+}
+
 void ViewerController::setLimits(const RenderLimits& l) {
+  // Each rule remembers its value for when the user switches back to it.
+  if (l.seconds > 0)
+    chosenSeconds_ = l.seconds;
+  else
+    chosenTargetSpp_ = l.targetSpp;
   if (l.targetSpp == limits_.targetSpp && l.seconds == limits_.seconds) return;
   limits_ = l;
-  useTimeBudget_ = l.seconds > 0;
   // A sampler shaped by the count (stratified, zsobol) needs a new pattern for a new target.
   if (samplerRow(settings_.samplerKind).usesSampleCount) return start();
   const RenderLimits run = effectiveLimits();
@@ -396,11 +463,41 @@ void ViewerController::setLimits(const RenderLimits& l) {
 // ---- camera ---------------------------------------------------------------------------------------
 
 void ViewerController::applyOrbit(const Vec3& origin) {
+  orbit_.isLookAt = true;  // an orbit makes the camera the lookat about the target
+  moveCamera(origin, orbit_.target);
+}
+
+// Sets the camera to `origin`, looking about `target` as before: a lookat camera is rebuilt from the
+// two, any other keeps its rotation.
+void ViewerController::moveCamera(const Vec3& origin, const Vec3& target) {
   orbit_.moved = true;
+  orbit_.target = target;
   RenderSettings s = settings_;
-  s.camera.toWorld = lookAt(origin, orbit_.target, orbit_.worldUp);
+  if (orbit_.isLookAt)
+    s.camera.toWorld = lookAt(origin, target, orbit_.worldUp);
+  else
+    s.camera.toWorld[3] = glm::vec4(origin, 1.f);
   setSettings(s);
 }
+
+float ViewerController::clearDistance(const Vec3& from, const Vec3& direction, float wanted) const {
+  if (!scene_.scene || !(wanted > 0.f)) return wanted;
+  const float nearGap = 2.f * settings_.camera.nearClip;
+  Ray ray{from, direction, 0.f, wanted * 1.05f + nearGap};
+  SurfaceHit hit;
+  if (!scene_.scene->geometry.intersect(ray, hit)) return wanted;
+  // Stop short of the surface by 2 % of the way to it (at least twice the near clip distance).
+  const float gap = std::max(nearGap, 0.02f * hit.t);
+  return std::clamp(hit.t - gap, 0.f, wanted);
+}
+
+namespace {
+float heightAbove(const OrbitCamera& o, const Vec3& p) {
+  return glm::dot(p - o.horizonPoint, o.worldUp);
+}
+constexpr const char* kBelowHorizon = kCameraLimitNotes[0];
+constexpr const char* kAtSurface = kCameraLimitNotes[1];
+}  // namespace
 
 void ViewerController::orbit(float dx, float dy) {
   const glm::mat4& m = settings_.camera.toWorld;
@@ -412,9 +509,17 @@ void ViewerController::orbit(float dx, float dy) {
   Vec3 left = glm::normalize(glm::cross(orbit_.worldUp, -offset));
   Vec3 pitched = Vec3(glm::rotate(glm::mat4(1.f), -dy * k, left) * glm::vec4(offset, 0.f));
   // Stop short of the poles, where the up vector would flip, and of the lower hemisphere (below the
-  // ground the image goes black): the pitch stops at the limit rather than past it.
+  // ground the image goes black): the pitch stops at the limit rather than past it. A target panned
+  // below the horizon plane cannot take the camera under it either.
   const float elevation = glm::dot(glm::normalize(pitched), orbit_.worldUp);
-  if (std::abs(elevation) < 0.995f && elevation >= orbit_.minElevationSin - 1e-6f) offset = pitched;
+  const bool aboveFloor = heightAbove(orbit_, orbit_.target + pitched) >= orbit_.minHeight - 1e-6f ||
+                          heightAbove(orbit_, orbit_.target + pitched) >= heightAbove(orbit_, origin);
+  if (std::abs(elevation) < 0.995f && elevation >= orbit_.minElevationSin - 1e-6f && aboveFloor) {
+    offset = pitched;
+    cameraLimitNote_.clear();
+  } else if (dy != 0.f && (elevation < orbit_.minElevationSin - 1e-6f || !aboveFloor)) {
+    cameraLimitNote_ = kBelowHorizon;
+  }
   applyOrbit(orbit_.target + offset);
 }
 
@@ -425,21 +530,48 @@ void ViewerController::pan(float dx, float dy) {
   float pixel = 2.f * orbit_.distance * std::tan(glm::radians(settings_.camera.fovDegrees) * 0.5f) /
                 float(std::max(settings_.camera.width, 1));
   Vec3 shift = (left * dx + up * dy) * pixel;
-  orbit_.target += shift;
-  orbit_.moved = true;
-  RenderSettings s = settings_;
-  s.camera.toWorld[3] = glm::vec4(origin + shift, 1.f);
-  setSettings(s);
+  cameraLimitNote_.clear();
+  // Never below the horizon plane: the part of the shift that would go there is dropped.
+  const float below = orbit_.minHeight - heightAbove(orbit_, origin + shift);
+  if (below > 0.f && glm::dot(shift, orbit_.worldUp) < 0.f) {
+    shift += std::min(below, -glm::dot(shift, orbit_.worldUp)) * orbit_.worldUp;
+    cameraLimitNote_ = kBelowHorizon;
+  }
+  const float length = glm::length(shift);
+  if (!(length > 0.f)) return;
+  const float clear = clearDistance(origin, shift / length, length);
+  if (clear < length) {
+    shift *= clear / length;
+    cameraLimitNote_ = kAtSurface;
+  }
+  moveCamera(origin + shift, orbit_.target + shift);
 }
 
 void ViewerController::dolly(float steps) {
   const glm::mat4& m = settings_.camera.toWorld;
-  Vec3 forward(m[2]);
-  orbit_.distance = std::clamp(orbit_.distance * std::pow(0.9f, steps), 1e-3f, 1e5f);
-  orbit_.moved = true;
-  RenderSettings s = settings_;
-  s.camera.toWorld[3] = glm::vec4(orbit_.target - glm::normalize(forward) * orbit_.distance, 1.f);
-  setSettings(s);
+  const Vec3 forward = glm::normalize(Vec3(m[2])), origin(m[3]);
+  const float wanted = std::clamp(orbit_.distance * std::pow(0.9f, steps), 1e-3f, 1e5f);
+  float distance = wanted;
+  cameraLimitNote_.clear();
+  // Moving back while looking up lowers the camera: not under the horizon plane.
+  const float rise = -glm::dot(forward, orbit_.worldUp);  // height gained per unit of distance
+  if (rise < 0.f && distance > orbit_.distance) {
+    const float lowest = heightAbove(orbit_, orbit_.target);
+    const float maxDistance = (orbit_.minHeight - lowest) / rise;
+    if (distance > maxDistance) {
+      distance = std::max(orbit_.distance, maxDistance);
+      cameraLimitNote_ = kBelowHorizon;
+    }
+  }
+  // Not through a surface, forwards or backwards.
+  const float move = orbit_.distance - distance;
+  const float clear = clearDistance(origin, move > 0.f ? forward : -forward, std::abs(move));
+  if (clear < std::abs(move)) {
+    distance = orbit_.distance - std::copysign(clear, move);
+    cameraLimitNote_ = kAtSurface;
+  }
+  orbit_.distance = distance;
+  moveCamera(orbit_.target - forward * distance, orbit_.target);
 }
 
 void ViewerController::setFov(float degrees) {
@@ -449,7 +581,7 @@ void ViewerController::setFov(float degrees) {
 }
 
 void ViewerController::resetCamera() {
-  settings_.camera = scene_.settings.camera;
+  settings_.camera = scene_.settings.camera;  // initOrbitFromCamera clears the limit note
   initOrbitFromCamera();
   start();
 }
@@ -473,7 +605,10 @@ void ViewerController::adoptLoaded(LoadedScene loaded, const std::string& path, 
   adoptScene(std::move(loaded));
   rememberRecent(path);
   noteLoadSeconds(seconds);
-  start();
+  // Nothing about the old scene carries over: its pause, its last save's message.
+  ++sceneSerial_;
+  outputStatus_.clear();
+  restart();
 }
 
 void ViewerController::noteLoadSeconds(double seconds) {
@@ -528,6 +663,10 @@ bool ViewerController::finishLoading() {
   return true;
 }
 
+double ViewerController::secondsSinceRestart() const {
+  return secondsSince(restartTime_);
+}
+
 std::string ViewerController::windowTitle() const {
   return "Penumbra — " + (scene_.path.empty() ? std::string("built-in scene") : scene_.path);
 }
@@ -541,6 +680,8 @@ bool ViewerController::reloadScene() {
   const std::string path = scene_.path;
   const RenderSettings oldFile = scene_.settings, live = settings_;
   const RenderLimits oldLimits = limits_;
+  const uint32_t oldTargetSpp = chosenTargetSpp_;
+  const double oldSeconds = chosenSeconds_;
   const OrbitCamera oldOrbit = orbit_;
   LoadedScene loaded;
   const auto t0 = std::chrono::steady_clock::now();
@@ -578,6 +719,7 @@ bool ViewerController::reloadScene() {
   settings_ = s;
   if (limitsChanged) {
     limits_ = oldLimits;
+    chosenTargetSpp_ = oldTargetSpp, chosenSeconds_ = oldSeconds;
     kept.push_back("limits");
   } else {
     limits_.targetSpp = settings_.sampleCount;
@@ -692,9 +834,17 @@ SceneNode ViewerController::liveDesc(const std::string& saveDir) const {
   const RenderSettings& s = settings_;
 
   SceneNode& cam = childOrNew(root, "camera", "perspective");
+  Property toWorld = makeProp("toWorld", PropertyType::Transform, matrixText(s.camera.toWorld));
+  // A lookat camera is written as its <lookat>: a reload orbits about the same target and up.
+  const Vec3 origin(s.camera.toWorld[3]);
+  if (orbit_.isLookAt && matricesClose(lookAt(origin, orbit_.target, orbit_.worldUp), s.camera.toWorld)) {
+    toWorld.hasLookAt = true;
+    toWorld.lookAtOrigin = origin;
+    toWorld.lookAtTarget = orbit_.target;
+    toWorld.lookAtUp = orbit_.worldUp;
+  }
   replaceProps(cam,
-               {makeProp("toWorld", PropertyType::Transform, matrixText(s.camera.toWorld)),
-                makeProp("fov", PropertyType::Float, formatFloat(s.camera.fovDegrees)),
+               {toWorld, makeProp("fov", PropertyType::Float, formatFloat(s.camera.fovDegrees)),
                 makeProp("width", PropertyType::Integer, std::to_string(s.camera.width)),
                 makeProp("height", PropertyType::Integer, std::to_string(s.camera.height))},
                {});

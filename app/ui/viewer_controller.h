@@ -42,8 +42,24 @@ struct OrbitCamera {
   // Lowest elevation (sine of the angle above the plane through the target normal to worldUp) the
   // orbit may reach: the upper hemisphere, or the scene camera's own elevation when that is lower.
   float minElevationSin = 0.f;
+  // The scene's horizon plane, fixed while the target pans: through the scene's target, normal to
+  // worldUp. Orbit and pan keep the camera at least `minHeight` above it (0, or the scene camera's
+  // own height when that is lower), so no move takes it under the floor.
+  Vec3 horizonPoint{0.f};
+  float minHeight = 0.f;
   bool moved = false;  // the user orbited, panned or dollied since the scene's camera was set
+  // The camera is the lookat (origin, target, worldUp): the scene's <lookat>, or an orbit, pan or
+  // dolly from one. Save as then writes a <lookat>, so the orbit survives a reload.
+  bool isLookAt = false;
 };
+
+// What cameraLimitNote() says when a move stopped at the horizon plane, or in front of a surface.
+inline constexpr const char* kCameraLimitNotes[2] = {
+    "stopped at the scene's horizon: the camera stays above the floor plane",
+    "stopped in front of a surface: the camera stays outside the objects"};
+
+// What stops the accumulation: the target spp or the time budget (the Sampler panel's choice).
+enum class StopRule { TargetSpp, TimeBudget };
 
 // Nice value of the render threads while the viewer runs (Engine::setWorkerNice): the UI thread and the
 // GL rasteriser's threads preempt them for the few ms a frame takes, instead of getting a fair share.
@@ -131,6 +147,15 @@ class ViewerController {
   // stratified sampler's strata and the accumulation's end stay tied); this says which stops the
   // render, e.g. "stops at 64 spp (target spp)" or "stops after 10.0 s (time budget, equal time)".
   std::string stopText() const;
+  // Switching the rule brings back the value it had (the scene's sampleCount and kDefaultSeconds
+  // until the user chose others), so going to the time budget and back keeps the target spp.
+  StopRule stopRule() const { return limits_.seconds > 0 ? StopRule::TimeBudget : StopRule::TargetSpp; }
+  void setStopRule(StopRule rule);
+  void setTargetSpp(uint32_t spp);     // 0: never stop; switches to StopRule::TargetSpp
+  void setTimeBudget(double seconds);  // > 0; switches to StopRule::TimeBudget
+  uint32_t chosenTargetSpp() const { return chosenTargetSpp_; }
+  double chosenSeconds() const { return chosenSeconds_; }
+  static constexpr double kDefaultSeconds = 10.0;
 
   // ---- strategy and light selection ------------------------------------------------------------
   // The strategy list: every row that is its own all-lights row (the rows of one light-sampling
@@ -139,6 +164,11 @@ class ViewerController {
   // Switches to one of strategyChoices(), keeping the live light selection where both take one (a
   // strategy that takes none hands over to the scene's default). Restarts when it changed.
   void setStrategy(Strategy choice);
+  // Why `s` cannot light this scene, for its greyed-out entry in the list ("" when it can): a
+  // strategy that needs area lights on a scene without them ("needs area lights (renders
+  // direct/cosine-hemisphere here)"), simple without point or directional lights, the hemisphere
+  // strategies on a scene without lights.
+  std::string strategyUnavailableReason(Strategy s) const;
   // Whether the live strategy takes a light selection (the panel shows its control only then).
   bool takesLightSelection() const;
   // Switches the live strategy to the row of its measure with `selection`; ignored where it has none.
@@ -168,9 +198,13 @@ class ViewerController {
   DisplaySettings shownDisplay() const;
 
   // ---- camera ----------------------------------------------------------------------------------
+  // Orbit, pan and dolly keep the orbit's limits: never under the scene's horizon plane (see
+  // OrbitCamera), and pan and dolly stop in front of the first surface on the way (a camera inside
+  // an object sees black). cameraLimitNote() says when a move was stopped.
   void orbit(float dxPixels, float dyPixels);
   void pan(float dxPixels, float dyPixels);
   void dolly(float wheelSteps);
+  const std::string& cameraLimitNote() const { return cameraLimitNote_; }
   void setFov(float degrees);
   void resetCamera();
   const OrbitCamera& orbitCamera() const { return orbit_; }
@@ -208,6 +242,9 @@ class ViewerController {
   // Reloads when the scene file's modification time changed (checked at most twice a second).
   bool checkFileChanged();
   const std::string& sceneError() const { return sceneError_; }
+  // Counts the scenes adopted (opened, dropped, loaded; not reloads): state about the old scene —
+  // the pause, the last save's message, the fields' notes — ends with it.
+  uint64_t sceneSerial() const { return sceneSerial_; }
   const std::vector<std::string>& recentFiles() const { return recent_; }
   // .xml files in the current scene's directory.
   std::vector<std::string> siblingScenes() const;
@@ -223,6 +260,13 @@ class ViewerController {
   // Return a status message; throw penumbra::Error on failure.
   std::string saveImage(const std::string& path) const;
   std::string saveSceneAs(const std::string& path) const;
+  // The last save's message (or error), shown under the save fields until another scene opens.
+  const std::string& outputStatus() const { return outputStatus_; }
+  void setOutputStatus(std::string status) { outputStatus_ = std::move(status); }
+
+  // Seconds since the left side's accumulation last (re)started: the viewer dims an image left over
+  // from before the change once its replacement is late.
+  double secondsSinceRestart() const;
 
  private:
   void adoptScene(LoadedScene loaded);
@@ -230,6 +274,8 @@ class ViewerController {
   void startLeft();
   void startCompare();
   void applyOrbit(const Vec3& origin);
+  void moveCamera(const Vec3& origin, const Vec3& target);
+  float clearDistance(const Vec3& from, const Vec3& direction, float wanted) const;
   std::filesystem::file_time_type mtimeOf(const std::string& path) const;
   void rememberRecent(const std::string& path);
   void chooseCompareDefault();
@@ -240,7 +286,12 @@ class ViewerController {
   int threads_;
   RenderSettings settings_;
   RenderLimits limits_;
-  bool useTimeBudget_ = false;
+  uint32_t chosenTargetSpp_ = 0;            // the target spp while the time budget rules
+  double chosenSeconds_ = kDefaultSeconds;  // the time budget while the target spp rules
+  std::string cameraLimitNote_;
+  std::string outputStatus_;
+  uint64_t sceneSerial_ = 0;
+  std::chrono::steady_clock::time_point restartTime_{};
   OrbitCamera orbit_;
   std::shared_ptr<PublishSignal> signal_ = std::make_shared<PublishSignal>();
   Engine engine_;

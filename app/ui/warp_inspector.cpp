@@ -266,15 +266,22 @@ void WarpInspector::drawControls() {
     if (warpHasParameter(t) && t != s.type) s.param = defaultWarpParam(t);
     s.type = t;
   }
+  // Values typed into the controls (Ctrl+click on a slider) are checked as `penumbra warp` checks its
+  // options: a refused one leaves the settings as they were, and its message shows below.
+  auto entered = [this](const std::string& refusal) { refusal_ = refusal; };
   if (warpHasParameter(s.type)) {
-    if (s.type == WarpType::UniformCone)
-      ImGui::SliderFloat(paramLabel(s.type), &s.param, -0.99f, 0.999f, "%.3f");
-    else
-      ImGui::SliderFloat(paramLabel(s.type), &s.param, 0.02f, 1.5f, "%.3f", ImGuiSliderFlags_Logarithmic);
+    float param = s.param;
+    const bool changed = s.type == WarpType::UniformCone
+                             ? ImGui::SliderFloat(paramLabel(s.type), &param, -0.99f, 0.999f, "%.3f")
+                             : ImGui::SliderFloat(paramLabel(s.type), &param, 0.02f, 1.5f, "%.3f",
+                                                  ImGuiSliderFlags_Logarithmic);
+    if (changed) entered(enterWarpParam(s, param));
   }
   char countText[48];
   std::snprintf(countText, sizeof countText, "2^%d = %d", s.log2Points, 1 << s.log2Points);
-  ImGui::SliderInt("points", &s.log2Points, kMinLog2Points, kMaxLog2Points, countText);
+  int log2Points = s.log2Points;
+  if (ImGui::SliderInt("points", &log2Points, kMinLog2Points, kMaxLog2Points, countText))
+    entered(enterLog2Points(s, log2Points));
   int ps = int(s.pointSet);
   auto psName = [](void*, int i, const char** out) {
     *out = pointSetName(static_cast<PointSet>(i));
@@ -289,9 +296,18 @@ void WarpInspector::drawControls() {
         if (ImGui::Selectable(std::string(row.label).c_str(), row.kind == s.sampler)) s.sampler = row.kind;
       ImGui::EndCombo();
     }
-    ImGui::SliderInt("2-D request", &s.request, 0, 7, s.request == 0 ? "%d (pixel filter)" : "%d");
-    int pixel[2] = {s.pixelX, s.pixelY};
-    if (ImGui::InputInt2("pixel", pixel)) s.pixelX = pixel[0], s.pixelY = pixel[1];
+    int request = s.request;
+    if (ImGui::SliderInt("2-D request", &request, 0, 7, s.request == 0 ? "%d (pixel filter)" : "%d"))
+      entered(enterSamplerRequest(s, request));
+    int64_t pixel[2] = {s.pixelX, s.pixelY};
+    if (ImGui::InputScalarN("pixel", ImGuiDataType_S64, pixel, 2, nullptr, nullptr, nullptr,
+                            ImGuiInputTextFlags_EnterReturnsTrue))
+      entered(enterSamplerPixel(s, pixel[0], pixel[1]));
+  }
+  if (!refusal_.empty()) {
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.f, 0.45f, 0.4f, 1.f));
+    ImGui::TextWrapped("%s (kept the last valid value)", refusal_.c_str());
+    ImGui::PopStyleColor();
   }
   ImGui::Checkbox("warped grid lines", &s.gridLines);
   ImGui::Checkbox("mismatched pdf", &s.mismatch);

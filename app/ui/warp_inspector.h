@@ -40,6 +40,7 @@ class WarpInspector {
   void resetView();
 
   WarpInspectorSettings settings_;
+  std::string refusal_;  // why the last value entered was refused, as `penumbra warp` says it
   WarpInspectorWorker worker_;
   std::shared_ptr<const WarpPoints> shownPoints_;
   std::shared_ptr<const WarpVerdict> shownVerdict_;

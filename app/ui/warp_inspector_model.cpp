@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "core/math/error.h"
 #include "core/sampling/rng.h"
 
 namespace penumbra::ui {
@@ -43,8 +44,41 @@ bool parsePointSet(const std::string& name, PointSet& out) {
   return false;
 }
 
-float defaultWarpParam(WarpType type) {
-  return type == WarpType::Beckmann ? 0.2f : 0.5f;
+std::string enterWarpParam(WarpInspectorSettings& s, double value) {
+  try {
+    s.param = checkedWarpParam(s.type, true, value, "the parameter");
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return {};
+}
+
+std::string enterLog2Points(WarpInspectorSettings& s, int64_t log2Points) {
+  try {
+    s.log2Points = checkedLog2Points(log2Points, "points");
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return {};
+}
+
+std::string enterSamplerRequest(WarpInspectorSettings& s, int64_t request) {
+  try {
+    s.request = checkedSamplerRequest(request, "2-D request");
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return {};
+}
+
+std::string enterSamplerPixel(WarpInspectorSettings& s, int64_t x, int64_t y) {
+  try {
+    const IVec2 p = checkedSamplerPixel(x, y, "pixel");
+    s.pixelX = p.x, s.pixelY = p.y;
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return {};
 }
 
 int inspectorResolution(const WarpInspectorSettings& s) {

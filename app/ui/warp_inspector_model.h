@@ -17,6 +17,7 @@
 #include "core/sampling/chi2.h"
 #include "core/sampling/sampler.h"
 #include "core/sampling/warp.h"
+#include "core/sampling/warp_params.h"
 
 namespace penumbra::ui {
 
@@ -26,7 +27,8 @@ inline constexpr int kPointSetCount = 4;
 const char* pointSetName(PointSet s);  // independent, grid, stratified, sampler
 bool parsePointSet(const std::string& name, PointSet& out);
 
-inline constexpr int kMinLog2Points = 5, kMaxLog2Points = 20;
+using penumbra::kMaxLog2Points;
+using penumbra::kMinLog2Points;
 
 struct WarpInspectorSettings {
   WarpType type = WarpType::CosineHemisphere;
@@ -44,7 +46,15 @@ struct WarpInspectorSettings {
   bool operator==(const WarpInspectorSettings&) const = default;
 };
 
-float defaultWarpParam(WarpType type);  // uniform-cone 0.5, beckmann 0.2
+using penumbra::defaultWarpParam;  // uniform-cone 0.5, beckmann 0.2
+
+// Values entered in the inspector's controls, checked as `penumbra warp` checks --param, --points,
+// --request and --pixel (core/sampling/warp_params.h, the same code and messages): a value the CLI
+// refuses leaves the settings as they were and returns the CLI's message ("" when taken).
+std::string enterWarpParam(WarpInspectorSettings& s, double value);
+std::string enterLog2Points(WarpInspectorSettings& s, int64_t log2Points);
+std::string enterSamplerRequest(WarpInspectorSettings& s, int64_t request);
+std::string enterSamplerPixel(WarpInspectorSettings& s, int64_t x, int64_t y);
 // The histogram resolution used (2-D: res x res cells; sphere: 2 res x res in (phi, cos theta)).
 int inspectorResolution(const WarpInspectorSettings& s);
 // What the samples are judged by ("the warp's own pdf" or the mismatched one, in words).

@@ -7,10 +7,13 @@
 #include <chrono>
 #include <cstdio>
 #include <memory>
+#include <string>
 #include <thread>
 #include <vector>
 
+#include "core/math/error.h"
 #include "core/sampling/rng.h"
+#include "core/sampling/warp_params.h"
 
 using namespace penumbra;
 using namespace penumbra::ui;
@@ -120,4 +123,52 @@ TEST(WarpInspectorModel, NewRequestsCancelStaleJobs) {
   EXPECT_TRUE(w.verdict()->settings == s);
   EXPECT_TRUE(w.points()->settings == s);
   EXPECT_EQ(w.points()->points.size(), size_t(1) << 12);
+}
+
+// Values the `penumbra warp` CLI refuses are refused by the inspector with the CLI's message (the
+// same checks, core/sampling/warp_params.h), and the settings keep their last valid value, so the
+// verdict is never a REJECTED that blames the warp for an invalid parameter.
+TEST(WarpInspectorModel, ValuesTheCliRefusesAreRefusedWithItsMessage) {
+  WarpInspectorSettings s;
+  s.type = WarpType::Beckmann;
+  s.param = 0.2f;
+  for (double alpha : {0.0, -3.0, 5000.0}) {
+    std::string cliMessage;
+    try {
+      checkedWarpParam(WarpType::Beckmann, true, alpha, "the parameter");
+    } catch (const Error& e) {
+      cliMessage = e.what();
+    }
+    ASSERT_FALSE(cliMessage.empty()) << alpha;
+    EXPECT_EQ(enterWarpParam(s, alpha), cliMessage);
+    EXPECT_EQ(s.param, 0.2f);
+  }
+  EXPECT_EQ(enterWarpParam(s, 0.0),
+            "beckmann: the parameter is the roughness alpha and must be in [1e-06, 1000], got 0");
+  EXPECT_EQ(enterWarpParam(s, 0.5), "");
+  EXPECT_EQ(s.param, 0.5f);
+
+  s.type = WarpType::UniformCone;
+  s.param = 0.5f;
+  EXPECT_EQ(
+      enterWarpParam(s, 2.0).rfind("uniform-cone: the parameter is cos(theta_max) and must be in [-1, 1)", 0),
+      0u);
+  EXPECT_EQ(s.param, 0.5f);
+  EXPECT_NE(enterWarpParam(s, 1.0), "");
+  EXPECT_EQ(enterWarpParam(s, -1.0), "");
+
+  EXPECT_EQ(enterSamplerPixel(s, -5, 0), "pixel -5,0: expected a pixel X,Y with each coordinate 0 to 16383");
+  EXPECT_EQ(s.pixelX, 0);
+  EXPECT_EQ(enterSamplerPixel(s, 3, 3000000000LL).rfind("pixel 3,3000000000: expected", 0), 0u);
+  EXPECT_EQ(enterSamplerPixel(s, 7, 9), "");
+  EXPECT_EQ(s.pixelX, 7);
+  EXPECT_EQ(s.pixelY, 9);
+
+  EXPECT_NE(enterLog2Points(s, 25), "");
+  EXPECT_NE(enterLog2Points(s, 4), "");
+  EXPECT_EQ(s.log2Points, 14);
+  EXPECT_EQ(enterLog2Points(s, 20), "");
+  EXPECT_NE(enterSamplerRequest(s, -1), "");
+  EXPECT_NE(enterSamplerRequest(s, 65), "");
+  EXPECT_EQ(enterSamplerRequest(s, 64), "");
 }

@@ -27,6 +27,7 @@ void Engine::start(std::shared_ptr<const RenderJob> job, RenderLimits limits, in
 
   if (threads <= 0) threads = int(std::max(1u, std::thread::hardware_concurrency()));
   nextRow_ = 0;
+  passRowsDone_ = 0;
   cancel_ = false;
   stopRequested_ = false;
   stopNow_ = false;
@@ -86,6 +87,7 @@ bool Engine::extend(RenderLimits limits) {
   if (rollbackMode_ != RowRollback::Auto) rollBackRows_ = rollbackMode_ == RowRollback::Always;
   clock_.resume();
   nextRow_ = 0;
+  passRowsDone_ = 0;
   finished_ = false;
   spawnWorkers(workers_.size(), false);
   return true;
@@ -159,6 +161,8 @@ RenderProgress Engine::progress() const {
   p.seconds = p.finished ? clock_.stoppedSeconds() : clock_.elapsed();
   p.samples = uint64_t(p.spp) * uint64_t(std::max(film_.width(), 0)) * uint64_t(std::max(film_.height(), 0));
   p.badSamples = badSamples_;
+  p.rows = uint32_t(std::max(film_.height(), 0));
+  p.passRows = p.finished ? 0u : std::min(uint32_t(std::max(passRowsDone_.load(), 0)), p.rows);
   return p;
 }
 
@@ -195,6 +199,7 @@ bool Engine::passBoundary() {
     rollBackRows_ = rowSeconds > kRollBackRowSeconds;
   }
   passSeconds_ = now;
+  passRowsDone_ = 0;
   spp_ = spp_ + 1;
   nextRow_ = 0;
   const bool stop = stopRequested_ || stopNow_ || (limits_.targetSpp > 0 && spp_ >= limits_.targetSpp) ||
@@ -256,6 +261,7 @@ void Engine::workerLoop(bool preview) {
       }
       if (cancel_.load(std::memory_order_relaxed)) break;
       rowPasses_[size_t(y)] = pass + 1;
+      passRowsDone_.fetch_add(1, std::memory_order_relaxed);
       // This worker owns row y until the pass ends: resolve it now, from sums still in cache.
       if (meanRows) film_.resolveMean(pass + 1, *meanRows, y, y + 1);
       if (errorRows) film_.resolveStandardError(pass + 1, *errorRows, y, y + 1);

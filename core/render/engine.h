@@ -37,6 +37,10 @@ struct RenderProgress {
   uint64_t samples = 0;      // camera samples accumulated
   uint64_t badSamples = 0;   // NaN, Inf or negative values (dropped and counted)
   bool finished = false;
+  // Progress within the running pass (a slow pass shows it): rows of the image that completed pass
+  // spp + 1 so far, of `rows`. 0 once finished.
+  uint32_t passRows = 0;
+  uint32_t rows = 0;
 };
 
 class Engine {
@@ -155,6 +159,7 @@ class Engine {
 
   // Pass state.
   std::atomic<int> nextRow_{0};
+  std::atomic<int> passRowsDone_{0};  // rows completed in the running pass (progress() reports them)
   std::atomic<bool> cancel_{false};
   std::atomic<bool> stopRequested_{false};
   std::atomic<bool> stopNow_{false};

@@ -69,4 +69,27 @@ float checkedWarpParam(WarpType type, bool given, double value, const std::strin
   return used;
 }
 
+int checkedLog2Points(int64_t log2Points, const std::string& option) {
+  if (log2Points < kMinLog2Points || log2Points > kMaxLog2Points)
+    throw Error(option + " " + std::to_string(log2Points) +
+                ": expected the number of points as a power of two, " + std::to_string(kMinLog2Points) +
+                " to " + std::to_string(kMaxLog2Points) + " (2^" + std::to_string(kMinLog2Points) + " to 2^" +
+                std::to_string(kMaxLog2Points) + " points)");
+  return int(log2Points);
+}
+
+int checkedSamplerRequest(int64_t request, const std::string& option) {
+  if (request < 0 || request > kMaxSamplerRequest)
+    throw Error(option + " " + std::to_string(request) + ": expected a 2-D request of the sampler, 0 to " +
+                std::to_string(kMaxSamplerRequest) + " (0: the pixel filter's)");
+  return int(request);
+}
+
+IVec2 checkedSamplerPixel(int64_t x, int64_t y, const std::string& option) {
+  if (x < 0 || y < 0 || x > kMaxSamplerPixel || y > kMaxSamplerPixel)
+    throw Error(option + " " + std::to_string(x) + "," + std::to_string(y) +
+                ": expected a pixel X,Y with each coordinate 0 to " + std::to_string(kMaxSamplerPixel));
+  return IVec2(int(x), int(y));
+}
+
 }  // namespace penumbra

@@ -271,8 +271,15 @@ const Property* PropertyList::lookup(std::span<const std::string_view> names) co
   return found;
 }
 
+Error PropertyList::errorAt(const Property& p, const std::string& message) const {
+  if (!p.setBy.empty()) return Error(p.setBy + ": " + message);
+  return Error(file_, p.line, message);
+}
+
 void PropertyList::typeError(const Property& p, const char* expected) const {
   std::string got = std::string(propertyTypeName(p.type)) + " " + quoted(p.valueText());
+  if (!p.setBy.empty())
+    throw errorAt(p, "property \"" + p.name + "\" of " + owner() + ": expected " + expected + ", got " + got);
   throw Error(file_, p.line,
               "<" + std::string(propertyTypeName(p.type)) + " name=\"" + p.name + "\"> of " + owner() +
                   ": expected " + expected + ", got " + got);
@@ -328,9 +335,8 @@ float PropertyList::getFloat(std::initializer_list<std::string_view> names, floa
     typeError(*p, "a float");
   float f = toFloatSaturating(v);
   if (!std::isfinite(f))
-    throw Error(file_, p->line,
-                "property \"" + p->name + "\" of " + owner() + ": expected a value in float range, got " +
-                    p->valueText());
+    throw errorAt(*p, "property \"" + p->name + "\" of " + owner() +
+                          ": expected a value in float range, got " + p->valueText());
   return f;
 }
 
@@ -407,18 +413,25 @@ std::vector<std::string> PropertyList::unusedWarnings() const {
   return out;
 }
 
-void PropertyList::set(std::string_view name, std::string_view value) {
+void PropertyList::set(std::string_view name, std::string_view value, std::string setBy) {
   for (Property& p : props_) {
     if (p.name != name) continue;
     // A property added by an earlier override has no type from the file: infer again below.
     if (p.fromOverride) break;
     Property parsed = p;
     if (!parsePropertyValue(p.type, value, parsed)) {
+      const std::string expected = std::string(p.type == PropertyType::Integer ? "an " : "a ") +
+                                   propertyTypeName(p.type) + " like the value in the file";
+      if (!setBy.empty())
+        throw Error(setBy + ": cannot set property \"" + p.name + "\" of " + owner() + " to " +
+                    quoted(value) + ": expected " + expected + " (" + file_ + ":" + std::to_string(p.line) +
+                    ")");
       throw Error(file_, p.line,
                   "cannot set property \"" + p.name + "\" of " + owner() + " to " + quoted(value) +
-                      ": expected " + (p.type == PropertyType::Integer ? "an " : "a ") +
-                      propertyTypeName(p.type) + " like the value in the file");
+                      ": expected " + expected);
     }
+    parsed.setBy = std::move(setBy);
+    parsed.hasLookAt = false;  // a transform set from text is a matrix
     p = std::move(parsed);
     return;
   }
@@ -426,6 +439,7 @@ void PropertyList::set(std::string_view name, std::string_view value) {
   p.name = std::string(name);
   p.line = 0;
   p.fromOverride = true;
+  p.setBy = std::move(setBy);
   if (!parsePropertyValue(PropertyType::Boolean, value, p) &&
       !parsePropertyValue(PropertyType::Integer, value, p) &&
       !parsePropertyValue(PropertyType::Float, value, p)) {

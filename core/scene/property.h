@@ -11,6 +11,7 @@
 
 #include <glm/mat4x4.hpp>
 
+#include "core/math/error.h"
 #include "core/math/vec.h"
 
 namespace penumbra {
@@ -52,9 +53,15 @@ struct Property {
   // viewer orbits about the target the scene names).
   bool hasLookAt = false;
   Vec3 lookAtTarget{0.f}, lookAtUp{0.f, 1.f, 0.f};
+  // With hasLookAt: the <lookat> origin, carried like the target. writeSceneXml writes the transform
+  // as that <lookat> when the matrix is exactly it (nothing but the <lookat> built it).
+  Vec3 lookAtOrigin{0.f};
   int line = 0;  // 0 when added by an override (--set) rather than the file
   mutable bool used = false;
   bool fromOverride = false;  // added by set() (not in the file): its type was inferred from the text
+  // "--set sampler.sampleCount=0" when an override gave the value: errors about the value name it
+  // instead of the line of the file.
+  std::string setBy;
 
   // The value as it would appear in a value="..." attribute (transforms: 16 numbers, row-major).
   std::string valueText() const;
@@ -102,11 +109,16 @@ class PropertyList {
   std::vector<std::string> unusedWarnings() const;
 
   // Override from a string (--set key=value). An existing property keeps its type and the value
-  // must parse as that type (else Error at the property's line). A new property's type is
-  // inferred: true/false → boolean, integer literal → integer, float literal → float, else string.
-  // A new string property is also accepted by the point/vector/color/transform getters when its
-  // text parses as that type.
-  void set(std::string_view name, std::string_view value);
+  // must parse as that type (else Error naming `setBy`, or the property's line without it). A new
+  // property's type is inferred: true/false → boolean, integer literal → integer, float literal →
+  // float, else string. A new string property is also accepted by the point/vector/color/transform
+  // getters when its text parses as that type. `setBy` ("--set sampler.sampleCount=0") is kept
+  // with the property, so later errors about its value name the override.
+  void set(std::string_view name, std::string_view value, std::string setBy = {});
+
+  // An Error about a property's value, located where the value came from: the --set override that
+  // gave it, else its line in the file.
+  Error errorAt(const Property& p, const std::string& message) const;
 
   const std::vector<Property>& properties() const { return props_; }
   size_t size() const { return props_.size(); }

@@ -18,8 +18,12 @@ namespace penumbra {
 
 namespace {
 
+// An error about a property's value: at the --set override that gave it, else at its line (the
+// object's line when the file does not have it).
 [[noreturn]] void fail(const SceneNode& node, std::span<const std::string_view> names,
                        const std::string& message) {
+  if (const Property* p = node.props.find(names); p && !p->setBy.empty())
+    throw node.props.errorAt(*p, message);
   int line = node.props.lineOf(names);
   throw Error(node.file, line > 0 ? line : node.line, message);
 }
@@ -30,8 +34,10 @@ namespace {
 }
 
 [[noreturn]] void unknownType(const SceneNode& node, const char* known) {
-  throw Error(node.file, node.line,
-              "unknown " + node.tag + " type \"" + node.type + "\" (expected one of: " + known + ")");
+  const std::string message =
+      "unknown " + node.tag + " type \"" + node.type + "\" (expected one of: " + known + ")";
+  if (!node.typeSetBy.empty()) throw Error(node.typeSetBy + ": " + message);
+  throw Error(node.file, node.line, message);
 }
 
 int64_t getCount(const SceneNode& node, std::span<const std::string_view> names, int64_t def,
@@ -106,7 +112,7 @@ void buildCamera(const SceneNode& node, RenderSettings& s) {
 
 void buildSampler(const SceneNode& node, RenderSettings& s) {
   if (!parseSamplerKind(node.type, s.samplerKind)) unknownType(node, acceptedSamplerNames().c_str());
-  s.sampleCount = uint32_t(getCount(node, {"sampleCount"}, 1, 1 << 24, "sampleCount"));
+  s.sampleCount = uint32_t(getCount(node, {"sampleCount"}, 1, kMaxSampleCount, "sampleCount"));
   s.seed = uint64_t(node.props.getInteger({"seed"}, 0));
 }
 
@@ -118,7 +124,6 @@ void buildIntegrator(const SceneNode& node, size_t sphereLights, RenderSettings&
   if (candidates.empty()) unknownType(node, acceptedIntegratorTypes().c_str());
   IntegratorDesc& d = s.integrator;
   const Spellings& samples = strategyRow(candidates.front()).samplesProperty;
-  constexpr int64_t kMaxShadingSamples = 1 << 16;
   d.samples =
       samples.empty() ? 1 : int(getCount(node, samples.list(), 1, kMaxShadingSamples, samples.canonical()));
   for (size_t level = 0; level < kMaxSelectors; ++level) {

@@ -3,6 +3,7 @@
 // validated with the offending line, and unread properties become warnings.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <utility>
@@ -13,6 +14,10 @@
 #include "core/world/scene.h"
 
 namespace penumbra {
+
+// Ranges the builder accepts (the viewer's fields clamp to the same ones).
+inline constexpr int64_t kMaxSampleCount = 1 << 24;     // <sampler sampleCount>
+inline constexpr int64_t kMaxShadingSamples = 1 << 16;  // the integrator's sample counts
 
 struct LoadedScene {
   SceneNode desc;  // the parsed description, overrides applied (the viewer edits and saves it)

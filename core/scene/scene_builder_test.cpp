@@ -186,5 +186,45 @@ TEST(SceneBuilder, OverridesReachTheSettings) {
   EXPECT_EQ(s.settings.sampleCount, 7u);
 }
 
+// A --set value the builder refuses is blamed on the --set, not on a line of the file (the file's
+// line holds a valid value).
+std::string loadError(const std::string& xml, std::vector<std::pair<std::string, std::string>> sets) {
+  try {
+    loadSceneFromString(xml, "scene.xml", ".", sets);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "(loaded)";
+}
+
+TEST(SceneBuilder, InvalidSetValuesAreBlamedOnTheSet) {
+  const std::string xml =
+      "<scene>\n<integrator type=\"direct\">\n<string name=\"measure\" value=\"area\"/>\n</integrator>\n"
+      "<sampler type=\"independent\">\n<integer name=\"sampleCount\" value=\"4\"/>\n</sampler>\n"
+      "<camera type=\"perspective\">\n<float name=\"fov\" value=\"30\"/>\n</camera>\n"
+      "<shape type=\"sphere\"/>\n</scene>\n";
+  ASSERT_EQ(loadError(xml, {}), "(loaded)");
+  // A value of the file's type that the builder refuses.
+  EXPECT_EQ(loadError(xml, {{"sampler.sampleCount", "0"}}),
+            "--set sampler.sampleCount=0: sampleCount must be an integer in [1, 16777216], got 0");
+  EXPECT_EQ(loadError(xml, {{"camera.fov", "200"}}).rfind("--set camera.fov=200: fov must be in (0, 180)", 0),
+            0u);
+  EXPECT_EQ(loadError(xml, {{"integrator.measure", "bogus"}})
+                .rfind("--set integrator.measure=bogus: unknown measure", 0),
+            0u);
+  // A value that does not parse as the file's type.
+  std::string m = loadError(xml, {{"sampler.sampleCount", "many"}});
+  EXPECT_EQ(m.rfind("--set sampler.sampleCount=many: cannot set property \"sampleCount\"", 0), 0u) << m;
+  // A property the file does not have, and an object type.
+  m = loadError(xml, {{"integrator.nSamples", "zero"}});
+  EXPECT_EQ(m.rfind("--set integrator.nSamples=zero: ", 0), 0u) << m;
+  m = loadError(xml, {{"integrator.type", "bogus"}});
+  EXPECT_EQ(m.rfind("--set integrator.type=bogus: unknown integrator type \"bogus\"", 0), 0u) << m;
+  // The same values in the file are still blamed on their lines.
+  std::string inFile = xml;
+  inFile.replace(inFile.find("value=\"4\""), 9, "value=\"0\"");
+  EXPECT_EQ(loadError(inFile, {}).rfind("scene.xml:6: sampleCount must be", 0), 0u) << loadError(inFile, {});
+}
+
 }  // namespace
 }  // namespace penumbra

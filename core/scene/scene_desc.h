@@ -13,7 +13,8 @@ struct SceneNode {
   // One of: scene, shape, bsdf, emitter, camera, sampler, integrator, rfilter ("mesh" is read as
   // "shape").
   std::string tag;
-  std::string type;  // the type="..." attribute (empty for the root <scene>)
+  std::string type;       // the type="..." attribute (empty for the root <scene>)
+  std::string typeSetBy;  // "--set integrator.type=ao" when an override gave the type
   PropertyList props;
   std::vector<SceneNode> children;  // nested objects in document order
   std::string file;                 // the XML file name used in messages

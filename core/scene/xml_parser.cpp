@@ -1,5 +1,6 @@
 #include "core/scene/xml_parser.h"
 #include "core/math/frame.h"
+#include "core/scene/xml_error_text.h"
 
 #include <tinyxml2.h>
 
@@ -214,6 +215,25 @@ std::string dirOf(const std::string& path) {
   return d.empty() ? std::string(".") : d.string();
 }
 
+// Whether the transform is exactly its <lookat> (up to float rounding of the same construction), so
+// that writing the <lookat> instead of the matrix reads back to the same camera.
+bool isItsLookAt(const Property& p) {
+  if (!p.hasLookAt) return false;
+  glm::mat4 m;
+  try {
+    m = lookAtMatrix(p.lookAtOrigin, p.lookAtTarget, p.lookAtUp, "", 0);
+  } catch (const Error&) {
+    return false;
+  }
+  float scale = 1.f;
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 3; ++r) scale = std::max(scale, std::abs(p.matrix[c][r]));
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r)
+      if (!(std::abs(m[c][r] - p.matrix[c][r]) <= 1e-5f * scale)) return false;
+  return true;
+}
+
 void writeNode(tinyxml2::XMLPrinter& out, const SceneNode& node) {
   out.OpenElement(node.tag.c_str());
   if (!node.type.empty()) out.PushAttribute("type", node.type.c_str());
@@ -221,8 +241,15 @@ void writeNode(tinyxml2::XMLPrinter& out, const SceneNode& node) {
     if (p.type == PropertyType::Transform) {
       out.OpenElement("transform");
       out.PushAttribute("name", p.name.c_str());
-      out.OpenElement("matrix");
-      out.PushAttribute("value", p.valueText().c_str());
+      if (isItsLookAt(p)) {
+        out.OpenElement("lookat");
+        out.PushAttribute("origin", formatVec3(p.lookAtOrigin).c_str());
+        out.PushAttribute("target", formatVec3(p.lookAtTarget).c_str());
+        out.PushAttribute("up", formatVec3(p.lookAtUp).c_str());
+      } else {
+        out.OpenElement("matrix");
+        out.PushAttribute("value", p.valueText().c_str());
+      }
       out.CloseElement();
       out.CloseElement();
     } else {
@@ -294,7 +321,7 @@ glm::mat4 parseTransformElement(const tinyxml2::XMLElement& element, const std::
                                 Property* lookat) {
   glm::mat4 m(1.f);
   glm::mat4 afterLookAt(1.f);  // the operations after the last <lookat>
-  Vec3 target(0.f), up(0.f, 1.f, 0.f);
+  Vec3 origin(0.f), target(0.f), up(0.f, 1.f, 0.f);
   bool hasLookAt = false;
   for (const XMLElement* c = element.FirstChildElement(); c; c = c->NextSiblingElement()) {
     std::string_view op = c->Name();
@@ -317,9 +344,10 @@ glm::mat4 parseTransformElement(const tinyxml2::XMLElement& element, const std::
                     "<matrix>: expected 16 numbers (row-major), got \"" + std::string(text) + "\"");
       t = p.matrix;
     } else if (op == "lookat") {
+      origin = vecAttr(*c, "origin", file);
       target = vecAttr(*c, "target", file);
       up = vecAttr(*c, "up", file);
-      t = lookAtMatrix(vecAttr(*c, "origin", file), target, up, file, lineOf(*c));
+      t = lookAtMatrix(origin, target, up, file, lineOf(*c));
       hasLookAt = true;
       afterLookAt = glm::mat4(1.f);
       m = t * m;
@@ -334,6 +362,7 @@ glm::mat4 parseTransformElement(const tinyxml2::XMLElement& element, const std::
   }
   if (lookat && hasLookAt) {
     lookat->hasLookAt = true;
+    lookat->lookAtOrigin = Vec3(afterLookAt * glm::vec4(origin, 1.f));
     lookat->lookAtTarget = Vec3(afterLookAt * glm::vec4(target, 1.f));
     lookat->lookAtUp = Vec3(afterLookAt * glm::vec4(up, 0.f));
   }
@@ -365,10 +394,9 @@ SceneNode parseSceneString(const std::string& xml, const std::string& nameForErr
   checkNoNulCharacter(xml, nameForErrors);
   checkSceneText(xml, nameForErrors);
   tinyxml2::XMLDocument doc;
-  if (doc.Parse(xml.c_str(), xml.size()) != tinyxml2::XML_SUCCESS) {
-    std::string msg = doc.ErrorStr() ? doc.ErrorStr() : "unknown error";
-    throw Error(nameForErrors, doc.ErrorLineNum(), "malformed XML: " + msg);
-  }
+  if (doc.Parse(xml.c_str(), xml.size()) != tinyxml2::XML_SUCCESS)
+    throw Error(nameForErrors, doc.ErrorLineNum(),
+                "malformed XML: " + describeXmlError(doc.ErrorID(), doc.ErrorStr() ? doc.ErrorStr() : ""));
   const XMLElement* root = doc.RootElement();
   if (!root) throw Error(nameForErrors, 0, "expected a <scene> element, found none");
   if (std::string_view(root->Name()) != "scene")
@@ -421,6 +449,7 @@ void applyOverride(SceneNode& root, std::string_view key, std::string_view value
   if (node && prop == "type") {
     // "integrator.type=ao" switches the object's type (its properties stay; unused ones warn).
     node->type = std::string(value);
+    node->typeSetBy = setText;
     node->props.setContext(node->file, node->tag, node->type);
     return;
   }
@@ -430,7 +459,7 @@ void applyOverride(SceneNode& root, std::string_view key, std::string_view value
                          : " (objects are scene, shape, bsdf, emitter, camera, sampler, integrator, rfilter)";
     throw Error(root.file, 0, setText + ": the scene has no <" + tag + ">" + known);
   }
-  node->props.set(prop, value);
+  node->props.set(prop, value, setText);
 }
 
 std::string resolveScenePath(const SceneNode& node, const std::string& relative) {

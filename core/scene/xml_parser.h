@@ -37,7 +37,8 @@ SceneNode parseSceneString(const std::string& xml, const std::string& nameForErr
                            const std::string& baseDir);
 
 // Serialises a tree back to XML that parseSceneString reads to the same tree (transforms are
-// written as a single <matrix>; floats with round-trip precision).
+// written as a single <matrix>, or as their <lookat> when they are exactly one; floats with
+// round-trip precision).
 std::string writeSceneXml(const SceneNode& root);
 
 // Applies a --set override "tag.property=value": key = "tag.property" (e.g. "sampler.sampleCount",
