@@ -83,11 +83,18 @@ void TevStreamer::startWaiting(const std::string& during) {
                                              std::chrono::duration<double>(options_.waitSeconds)));
 }
 
+// Under mutex_: an offered frame the sending thread has not begun is dropped (counted as handled).
+void TevStreamer::dropPendingOffer() {
+  if (!pending_ || !pendingOffered_) return;
+  pending_.reset();
+  ++completed_;
+}
+
 void TevStreamer::send(TevFrame frame) {
   std::unique_lock lk(mutex_);
   if (failed_ || stop_) return;
   startWaiting("an image was handed over");
-  if (pending_ && pendingOffered_) pending_.reset();   // an offered frame not begun: this one is newer
+  dropPendingOffer();                                  // this frame is newer
   cv_.wait(lk, [&] { return failed_ || !pending_; });  // the sending thread's every wait has the deadline
   if (!failed_) {
     pending_ = std::move(frame);
@@ -105,7 +112,7 @@ void TevStreamer::finish(std::optional<TevFrame> last) {
   {
     std::unique_lock lk(mutex_);
     if (!failed_) startWaiting("the render ended");
-    if (pending_ && pendingOffered_) pending_.reset();
+    dropPendingOffer();
     if (last && !failed_) {
       cv_.wait(lk, [&] { return failed_ || !pending_; });
       if (!failed_) {

@@ -95,6 +95,7 @@ class TevStreamer {
   void fail(const std::string& why, bool continuing);
   // Under mutex_: the connection gives up waitSeconds from now; a failure after it says `during`.
   void startWaiting(const std::string& during);
+  void dropPendingOffer();
   bool dueLocked(Clock::time_point now) const;
   // Under mutex_: when the next update is due, from when this one began (wall clock and process CPU
   // time) and the work it cost.

@@ -6,7 +6,10 @@
 #include <netinet/in.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <chrono>
+#include <cstdio>
+#include <cstdlib>
 #include <string>
 #include <thread>
 #include <vector>
@@ -180,6 +183,35 @@ TEST(TevStreamer, BytesFromTheServerAreIgnored) {
   int updates = 0;
   EXPECT_EQ(tev.images().at("a").coverage("R", &updates), "");
   EXPECT_EQ(updates, 5);
+}
+
+// The viewer offers a frame after every poll and, when it closes, sends the last one: an offered frame
+// not yet begun is replaced by it, and send() returns once that is sent. A send() that never returned
+// would hang the test: a watchdog ends the process with a message instead.
+TEST(TevStreamer, SendRightAfterAnOfferReturns) {
+  FakeTev tev;
+  TevStreamOptions o;
+  o.minIntervalSeconds = 0;
+  TevStreamer s(serverAt(tev.port()), o);
+  ASSERT_TRUE(waitUntilWanted(s));
+  std::atomic<bool> done{false};
+  std::thread watchdog([&] {
+    const auto t0 = Clock::now();
+    while (!done && secondsSince(t0) < 60) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    if (!done) {
+      std::fprintf(stderr, "TevStreamer.SendRightAfterAnOfferReturns: send() did not return in 60 s\n");
+      std::_Exit(1);
+    }
+  });
+  for (uint64_t v = 1; v <= 200; ++v) {
+    s.offer("a", snapshotOf(16, 16, v));
+    s.send(TevFrame{"a", Image(16, 16), Image(), false});
+  }
+  done = true;
+  watchdog.join();
+  s.finish();
+  EXPECT_FALSE(s.failed());
+  EXPECT_GE(s.updatesSent(), 200u);
 }
 
 }  // namespace
