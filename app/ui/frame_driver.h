@@ -31,8 +31,8 @@ class FrameDriver {
   // Before frame `index` (0, 1, ...): sets ImGui's input for it. False ends the run.
   virtual bool beforeFrame(int index, DrivenViewer& viewer) = 0;
   // After it; `seconds`: the frame's wall time (snapshot poll, panels, display) less the time the UI
-  // thread spent loading scenes and waiting for a CPU (run_queue_wait.h). False ends the run (a
-  // check failed).
+  // thread spent loading scenes and the time it and the GL rasteriser waited for a CPU
+  // (run_queue_wait.h). False ends the run (a check failed).
   virtual bool afterFrame(int index, DrivenViewer& viewer, double seconds) = 0;
   // The frame threw: the UI reports errors in its panels, so an exception reaching the loop is a bug.
   virtual void frameThrew(int index, const std::string& what) = 0;

@@ -1,20 +1,25 @@
-// How long the calling thread has waited for a CPU while it was ready to run (Linux's per-thread
-// scheduler statistics). The monkey test takes it out of a frame's time: on a loaded machine the UI
-// thread waits for other processes' threads, which says nothing about the viewer's code.
+// How long the viewer's frame waited for a CPU while it was ready to run, from Linux's per-thread
+// scheduler statistics (/proc/.../schedstat): the UI thread's own wait, plus the longest wait of Mesa's
+// llvmpipe rasteriser threads, which the UI thread waits for in glFinish. The monkey test takes it out
+// of a frame's time: on a loaded machine those threads wait for other processes, which says nothing
+// about the viewer's code. Approximate (a rasteriser may wait while the UI thread is busy), and 0
+// where the kernel does not report it.
 #pragma once
 
-#include <cstdio>
+#include <map>
+#include <string>
 
 namespace penumbra::ui {
 
-// Seconds this thread spent runnable but not running, or 0 where the kernel does not say.
-inline double runQueueWaitSeconds() {
-  std::FILE* f = std::fopen("/proc/thread-self/schedstat", "r");
-  if (!f) return 0;
-  unsigned long long running = 0, waiting = 0;
-  const int n = std::fscanf(f, "%llu %llu", &running, &waiting);
-  std::fclose(f);
-  return n == 2 ? double(waiting) * 1e-9 : 0;
-}
+class RunQueueWait {
+ public:
+  // Seconds waited since the previous call (the first call starts the count and returns 0).
+  double sinceLast();
+
+ private:
+  bool started_ = false;
+  double ui_ = 0;
+  std::map<std::string, double> rasterisers_;  // thread id -> its total wait
+};
 
 }  // namespace penumbra::ui

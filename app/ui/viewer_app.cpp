@@ -257,9 +257,11 @@ class ViewerApp : public BenchViewer, public DrivenViewer {
   int runDriven(FrameDriver& driver) {
     FrameStageTimer stages;  // each frame's breakdown, for the report of a slow one
     stageTimer_ = &stages;
+    RunQueueWait cpuWait;
+    cpuWait.sinceLast();
     for (int f = 0; driver.beforeFrame(f, *this); ++f) {
       const auto t0 = Clock::now();
-      const double loading0 = c_.blockingLoadSeconds(), waiting0 = runQueueWaitSeconds();
+      const double loading0 = c_.blockingLoadSeconds();
       stages = FrameStageTimer();
       try {
         update();
@@ -269,7 +271,7 @@ class ViewerApp : public BenchViewer, public DrivenViewer {
         driver.frameThrew(f, e.what());
         break;
       }
-      const double loading = c_.blockingLoadSeconds() - loading0, waiting = runQueueWaitSeconds() - waiting0;
+      const double loading = c_.blockingLoadSeconds() - loading0, waiting = cpuWait.sinceLast();
       const double wall = msSince(t0) * 1e-3;
       char buf[300];
       std::snprintf(
