@@ -12,15 +12,14 @@ namespace penumbra::ui {
 
 namespace {
 
-// The line under the light selection for `s`: why it renders another strategy, or why it cannot
-// light this scene ("" when neither).
+// The line under the light selection for `s` (named in the combo above): why it renders another
+// strategy, or why it cannot light this scene ("" when neither).
 std::string strategyNote(const ViewerController& c, Strategy s) {
   const Strategy rendered = applicableStrategy(s, c.sceneHasAreaLights());
   if (rendered != s)
-    return std::string(strategyRow(s).label) + " " + sceneNeedText(strategyRow(s).needs) + ": " +
+    return std::string(sceneNeedText(strategyRow(s).needs)) + ": renders " +
            std::string(strategyRow(rendered).label);
-  const std::string reason = c.strategyUnavailableReason(s);
-  return reason.empty() ? "" : std::string(strategyRow(s).label) + " " + reason;
+  return c.strategyUnavailableReason(s);
 }
 
 }  // namespace

@@ -37,9 +37,13 @@ std::string passProgressText(const RenderProgress& p) {
   const double elapsed = passElapsed(p);
   if (p.finished || p.rows == 0 || elapsed < kSlowPassSeconds) return "";
   char buf[160];
+  if (p.passRows == 0) {
+    std::snprintf(buf, sizeof buf, "pass %u: no row finished yet (%.1f s)", p.spp + 1, elapsed);
+    return buf;
+  }
   int n = std::snprintf(buf, sizeof buf, "pass %u: %u of %u rows (%.0f %%)", p.spp + 1, p.passRows, p.rows,
                         100.0 * p.passRows / p.rows);
-  if (p.passRows > 0 && p.passRows < p.rows)
+  if (p.passRows < p.rows)
     std::snprintf(buf + n, sizeof buf - n, ", ~%.1f s left", elapsed * (p.rows - p.passRows) / p.passRows);
   return buf;
 }

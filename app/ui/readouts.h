@@ -23,7 +23,8 @@ inline constexpr double kSlowPassSeconds = 0.5;
 // Seconds the running pass has taken so far.
 double passElapsed(const RenderProgress& p);
 // Progress within the running pass, for the Stats panel: "pass 1: 120 of 480 rows (25 %), ~9.0 s
-// left" once it is slow; "" otherwise (finished, or passes too quick to follow).
+// left" once it is slow ("pass 1: no row finished yet (0.8 s)" before its first row); "" otherwise
+// (finished, or passes too quick to follow).
 std::string passProgressText(const RenderProgress& p);
 // Camera samples a second, the running pass's completed rows (`width` samples each) included, so a
 // slow first pass does not read 0.

@@ -322,9 +322,10 @@ class ViewerApp : public BenchViewer, public DrivenViewer {
   // A slow accumulation: an image left over from before the last change is dimmed under what is
   // coming ("rendering pass 1: 120 of 480 rows ..."); a slow first pass over its preview is labelled.
   void drawPassOverlay(int fbW, int fbH) {
-    if (c_.snapshot().mean.empty()) return;
     const RenderProgress p = c_.progress();
-    const bool stale = imageIsStale(c_.snapshotRestart(), c_.restartCount(), c_.secondsSinceRestart());
+    const bool noImage = c_.snapshot().mean.empty();
+    const bool stale =
+        !noImage && imageIsStale(c_.snapshotRestart(), c_.restartCount(), c_.secondsSinceRestart());
     const bool slowFirstPass = p.spp == 0 && !p.finished && passElapsed(p) >= kSlowPassSeconds;
     if (!stale && !slowFirstPass) return;
     const ImVec4 r = imageRect(fbW, fbH);
@@ -336,15 +337,17 @@ class ViewerApp : public BenchViewer, public DrivenViewer {
       text = c_.paused() ? "paused: the image is from before your change (Space resumes)"
                          : "rendering the new image; this one is from before your change";
     } else {
-      text = "first pass";
+      text = noImage ? "rendering the first image" : "first pass";
     }
     const std::string pass = passProgressText(p);
     if (!c_.paused() && !pass.empty()) text += "\n" + pass;
     const float wrap = std::max(r.z - r.x - 24.f, 60.f);
     const ImVec2 size = ImGui::CalcTextSize(text.c_str(), nullptr, false, wrap);
-    // Centred over a dimmed image; at the bottom of a preview, which is the new estimate.
-    const ImVec2 at(r.x + std::max(12.f, (r.z - r.x - size.x) * 0.5f),
-                    stale ? r.y + std::max(12.f, (r.w - r.y - size.y) * 0.5f) : r.w - size.y - 12.f);
+    // Centred over a dimmed image or where the image will be; at the bottom of a preview, which is
+    // the new estimate.
+    const ImVec2 at(
+        r.x + std::max(12.f, (r.z - r.x - size.x) * 0.5f),
+        stale || noImage ? r.y + std::max(12.f, (r.w - r.y - size.y) * 0.5f) : r.w - size.y - 12.f);
     dl->AddRectFilled(ImVec2(at.x - 6, at.y - 4), ImVec2(at.x + size.x + 6, at.y + size.y + 4),
                       IM_COL32(0, 0, 0, 190));
     dl->AddText(nullptr, 0.f, at, IM_COL32(240, 220, 150, 255), text.c_str(), nullptr, wrap);
