@@ -2,8 +2,10 @@
 // arrays) and the closed forms a render can be checked against without a reference file.
 #include <pybind11/stl.h>
 
+#include <array>
 #include <cmath>
 #include <optional>
+#include <tuple>
 
 #include "core/analysis/closed_forms.h"
 #include "core/analysis/convergence.h"
@@ -26,18 +28,16 @@ namespace {
 std::string joinNames(const py::object& names, const char* argument) {
   std::string out;
   if (py::isinstance<py::str>(names)) {
-    out = names.cast<std::string>();
+    out = textArgument(names, argument);
   } else {
-    try {
-      for (auto n : names.cast<py::iterable>()) {
-        if (!py::isinstance<py::str>(n)) throw py::cast_error();
-        (out += out.empty() ? "" : ",") += n.cast<std::string>();
-      }
-    } catch (const py::cast_error&) {
+    if (!py::isinstance<py::iterable>(names))
       throw py::type_error(std::string(argument) + ": expected a str or a list of str");
+    for (auto n : names) {
+      if (!py::isinstance<py::str>(n))
+        throw py::type_error(std::string(argument) + ": expected a str or a list of str");
+      (out += out.empty() ? "" : ",") += textArgument(n, argument);
     }
   }
-  checkNoNul(out, argument);
   if (out.find_first_not_of(", ") == std::string::npos)
     throw py::value_error(std::string(argument) + ": expected 'all' or at least one name, got none");
   return out;
@@ -49,12 +49,12 @@ auto parsedArgument(const char* argument, F&& parse) {
   try {
     return parse();
   } catch (const Error& e) {
-    throw py::value_error(std::string(argument) + ": " + e.what());
+    throw py::value_error(std::string(argument) + ": " + quoted(e.what()));
   }
 }
 
-// The reference as converge() was given it; None and paths are obtained by `obtain` (the caller runs
-// it interruptibly, without the GIL).
+// The reference as converge() was given it: an image, or the request obtainReference() serves (the
+// caller runs it interruptibly, without the GIL) for None and paths.
 struct ReferenceChoice {
   std::optional<Reference> given;  // a RenderResult or an array
   ReferenceRequest request;        // otherwise
@@ -191,6 +191,36 @@ double checkedArgument(double value, const char* argument, double lo, double hi)
 
 constexpr double kInf = HUGE_VAL;
 
+// f over the arguments broadcast as NumPy broadcasts a ufunc's (ValueError when their shapes do not
+// broadcast, TypeError when they are not numbers): a float for scalars, else a float64 array.
+template <size_t N, class F>
+py::object broadcast(F f, const std::array<py::object, N>& args) {
+  py::module_ np = py::module_::import("numpy");
+  py::list arrays;
+  bool scalars = true;
+  for (const py::object& a : args) {
+    py::object array;
+    try {
+      array = np.attr("asarray")(a, py::arg("dtype") = "float64");
+    } catch (py::error_already_set& e) {
+      if (e.matches(PyExc_MemoryError)) throw;
+      throw py::type_error("expected numbers or arrays of numbers, got " +
+                           py::str(py::type::handle_of(a).attr("__name__")).cast<std::string>());
+    }
+    scalars = scalars && array.attr("ndim").cast<int>() == 0;
+    arrays.append(array);
+  }
+  py::list broadcast = np.attr("broadcast_arrays")(*arrays);  // ValueError for shapes that do not fit
+  std::array<py::array_t<double, py::array::c_style | py::array::forcecast>, N> in;
+  for (size_t i = 0; i < N; ++i) in[i] = np.attr("ascontiguousarray")(broadcast[i]);
+  py::array_t<double> out(in[0].request().shape);
+  double* dst = out.mutable_data();
+  for (py::ssize_t k = 0; k < out.size(); ++k)
+    dst[k] = std::apply([&](const auto&... a) { return f(a.data()[k]...); }, in);
+  if (scalars) return py::float_(dst[0]);
+  return std::move(out);
+}
+
 }  // namespace
 
 void bindAnalysis(py::module_& m) {
@@ -217,14 +247,20 @@ void bindAnalysis(py::module_& m) {
   py::module_ cf = m.def_submodule("closed_form",
                                    "Closed-form truths (double precision, numerically careful evaluations). "
                                    "Arguments must be finite and within each form's domain (ValueError).");
-  cf.def("sphere_light_irradiance_factor", py::vectorize([](double cosTheta, double sinAlpha) {
-           return sphereLightIrradianceFactor(checkedArgument(cosTheta, "cos_theta", -1, 1),
-                                              checkedArgument(sinAlpha, "sin_alpha", 0, 1));
-         }),
-         py::arg("cos_theta"), py::arg("sin_alpha"),
-         "I(theta, alpha): irradiance from a uniform sphere light of radiance Le with nothing in the way is "
-         "E = Le * I. theta: angle between the normal and the direction to the centre (cos_theta in "
-         "[-1, 1]); sin(alpha) = r / d in [0, 1]. Vectorised over NumPy arrays.");
+  cf.def(
+      "sphere_light_irradiance_factor",
+      [](py::object cosTheta, py::object sinAlpha) {
+        return broadcast<2>(
+            [](double c, double s) {
+              return sphereLightIrradianceFactor(checkedArgument(c, "cos_theta", -1, 1),
+                                                 checkedArgument(s, "sin_alpha", 0, 1));
+            },
+            {cosTheta, sinAlpha});
+      },
+      py::arg("cos_theta"), py::arg("sin_alpha"),
+      "I(theta, alpha): irradiance from a uniform sphere light of radiance Le with nothing in the way is "
+      "E = Le * I. theta: angle between the normal and the direction to the centre (cos_theta in "
+      "[-1, 1]); sin(alpha) = r / d in [0, 1]. Vectorised over NumPy arrays (broadcast as a ufunc).");
   cf.def(
       "sphere_light_irradiance_factor_at",
       [](std::array<double, 3> x, std::array<double, 3> n, std::array<double, 3> c, double r, bool twoSided) {
@@ -242,25 +278,39 @@ void bindAnalysis(py::module_& m) {
       py::arg("x"), py::arg("n"), py::arg("center"), py::arg("radius"), py::arg("two_sided") = false,
       "I for shading point x with normal n (non-zero; need not be normalised) and a sphere light at "
       "center with radius > 0; handles points on and inside the sphere.");
-  cf.def("ao_plane_with_sphere", py::vectorize([](double cosTheta, double sinAlpha) {
-           return aoPlaneWithSphere(checkedArgument(cosTheta, "cos_theta", -1, 1),
-                                    checkedArgument(sinAlpha, "sin_alpha", 0, 1));
-         }),
-         py::arg("cos_theta"), py::arg("sin_alpha"),
-         "Ambient occlusion of a point on an infinite plane with one sphere as the only occluder: 1 - I/pi.");
-  cf.def("ao_plane_near_resting_sphere", py::vectorize([](double rho, double radius) {
-           checkedArgument(rho, "rho", 0, kInf);
-           if (!(checkedArgument(radius, "radius", 0, kInf) > 0))
-             throw py::value_error("radius: expected a number > 0");
-           return aoPlaneNearRestingSphere(rho, radius);
-         }),
-         py::arg("rho"), py::arg("radius"),
-         "AO of a plane point at horizontal distance rho >= 0 from the contact point of a sphere of that "
-         "radius (> 0) resting on the plane: 1 - R^3 / (rho^2 + R^2)^(3/2).");
   cf.def(
-      "ao_on_resting_convex_body", py::vectorize([](double psi) {
-        return aoOnRestingConvexBody(checkedArgument(psi, "psi", -kInf, kInf));
-      }),
+      "ao_plane_with_sphere",
+      [](py::object cosTheta, py::object sinAlpha) {
+        return broadcast<2>(
+            [](double c, double s) {
+              return aoPlaneWithSphere(checkedArgument(c, "cos_theta", -1, 1),
+                                       checkedArgument(s, "sin_alpha", 0, 1));
+            },
+            {cosTheta, sinAlpha});
+      },
+      py::arg("cos_theta"), py::arg("sin_alpha"),
+      "Ambient occlusion of a point on an infinite plane with one sphere as the only occluder: 1 - I/pi.");
+  cf.def(
+      "ao_plane_near_resting_sphere",
+      [](py::object rho, py::object radius) {
+        return broadcast<2>(
+            [](double p, double r) {
+              checkedArgument(p, "rho", 0, kInf);
+              if (!(checkedArgument(r, "radius", 0, kInf) > 0))
+                throw py::value_error("radius: expected a number > 0");
+              return aoPlaneNearRestingSphere(p, r);
+            },
+            {rho, radius});
+      },
+      py::arg("rho"), py::arg("radius"),
+      "AO of a plane point at horizontal distance rho >= 0 from the contact point of a sphere of that "
+      "radius (> 0) resting on the plane: 1 - R^3 / (rho^2 + R^2)^(3/2).");
+  cf.def(
+      "ao_on_resting_convex_body",
+      [](py::object psi) {
+        return broadcast<1>(
+            [](double p) { return aoOnRestingConvexBody(checkedArgument(p, "psi", -kInf, kInf)); }, {psi});
+      },
       py::arg("psi"),
       "AO on a convex body resting on an infinite plane, psi = angle of the normal from up: cos^2(psi/2).");
 }

@@ -74,6 +74,10 @@ void translate(std::exception_ptr p) {
     if (p) std::rethrow_exception(p);
   } catch (const py::error_already_set&) {
     throw;
+  } catch (const py::value_error& e) {  // ours, which may quote input that is not UTF-8
+    PyErr_SetObject(PyExc_ValueError, text(e.what()).ptr());
+  } catch (const py::type_error& e) {
+    PyErr_SetObject(PyExc_TypeError, text(e.what()).ptr());
   } catch (const py::builtin_exception&) {
     throw;
   } catch (const OutOfMemoryError& e) {

@@ -17,12 +17,8 @@ namespace {
 // "True"/"False" for bools (the scene syntax), str() for everything else.
 std::string overrideValue(const py::handle& value, const std::string& key) {
   if (py::isinstance<py::bool_>(value)) return value.cast<bool>() ? "true" : "false";
-  if (py::isinstance<py::int_>(value) || py::isinstance<py::float_>(value) ||
-      py::isinstance<py::str>(value)) {
-    std::string text = py::str(value).cast<std::string>();
-    checkNoNul(text, ("value of '" + key + "'").c_str());
-    return text;
-  }
+  if (py::isinstance<py::int_>(value) || py::isinstance<py::float_>(value) || py::isinstance<py::str>(value))
+    return textArgument(py::str(value), "value of '" + key + "'");
   throw py::type_error("value of '" + key + "': expected str, int, float or bool, got " +
                        py::str(py::type::handle_of(value).attr("__name__")).cast<std::string>());
 }
@@ -34,8 +30,7 @@ std::vector<std::pair<std::string, std::string>> overrideList(const py::object& 
     throw py::type_error("overrides: expected a dict {'tag.property': value}");
   for (auto [k, v] : overrides.cast<py::dict>()) {
     if (!py::isinstance<py::str>(k)) throw py::type_error("overrides: keys must be str 'tag.property'");
-    std::string key = k.cast<std::string>();
-    checkNoNul(key, "overrides");
+    std::string key = textArgument(k, "overrides");
     out.emplace_back(key, overrideValue(v, key));
   }
   return out;
@@ -52,10 +47,10 @@ PyScene loadString(const std::string& xml, const py::object& baseDir, const std:
                    const py::object& overrides) {
   checkNoNul(name, "name");  // the XML's own NUL bytes are the parser's (file and line)
   auto list = overrideList(overrides);
-  std::string dir =
-      baseDir.is_none() || (py::isinstance<py::str>(baseDir) && baseDir.cast<std::string>().empty())
-          ? std::filesystem::current_path().string()
-          : pathArgument(baseDir, "base_dir");
+  const bool none =
+      baseDir.is_none() ||
+      ((py::isinstance<py::str>(baseDir) || py::isinstance<py::bytes>(baseDir)) && py::len(baseDir) == 0);
+  std::string dir = none ? std::filesystem::current_path().string() : pathArgument(baseDir, "base_dir");
   py::gil_scoped_release release;
   return PyScene{loadSceneFromString(xml, name, dir, list)};
 }

@@ -1,5 +1,7 @@
 #include "python/text.h"
 
+#include "core/math/utf8.h"
+
 namespace penumbra::python {
 
 py::str text(const std::string& s) {
@@ -39,9 +41,27 @@ std::string pathArgument(const py::handle& path, const char* argument) {
   return bytes;
 }
 
-void checkNoNul(const std::string& s, const char* argument) {
-  if (s.find('\0') != std::string::npos)
-    throw py::value_error(std::string(argument) + ": contains a NUL character");
+std::string textArgument(const py::handle& s, const std::string& argument) {
+  if (!PyUnicode_Check(s.ptr()))
+    throw py::type_error(argument + ": expected a str, got " +
+                         py::str(py::type::handle_of(s).attr("__name__")).cast<std::string>());
+  Py_ssize_t size = 0;
+  const char* utf8 = PyUnicode_AsUTF8AndSize(s.ptr(), &size);
+  if (!utf8) {
+    PyErr_Clear();
+    throw py::value_error(argument + ": not valid text (a lone surrogate cannot be UTF-8)");
+  }
+  std::string out(utf8, size_t(size));
+  checkNoNul(out, argument);
+  return out;
+}
+
+void checkNoNul(const std::string& s, const std::string& argument) {
+  if (s.find('\0') != std::string::npos) throw py::value_error(argument + ": contains a NUL character");
+}
+
+std::string quoted(const std::string& userText) {
+  return escapeInvalidUtf8(userText);
 }
 
 }  // namespace penumbra::python

@@ -22,7 +22,13 @@ py::str pathText(const std::string& path);
 // A path argument: str, bytes or os.PathLike, as the bytes the file system sees (os.fsencode).
 // TypeError for anything else, ValueError for an empty path or one with a NUL character.
 std::string pathArgument(const py::handle& path, const char* argument);
+// A str argument as UTF-8: TypeError for another type, ValueError for a lone surrogate (not text)
+// or a NUL character.
+std::string textArgument(const py::handle& s, const std::string& argument);
 // Raises ValueError "<argument>: contains a NUL character" when `s` has one.
-void checkNoNul(const std::string& s, const char* argument);
+void checkNoNul(const std::string& s, const std::string& argument);
+// A message quoting user input, made valid UTF-8 (ill-formed bytes as \xNN), for pybind11's
+// exceptions (which need UTF-8).
+std::string quoted(const std::string& userText);
 
 }  // namespace penumbra::python

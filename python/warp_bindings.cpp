@@ -39,7 +39,8 @@ WarpChoice choose(const std::string& name, const std::optional<double>& param) {
   checkNoNul(name, "name");
   WarpType type;
   if (!parseWarpType(name, type))
-    throw py::value_error("name: unknown warp '" + name + "' (expected one of: " + warpTypeList() + ")");
+    throw py::value_error("name: unknown warp '" + quoted(name) + "' (expected one of: " + warpTypeList() +
+                          ")");
   try {
     return {type, checkedWarpParam(type, param.has_value(), param.value_or(0.0), "param")};
   } catch (const Error& e) {
@@ -226,7 +227,7 @@ py::array_t<float> samplePoints(const std::string& samplerName, int64_t n, std::
   checkNoNul(samplerName, "sampler");
   SamplerKind kind;
   if (!parseSamplerKind(samplerName, kind))
-    throw py::value_error("sampler: unknown sampler '" + samplerName +
+    throw py::value_error("sampler: unknown sampler '" + quoted(samplerName) +
                           "' (expected one of: " + acceptedSamplerNames() + ")");
   checkedCount(n, 1, int64_t(1) << 30, "n");
   if (dims.first < 0 || dims.first % 2 != 0 || dims.second != dims.first + 1 ||

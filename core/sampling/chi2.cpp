@@ -113,12 +113,13 @@ double integrateCell(const Chi2Domain& d, const PdfFunction& pdf, const Grid& g,
 // Sphere only: the pdf's mass in the region w in [wMax, 2]: 16 azimuthal cells times rows whose
 // widths grow geometrically away from wMax (the first is ~1e-14 wide), so a narrow cone's edge at
 // wMax is resolved relative to wMax itself, however small it is.
-double integrateOutside(const Chi2Domain& d, const PdfFunction& pdf) {
+double integrateOutside(const Chi2Domain& d, const PdfFunction& pdf, CancelFlag cancel = nullptr) {
   if (d.kind != Chi2Domain::Kind::Sphere || d.wMax >= 2.0) return 0.0;
   constexpr int nPhi = 16, nRows = 48;
   const double span = 2.0 - d.wMax;
   double sum = 0.0, w0 = d.wMax;
   for (int row = 0; row < nRows; ++row) {
+    throwIfCancelled(cancel);
     double w1 = row == nRows - 1 ? 2.0 : d.wMax + span * std::ldexp(1.0, row - nRows + 1);
     Grid g{nPhi, 1, 0.0, 2.0 * kPiD / nPhi, w0, w1 - w0};
     for (int ix = 0; ix < nPhi; ++ix) sum += integrateCell(d, pdf, g, ix, 0, 0);
@@ -312,7 +313,7 @@ Chi2Result chi2Run(const Chi2Domain& domain, uint64_t count, Next&& next, const 
   // ---- expected counts ----
   const double n = static_cast<double>(count);
   r.expected = expectedCounts(domain, pdf, g, n, options.minExpected, r.observed, options.cancel);
-  r.expectedOutside = n * integrateOutside(domain, pdf);
+  r.expectedOutside = n * integrateOutside(domain, pdf, options.cancel);
   throwIfCancelled(options.cancel);
 
   auto reject = [&](std::string why) {
@@ -338,6 +339,7 @@ Chi2Result chi2Run(const Chi2Domain& domain, uint64_t count, Next&& next, const 
   for (size_t c = 0; c < cellCount; ++c) {
     if (r.expected[c] != 0.0 || r.observed[c] == 0.0) continue;
     int ix = static_cast<int>(c % g.resX), iy = static_cast<int>(c / g.resX);
+    throwIfCancelled(options.cancel);
     if (refined++ < 8) r.expected[c] = n * integrateCell(domain, pdf, g, ix, iy, kRefineMinDepth);
     if (r.expected[c] == 0.0) {
       std::snprintf(buf, sizeof buf, "%.0f samples in cell (%d, %d), where the pdf integrates to 0",

@@ -112,6 +112,10 @@ def test_closed_forms_refuse_arguments_outside_their_domain():
         cf.sphere_light_irradiance_factor_at([0, 0, 0], [0, 0, 1], [0, 0, 2], -1.0)
     with pytest.raises(ValueError, match="n: expected a non-zero normal"):
         cf.sphere_light_irradiance_factor_at([0, 0, 0], [0, 0, 0], [0, 0, 2], 1.0)
+    with pytest.raises(ValueError):  # shapes that do not broadcast, as for a ufunc
+        cf.sphere_light_irradiance_factor(np.zeros(5), [0.1, 0.2])
+    with pytest.raises(TypeError):
+        cf.ao_on_resting_convex_body("half a turn")
     # Rounding past the domain's edge (a cosine from a dot product) is not an error.
     assert cf.sphere_light_irradiance_factor(1.0 + 2e-16, 0.5) == pytest.approx(math.pi * 0.25)
 

@@ -97,3 +97,18 @@ def test_nul_characters_in_other_strings_are_value_errors():
     with pytest.raises(ValueError, match="strategies"):
         penumbra.converge(scene, strategies="area\x00", spp=1, reference=np.zeros((12, 16, 3)))
     assert scene.sample_count == 2  # unchanged
+
+
+def test_text_that_cannot_be_utf8_is_a_value_error():
+    # A str with a lone surrogate has no UTF-8 form; bytes that are not UTF-8 are quoted as \xNN.
+    scene = penumbra.scene_from_string(TINY_SCENE)
+    with pytest.raises(ValueError, match="not valid text"):
+        scene.set("integrator.measure", "\udcff")
+    with pytest.raises(ValueError, match="overrides: not valid text"):
+        penumbra.scene_from_string(TINY_SCENE, overrides={"\udcff": 1})
+    with pytest.raises(ValueError, match=r"name: unknown warp '\\xFF\\xFE'"):
+        penumbra.warp(b"\xff\xfe", np.zeros((1, 2)))
+    with pytest.raises(ValueError, match=r"sampler: unknown sampler '\\xFF'"):
+        penumbra.sample_points(b"\xff", 4)
+    # As a path, a surrogate escape is the byte it stands for (os.fsencode).
+    assert penumbra.scene_from_string(TINY_SCENE, base_dir="\udcff").width == 16
