@@ -396,9 +396,15 @@ void ViewerController::setLimits(const RenderLimits& l) {
 // ---- camera ---------------------------------------------------------------------------------------
 
 void ViewerController::applyOrbit(const Vec3& origin) {
+  const glm::mat4 toWorld = lookAt(origin, orbit_.target, orbit_.worldUp);
+  // Far from the world's origin a camera dollied close to its target rounds onto it (floats are ~0.1
+  // apart at 1e6): with no direction to look along, the camera stays where it is.
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r)
+      if (!std::isfinite(toWorld[c][r])) return;
   orbit_.moved = true;
   RenderSettings s = settings_;
-  s.camera.toWorld = lookAt(origin, orbit_.target, orbit_.worldUp);
+  s.camera.toWorld = toWorld;
   setSettings(s);
 }
 
