@@ -116,10 +116,11 @@ TEST_P(ViewerMonkey, SurvivesRandomInputInEveryMode) {
     }
   // A hang is killed: generous for a loaded 2-core machine (a frame takes ~10-50 ms there).
   const int timeoutSeconds = 120 + int(frames * std::max(limit, 1.0) * 0.5);
+  std::string viewer;  // the viewer's command line without the monkey's own options
   auto monkeyCommand = [&](const std::string& scenePath, const std::string& extra) {
-    return std::string(PENUMBRA_OFFSCREEN_BINARY) + " view " + scenePath + sets + " --window " + window +
-           " --monkey " + std::to_string(seed) + " --frames " + std::to_string(frames) +
-           " --monkey-frame-limit " + std::to_string(limit) + " --monkey-log " + log + extra;
+    viewer = std::string(PENUMBRA_OFFSCREEN_BINARY) + " view " + scenePath + sets + " --window " + window +
+             " --frames " + std::to_string(frames) + " --monkey-frame-limit " + std::to_string(limit) + extra;
+    return viewer + " --monkey " + std::to_string(seed) + " --monkey-log " + log;
   };
   std::string command = monkeyCommand(path, "");
   auto run = [&](const std::string& cmd) {
@@ -137,13 +138,20 @@ TEST_P(ViewerMonkey, SurvivesRandomInputInEveryMode) {
     r = run(command);
   }
   const bool passed = r.exitCode == 0 && r.out.find("monkey: passed") != std::string::npos;
+  // The input log outlives the working directory, for an exact replay.
+  const fs::path kept = fs::temp_directory_path() /
+                        ("penumbra-monkey-" + testName(scene) + "-" + std::to_string(seed) + ".log");
+  std::error_code ec;
+  if (!passed) fs::copy_file(log, kept, fs::copy_options::overwrite_existing, ec);
   EXPECT_TRUE(passed) << "exit code " << r.exitCode
                       << (r.exitCode == 137
                               ? " (killed after " + std::to_string(timeoutSeconds) + " s: a hang)"
                               : std::string())
                       << "\n--- output (last 60 lines):\n"
                       << tail(r.out, 60) << "\n--- input log (last 20 frames):\n"
-                      << tail(readFile(log), 20) << "\n--- replay (from an empty directory):\n  " << command;
+                      << tail(readFile(log), 20) << "\n--- replay (from an empty directory):\n  " << command
+                      << "\n--- replay of exactly this input:\n  " << viewer << " --monkey-replay "
+                      << kept.string();
   if (passed) std::printf("%s", tail(r.out, 1).c_str());
 }
 

@@ -142,7 +142,7 @@ int runView(ViewOptions o) {
   } else if (driven(o)) {
     ui::MonkeyOptions mo;
     mo.seed = std::uint64_t(std::max<std::int64_t>(o.monkeySeed, 0));
-    mo.frames = o.frames >= 0 ? o.frames : 1000;
+    mo.frames = o.frames;  // -1: the replayed log's, else 1000
     mo.frameLimitSeconds = o.monkeyFrameLimit;
     mo.logPath = o.monkeyLog;
     mo.replayPath = o.monkeyReplay;

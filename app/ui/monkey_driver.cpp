@@ -6,6 +6,7 @@
 #include <cmath>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <vector>
@@ -91,14 +92,12 @@ class MonkeyDriver final : public FrameDriver {
  public:
   explicit MonkeyDriver(const MonkeyOptions& o) : o_(o), monkey_(o.seed) {
     setActiveItemLog(&items_);
-    if (!o_.logPath.empty()) {
-      log_ = std::fopen(o_.logPath.c_str(), "w");
-      if (!log_) std::fprintf(stderr, "monkey: cannot write the input log %s\n", o_.logPath.c_str());
-    }
+    int loggedFrames = -1;  // the "# frames N" line of a replayed log: its run's phases
     if (!o_.replayPath.empty()) {
       std::ifstream in(o_.replayPath);
       if (!in) fail(-1, "cannot read the input log " + o_.replayPath);
       for (std::string line; std::getline(in, line);) {
+        if (line.rfind("# frames ", 0) == 0) loggedFrames = std::atoi(line.c_str() + 9);
         if (line.empty() || line[0] == '#') continue;
         size_t space = line.find(' ');
         InputFrame f;
@@ -108,6 +107,12 @@ class MonkeyDriver final : public FrameDriver {
         }
         replay_.push_back(f);
       }
+    }
+    if (o_.frames < 0) o_.frames = loggedFrames > 0 ? loggedFrames : 1000;
+    if (!o_.logPath.empty()) {
+      log_ = std::fopen(o_.logPath.c_str(), "w");
+      if (!log_) std::fprintf(stderr, "monkey: cannot write the input log %s\n", o_.logPath.c_str());
+      if (log_) std::fprintf(log_, "# frames %d seed %llu\n", o_.frames, (unsigned long long)o_.seed);
     }
     std::snprintf(gCrash.replay, sizeof gCrash.replay, "monkey: replay: %s\n", o_.replayCommand.c_str());
     installCrashHandlers();

@@ -17,7 +17,7 @@ namespace penumbra::ui {
 
 struct MonkeyOptions {
   std::uint64_t seed = 1;
-  int frames = 1000;
+  int frames = -1;                 // -1: a replayed log's own count, else 1000
   double frameLimitSeconds = 1.0;  // the longest a frame may take (scene loading excluded)
   std::string logPath;             // every frame's input, one line each (formatInput)
   std::string replayPath;          // play back this log instead of the seeded monkey

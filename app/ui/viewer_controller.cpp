@@ -470,13 +470,20 @@ void ViewerController::applyOrbit(const Vec3& origin) {
 // Sets the camera to `origin`, looking about `target` as before: a lookat camera is rebuilt from the
 // two, any other keeps its rotation.
 void ViewerController::moveCamera(const Vec3& origin, const Vec3& target) {
+  RenderSettings s = settings_;
+  if (orbit_.isLookAt) {
+    const glm::mat4 toWorld = lookAt(origin, target, orbit_.worldUp);
+    // Far from the world's origin a camera dollied close to its target rounds onto it (floats are
+    // ~0.1 apart at 1e6): with no direction to look along, the camera stays where it is.
+    for (int c = 0; c < 4; ++c)
+      for (int r = 0; r < 4; ++r)
+        if (!std::isfinite(toWorld[c][r])) return;
+    s.camera.toWorld = toWorld;
+  } else {
+    s.camera.toWorld[3] = glm::vec4(origin, 1.f);
+  }
   orbit_.moved = true;
   orbit_.target = target;
-  RenderSettings s = settings_;
-  if (orbit_.isLookAt)
-    s.camera.toWorld = lookAt(origin, target, orbit_.worldUp);
-  else
-    s.camera.toWorld[3] = glm::vec4(origin, 1.f);
   setSettings(s);
 }
 
