@@ -11,6 +11,7 @@
 #include <chrono>
 #include <fstream>
 #include <iterator>
+#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -42,6 +43,21 @@ class ChildProcess {
       ::kill(pid_, SIGKILL);
       ::waitpid(pid_, nullptr, 0);
     }
+  }
+
+  // User and system CPU time it has used so far (/proc/PID/stat); 0 once it has ended.
+  double cpuSeconds() const {
+    if (pid_ <= 0) return 0;
+    std::ifstream f("/proc/" + std::to_string(pid_) + "/stat");
+    std::string stat((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    const size_t close = stat.rfind(')');  // after the command name, which may hold spaces
+    if (close == std::string::npos) return 0;
+    std::istringstream fields(stat.substr(close + 2));
+    std::string field;
+    double ticks = 0;
+    for (int i = 3; i <= 15 && fields >> field; ++i)  // field 3 is the state; 14 utime, 15 stime
+      if (i >= 14) ticks += std::stod(field);
+    return ticks / double(::sysconf(_SC_CLK_TCK));
   }
 
   void signal(int sig) const {

@@ -95,8 +95,8 @@ class TevStreamer {
   void fail(const std::string& why, bool continuing);
   // Under mutex_: the connection gives up waitSeconds from now; a failure after it says `during`.
   void startWaiting(const std::string& during);
-  void dropPendingOffer();
-  bool dueLocked(Clock::time_point now) const;
+  void dropPendingOffer();                      // under mutex_
+  bool dueLocked(Clock::time_point now) const;  // under mutex_: an offered frame may be taken
   // Under mutex_: when the next update is due, from when this one began (wall clock and process CPU
   // time) and the work it cost.
   void scheduleNext(Clock::time_point began, double beganProcessCpu, double workSeconds);
@@ -110,7 +110,7 @@ class TevStreamer {
   bool stop_ = false, failed_ = false, busy_ = true;  // busy_: connecting or sending
   std::optional<TevFrame> pending_;
   bool pendingOffered_ = false;             // pending_ came from offer()
-  uint64_t submitted_ = 0, completed_ = 0;  // frames given to send() / finish(), and handled
+  uint64_t submitted_ = 0, completed_ = 0;  // frames taken (offer, send, finish), and handled or dropped
   uint64_t offered_ = 0;                    // frames offer() took
   uint64_t offeredVersion_ = ~0ull;
   std::string offeredName_;
