@@ -13,7 +13,7 @@ namespace fields {
 const NumberField kSampleCount{"sampleCount", 1, double(kMaxSampleCount)};
 const NumberField kSeed{"seed", 0, 9007199254740992.0};  // 2^53: every seed up to it is exact here
 const NumberField kTargetSpp{"target spp", 0, double(1 << 30)};
-const NumberField kSeconds{"seconds", 0.1, 604800, false, " s", 1};
+const NumberField kSeconds{"time budget", 0.1, 604800, false, " s", 1};
 const NumberField kShadingSamples{"shading samples", 1, double(kMaxShadingSamples)};
 const NumberField kFov{"fov", 1, 179, false, " deg", 1};
 const NumberField kExposure{"exposure", -20, 20, false, " stops", 2};

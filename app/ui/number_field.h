@@ -12,7 +12,7 @@
 namespace penumbra::ui {
 
 struct NumberField {
-  std::string_view name;    // as the panel labels it: "sampleCount", "seconds"
+  std::string_view name;    // as notes name it: "sampleCount", "time budget"
   double min = 0, max = 0;  // inclusive (integer fields: whole numbers up to 2^53 exactly)
   bool integer = true;
   std::string_view unit;  // appended to values in notes: " s", " deg"

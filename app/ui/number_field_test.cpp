@@ -52,10 +52,10 @@ TEST(NumberField, NegativeAndZeroClampToTheSmallest) {
 TEST(NumberField, SecondsAreCappedAtOneWeek) {
   NumberEntry e = parseNumberEntry("1e30", fields::kSeconds, 10);
   EXPECT_EQ(valueOf(e), 604800.0);
-  EXPECT_EQ(e.note, "clamped to 604800.0 s (the largest seconds)");
+  EXPECT_EQ(e.note, "clamped to 604800.0 s (the largest time budget)");
   e = parseNumberEntry("0", fields::kSeconds, 10);
   EXPECT_EQ(valueOf(e), 0.1);
-  EXPECT_EQ(e.note, "clamped to 0.1 s (the smallest seconds)");
+  EXPECT_EQ(e.note, "clamped to 0.1 s (the smallest time budget)");
   e = parseNumberEntry(" 2.5 ", fields::kSeconds, 10);
   EXPECT_EQ(valueOf(e), 2.5);
   EXPECT_EQ(e.note, "");
