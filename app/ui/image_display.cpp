@@ -64,23 +64,6 @@ bool isSoftwareRenderer() {
 
 }  // namespace
 
-ImageLayout layoutImage(const DisplaySettings& d, int imageW, int imageH, int areaX, int areaW, int areaH) {
-  ImageLayout l;
-  l.width = imageW;
-  l.height = imageH;
-  if (imageW <= 0 || imageH <= 0) return l;
-  float zoom = d.zoom;
-  if (d.fit) {
-    float z = std::min(float(areaW) / imageW, float(areaH) / imageH);
-    zoom = z >= 1.f ? std::floor(z) : z;  // integer magnification keeps pixels exact
-    if (!(zoom > 0.f)) zoom = 1.f;
-  }
-  l.zoom = zoom;
-  l.x = std::round(areaX + (areaW - imageW * zoom) * 0.5f + d.panX);
-  l.y = std::round((areaH - imageH * zoom) * 0.5f + d.panY);
-  return l;
-}
-
 const char* tonemapperName(Tonemapper t) {
   return t == Tonemapper::Cpu ? "cpu" : "shader";
 }

@@ -10,19 +10,10 @@
 #include <vector>
 
 #include "app/ui/display_tonemap.h"
+#include "app/ui/image_layout.h"
 #include "app/ui/viewer_controller.h"
 
 namespace penumbra::ui {
-
-// Where the image lands in the framebuffer (top-left origin, pixels).
-struct ImageLayout {
-  float x = 0, y = 0;         // top-left corner of the image
-  float zoom = 1;             // screen pixels per image pixel
-  int width = 0, height = 0;  // image size in image pixels
-};
-
-// Image placement inside the area [areaX, areaX + areaW) x [0, areaH) for the display settings.
-ImageLayout layoutImage(const DisplaySettings& d, int imageW, int imageH, int areaX, int areaW, int areaH);
 
 // Colour around the image (and under the panels' window, see ViewerApp::frame).
 inline constexpr float kBackgroundRgb[3] = {0.16f, 0.16f, 0.17f};

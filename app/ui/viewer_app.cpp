@@ -439,10 +439,9 @@ class ViewerApp : public BenchViewer, public DrivenViewer {
     ImVec2 m = io.MousePos;
     bool overArea = !io.WantCaptureMouse && m.x >= sidebarWidth_ && m.x >= 0 && m.y >= 0;
     if (overArea && layout_.width > 0) {
-      int px = int(std::floor((m.x - layout_.x) / layout_.zoom));
-      int py = int(std::floor((m.y - layout_.y) / layout_.zoom));
+      int px, py;
       const Image& img = c_.snapshot().mean;
-      if (px >= 0 && py >= 0 && px < img.width && py < img.height) {
+      if (imagePixelAt(layout_, m.x, m.y, px, py) && px < img.width && py < img.height) {
         st_.hoverValid = true;
         st_.hoverX = px;
         st_.hoverY = py;
@@ -506,8 +505,7 @@ class ViewerApp : public BenchViewer, public DrivenViewer {
         c_.dolly(io.MouseWheel);
         break;
       case ViewerAction::ZoomDisplay:
-        display.zoom = std::clamp(display.zoom * std::pow(1.25f, io.MouseWheel), 1.f / 16, 16.f);
-        if (display.fit) display.zoom = layout_.zoom * std::pow(1.25f, io.MouseWheel);
+        display.zoom = zoomAfterWheel(display, layout_.zoom, io.MouseWheel);
         display.fit = false;
         break;
     }
