@@ -1,0 +1,203 @@
+// Images stay byte-identical: every strategy of every scene under scenes/, with every sampler,
+// rendered small (24x18, 4 spp, seed 1) and digested, against tests/image_digests.txt.
+//
+// The file is the contract, not the code: each line names the scene and the `--set` overrides that
+// select the strategy and sampler in the scenes' own XML spellings, so the check survives any
+// restructuring of how strategies are represented, and a line that no longer renders, or renders
+// differently, fails. Recording (from a build whose images are right):
+//   PENUMBRA_RECORD_IMAGE_DIGESTS=tests/image_digests.txt build/penumbra_tests
+//   --gtest_filter='ImageDigests.*'
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "core/math/error.h"
+#include "core/render/engine.h"
+#include "core/render/sample_count_fit.h"
+#include "core/render/strategy_table.h"
+#include "core/sampling/sampler_table.h"
+#include "core/scene/scene_builder.h"
+#include "tests/test_support.h"
+
+namespace penumbra {
+namespace {
+
+namespace fs = std::filesystem;
+using Overrides = std::vector<std::pair<std::string, std::string>>;
+
+constexpr uint32_t kSpp = 4;
+const Overrides kSmall = {{"camera.width", "24"}, {"camera.height", "18"}};
+
+// The scenes too heavy to load thousands of times as they are, and what keeps them light.
+const std::map<std::string, Overrides> kSceneOverrides = {
+    {"standin/rock-ao.xml", {{"shape.subdivisions", "4"}}},
+};
+
+std::string digestsFile() {
+  return test::sourcePath("tests/image_digests.txt");
+}
+
+// FNV-1a over the bits of every channel of every pixel of the mean image.
+uint64_t digest(const Image& image) {
+  uint64_t h = 1469598103934665603ull;
+  for (float v : image.rgb) {
+    uint32_t bits;
+    std::memcpy(&bits, &v, sizeof bits);
+    for (int i = 0; i < 4; ++i) h = (h ^ ((bits >> (8 * i)) & 0xffu)) * 1099511628211ull;
+  }
+  return h;
+}
+
+Overrides sceneOverrides(const std::string& scene, const Overrides& selection) {
+  Overrides all = kSmall;
+  if (auto it = kSceneOverrides.find(scene); it != kSceneOverrides.end())
+    all.insert(all.end(), it->second.begin(), it->second.end());
+  all.insert(all.end(), selection.begin(), selection.end());
+  return all;
+}
+
+// Renders as `penumbra render --spp 4 --seed 1` does.
+std::string renderDigest(const LoadedScene& s) {
+  auto job = std::make_shared<RenderJob>();
+  job->scene = s.scene;
+  job->settings = s.settings;
+  job->settings.seed = 1;
+  fitSampleCountToTarget(job->settings, kSpp);
+  Engine engine;
+  engine.start(job, RenderLimits{kSpp, 0.0});
+  engine.wait();
+  char text[17];
+  std::snprintf(text, sizeof text, "%016llx", (unsigned long long)digest(engine.film().mean(kSpp)));
+  return text;
+}
+
+std::string joinSelection(const Overrides& selection) {
+  std::string out;
+  for (const auto& [key, value] : selection) out += (out.empty() ? "" : " ") + key + "=" + value;
+  return out;
+}
+
+Overrides splitSelection(const std::string& text) {
+  Overrides out;
+  std::istringstream in(text);
+  for (std::string word; in >> word;) {
+    size_t eq = word.find('=');
+    if (eq == std::string::npos) throw Error("image_digests.txt: '" + word + "' is not KEY=VALUE");
+    out.emplace_back(word.substr(0, eq), word.substr(eq + 1));
+  }
+  return out;
+}
+
+struct DigestLine {
+  std::string scene, selection, digest;
+};
+
+std::vector<std::string> sceneFiles() {
+  std::vector<std::string> out;
+  for (const auto& e : fs::recursive_directory_iterator(test::sourcePath("scenes")))
+    if (e.is_regular_file() && e.path().extension() == ".xml")
+      out.push_back(fs::relative(e.path(), test::sourcePath("scenes")).string());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+// The name under which the scene's <integrator> already gives the property `canonical` (an override
+// in another spelling would be a second spelling of one setting); `canonical` when it gives none.
+std::string sceneSpelling(const SceneNode& integrator, std::string_view canonical) {
+  for (const StrategyRow& row : strategyTable())
+    for (const StrategyProperty& p : row.select)
+      if (!p.name.empty() && p.name.canonical() == canonical)
+        if (const Property* given = integrator.props.find(p.name.list())) return given->name;
+  return std::string(canonical);
+}
+
+// Every strategy of the scene's integrator type x every sampler, selected through the XML properties
+// (the scene's shading samples and counts stay as the scene gives them).
+std::vector<DigestLine> recordScene(const std::string& scene) {
+  std::vector<DigestLine> out;
+  LoadedScene base;
+  try {
+    base = loadScene(test::sourcePath("scenes/" + scene), sceneOverrides(scene, {}));
+  } catch (const Error&) {
+    return out;  // the stiff cases that must not load (their own tests say so)
+  }
+  const std::string type(strategyRow(base.settings.integrator.strategy).xmlType);
+  for (Strategy strategy : strategiesOfType(type)) {
+    IntegratorDesc desc = base.settings.integrator;
+    desc.strategy = strategy;
+    Overrides strategySelection;
+    const SceneNode* integrator = base.desc.child("integrator");
+    for (const CanonicalProperty& p : canonicalProperties(desc))
+      if (!p.isInteger)
+        strategySelection.emplace_back(
+            "integrator." + (integrator ? sceneSpelling(*integrator, p.name) : std::string(p.name)), p.value);
+    for (const SamplerRow& sampler : samplerTable()) {
+      Overrides selection = strategySelection;
+      selection.emplace_back("sampler.type", samplerKindName(sampler.kind));
+      LoadedScene s = loadScene(test::sourcePath("scenes/" + scene), sceneOverrides(scene, selection));
+      EXPECT_EQ(s.settings.integrator.strategy, strategy) << scene << " " << joinSelection(selection);
+      EXPECT_EQ(s.settings.samplerKind, sampler.kind) << scene << " " << joinSelection(selection);
+      out.push_back({scene, joinSelection(selection), renderDigest(s)});
+    }
+  }
+  return out;
+}
+
+std::vector<DigestLine> readDigests() {
+  std::ifstream in(digestsFile());
+  if (!in) throw Error(digestsFile() + ": cannot read");
+  std::vector<DigestLine> out;
+  for (std::string line; std::getline(in, line);) {
+    if (line.empty() || line[0] == '#') continue;
+    size_t a = line.find('\t'), b = line.rfind('\t');
+    if (a == std::string::npos || a == b)
+      throw Error("image_digests.txt: not SCENE<tab>SETS<tab>DIGEST: " + line);
+    out.push_back({line.substr(0, a), line.substr(a + 1, b - a - 1), line.substr(b + 1)});
+  }
+  return out;
+}
+
+TEST(ImageDigests, EveryStrategyAndSamplerRendersTheRecordedImage) {
+  if (const char* record = std::getenv("PENUMBRA_RECORD_IMAGE_DIGESTS")) {
+    std::ofstream out(record);
+    out << "# scene\t--set overrides (besides camera.width=24 camera.height=18)\tFNV-1a of the mean image "
+           "(4 spp, seed 1)\n";
+    size_t n = 0;
+    for (const std::string& scene : sceneFiles())
+      for (const DigestLine& d : recordScene(scene)) {
+        out << d.scene << '\t' << d.selection << '\t' << d.digest << '\n';
+        ++n;
+      }
+    std::printf("recorded %zu digests in %s\n", n, record);
+    return;
+  }
+  const std::vector<DigestLine> lines = readDigests();
+  ASSERT_GT(lines.size(), 1000u);
+  size_t differing = 0;
+  std::string lastScene;
+  for (const DigestLine& d : lines) {
+    LoadedScene s;
+    try {
+      s = loadScene(test::sourcePath("scenes/" + d.scene),
+                    sceneOverrides(d.scene, splitSelection(d.selection)));
+    } catch (const Error& e) {
+      ADD_FAILURE() << d.scene << " " << d.selection << ": no longer loads: " << e.what();
+      continue;
+    }
+    const std::string now = renderDigest(s);
+    if (now != d.digest && ++differing <= 20)
+      ADD_FAILURE() << d.scene << " " << d.selection << ": digest " << now << ", recorded " << d.digest;
+  }
+  EXPECT_EQ(differing, 0u) << "of " << lines.size() << " images";
+}
+
+}  // namespace
+}  // namespace penumbra
