@@ -1,5 +1,5 @@
 // End-to-end tests of --display-server (streaming to tev) in render, converge and view, against a
-// fake tev in this process (app/net/fake_tev.h, 127.0.0.1 only): what arrives is decoded and rebuilt and
+// fake tev in this process (app/net/fake_tev_test_support.h, 127.0.0.1 only): what arrives is decoded and rebuilt and
 // must equal the files the commands write; a viewer that closes early, never accepts or refuses costs
 // one warning and nothing else. Every command runs under `timeout`, every wait is bounded.
 #include <gtest/gtest.h>
@@ -14,9 +14,9 @@
 #include <string>
 #include <vector>
 
-#include "app/net/fake_tev.h"
+#include "app/net/fake_tev_test_support.h"
 #include "core/image/image_io.h"
-#include "core/math/temp_dir_fixture.h"
+#include "core/math/temp_dir_test_support.h"
 #include "tests/run_command.h"
 
 namespace penumbra {

@@ -1,4 +1,4 @@
-// `penumbra render --display-server` against tev servers that misbehave (app/net/fake_tev.h, 127.0.0.1
+// `penumbra render --display-server` against tev servers that misbehave (app/net/fake_tev_test_support.h, 127.0.0.1
 // only): one that never reads, closes at once, resets the connection, sends garbage, reads slowly,
 // never accepts, or has a full backlog, beside a well-behaved one. For each, what the stream promises
 // (docs/reliability.md, "tev stream"):
@@ -23,10 +23,10 @@
 #include <thread>
 #include <vector>
 
-#include "app/net/fake_tev.h"
+#include "app/net/fake_tev_test_support.h"
 #include "app/net/tev_streamer.h"
 #include "core/image/image_io.h"
-#include "core/math/temp_dir_fixture.h"
+#include "core/math/temp_dir_test_support.h"
 #include "tests/child_process.h"
 #include "tests/run_command.h"
 

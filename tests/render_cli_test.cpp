@@ -10,7 +10,7 @@
 #include <string>
 
 #include "core/image/image_io.h"
-#include "core/math/temp_dir_fixture.h"
+#include "core/math/temp_dir_test_support.h"
 #include "core/render/memory_estimate.h"
 #include "tests/run_command.h"
 

@@ -9,7 +9,8 @@ App layers, bottom to top (every app layer may include all of core):
 sampling, platform and net) and include neither each other nor anything above them.
 Core includes nothing from app/, no GL, GLFW, ImGui or OSMesa header; app/cli includes app/ui and
 app/platform only in its GL-linked view and warp-gui commands, app/net in any command. Neither core/ nor app/ includes
-anything from tests/: unit-test fixtures live beside the code they serve.
+anything from tests/: unit-test fixtures live beside the code they serve, named X_test_support.h, and
+only tests (X_test.cpp, tests/) and other test support include them.
 
 Usage: tools/check_layers.py [SOURCE_DIR]   (exit 0: clean, 1: violations listed, 2: bad usage)
 """
@@ -62,6 +63,10 @@ def check_file(root: pathlib.Path, path: pathlib.Path):
                 yield f"{where}: core includes no GL or ImGui header"
             continue
         dest = layer_of(pathlib.PurePosixPath(target))
+        is_test = rel.name.endswith("_test.cpp") or rel.name.endswith("_test_support.h")
+        if target.endswith("_test_support.h") and not is_test:
+            yield f"{where}: only tests include test support"
+            continue
         if target.startswith("tests/"):
             yield f"{where}: {area}/ never includes tests/ (keep test fixtures beside their code)"
             continue

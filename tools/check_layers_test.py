@@ -73,6 +73,17 @@ class CheckLayers(unittest.TestCase):
         self.assertViolation({"core/image/io_test.cpp": '#include "tests/temp_dir_test.h"\n'},
                              "never includes tests/")
 
+    def test_production_code_including_test_support_fails(self):
+        self.assertViolation({"core/math/temp_dir_test_support.h": "#pragma once\n",
+                              "core/math/files.cpp": '#include "core/math/temp_dir_test_support.h"\n'},
+                             "core/math/files.cpp:1: includes core/math/temp_dir_test_support.h: only tests")
+
+    def test_tests_and_test_support_may_include_test_support(self):
+        code, out = run_check({**CLEAN, "core/math/temp_dir_test_support.h": "#pragma once\n",
+                               "core/math/files_test.cpp": '#include "core/math/temp_dir_test_support.h"\n',
+                               "core/render/render_test_support.h": '#include "core/math/temp_dir_test_support.h"\n'})
+        self.assertEqual(code, 0, out)
+
     def test_directory_outside_the_order_fails(self):
         self.assertViolation({"core/extras/thing.h": "#pragma once\n"}, "has no place in the layer order")
 

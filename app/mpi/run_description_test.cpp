@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "core/math/temp_dir_fixture.h"
+#include "core/math/temp_dir_test_support.h"
 #include "core/scene/scene_builder.h"
 
 namespace penumbra::mpi {

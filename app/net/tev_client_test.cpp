@@ -11,7 +11,7 @@
 #include <thread>
 #include <vector>
 
-#include "app/net/fake_tev.h"
+#include "app/net/fake_tev_test_support.h"
 #include "app/net/tev_protocol.h"
 #include "core/math/error.h"
 

@@ -14,7 +14,7 @@
 #include <thread>
 #include <vector>
 
-#include "app/net/fake_tev.h"
+#include "app/net/fake_tev_test_support.h"
 
 namespace penumbra::net {
 namespace {

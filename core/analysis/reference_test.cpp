@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "core/analysis/test_scenes_fixture.h"
+#include "core/analysis/analysis_test_support.h"
 #include "core/image/image_io.h"
 #include "core/math/error.h"
 

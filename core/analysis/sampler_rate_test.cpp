@@ -8,7 +8,7 @@
 
 #include "core/analysis/error_metrics.h"
 #include "core/analysis/reference.h"
-#include "core/analysis/test_scenes_fixture.h"
+#include "core/analysis/analysis_test_support.h"
 #include "core/render/camera.h"
 #include "core/render/engine.h"
 

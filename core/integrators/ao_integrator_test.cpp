@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "core/integrators/test_scene_fixture.h"
+#include "core/integrators/integrator_test_support.h"
 
 namespace penumbra {
 namespace {

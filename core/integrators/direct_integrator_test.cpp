@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "core/integrators/test_scene_fixture.h"
+#include "core/integrators/integrator_test_support.h"
 
 namespace penumbra {
 namespace {

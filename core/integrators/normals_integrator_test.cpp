@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-#include "core/integrators/test_scene_fixture.h"
+#include "core/integrators/integrator_test_support.h"
 
 namespace penumbra {
 namespace {

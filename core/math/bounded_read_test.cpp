@@ -1,5 +1,5 @@
 #include "core/math/bounded_read.h"
-#include "core/math/temp_dir_fixture.h"
+#include "core/math/temp_dir_test_support.h"
 
 #include <gtest/gtest.h>
 

@@ -5,7 +5,7 @@
 #include <set>
 #include <string>
 
-#include "core/integrators/test_scene_fixture.h"
+#include "core/integrators/integrator_test_support.h"
 #include "core/render/row_renderer.h"
 
 namespace penumbra {

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "core/sampling/sampler.h"
-#include "core/sampling/sampler_checks.h"
+#include "core/sampling/sampler_test_support.h"
 #include "core/sampling/sobol_sampler.h"
 
 namespace penumbra {

@@ -7,7 +7,7 @@
 
 #include "core/sampling/chi2.h"
 #include "core/sampling/sampler.h"
-#include "core/sampling/sampler_checks.h"
+#include "core/sampling/sampler_test_support.h"
 
 namespace penumbra {
 namespace {

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "core/sampling/chi2.h"
-#include "core/sampling/sampler_checks.h"
+#include "core/sampling/sampler_test_support.h"
 
 namespace penumbra {
 namespace {
