@@ -17,6 +17,7 @@
 #include "core/integrators/direct_lighting.h"
 #include "core/integrators/integrator_desc.h"
 #include "core/integrators/light_technique.h"
+#include "core/integrators/sampling_loops.h"
 #include "core/integrators/shading_point.h"
 #include "core/sampling/sampler.h"
 #include "core/sampling/warp.h"
@@ -33,82 +34,33 @@ struct DirectIntegrator {
   int samples = 1;
 
   Color3 Li(const Scene& scene, const Ray& ray, Sampler& sampler) const {
-    SurfaceHit hit;
-    if (!scene.geometry.intersect(ray, hit)) return Color3(0.f);
-    const SurfaceMaterial& material = scene.materials[hit.objectId];
-    const Color3 L = emittedAt(scene, material, hit, ray);
-    if (isBlack(material.albedo)) return L;
-
     constexpr bool kSamplesHemisphere =
         kStrategy == Strategy::DirectUniformHemisphere || kStrategy == Strategy::DirectCosineHemisphere;
-    ShadingPoint sp(scene, ray, hit, kSamplesHemisphere);
-    Color3 E = deltaIrradiance(scene, sp);
-    if constexpr (kSamplesHemisphere) {
-      if (scene.hasAreaLights()) E += hemisphereIrradiance(scene, sp, sampler);
-    } else if constexpr (kSelection == LightSelection::Uniform) {
-      E += selectedLightIrradiance(scene, scene.uniformSelection, sp, sampler);
-    } else if constexpr (kSelection == LightSelection::Power) {
-      E += selectedLightIrradiance(scene, scene.powerSelection, sp, sampler);
-    } else if constexpr (kSelection == LightSelection::Bvh) {
-      E += selectedLightIrradiance(scene, scene.lightBvh, sp, sampler);
-    } else if constexpr (kStrategy != Strategy::Simple) {
-      E += lightSamplingIrradiance(scene, sp, sampler);
-    }
-    return L + material.albedo * kInvPi * E;
+    return directRadiance<kSamplesHemisphere>(scene, ray, [&](const ShadingPoint& sp) {
+      if constexpr (kSamplesHemisphere) {
+        constexpr HemisphereWarp kWarp =
+            kStrategy == Strategy::DirectCosineHemisphere ? HemisphereWarp::Cosine : HemisphereWarp::Uniform;
+        if (!scene.hasAreaLights()) return Color3(0.f);
+        return hemisphereIrradiance<kWarp>(scene, sp, sampler, samples, UnitWeight{});
+      } else if constexpr (kSelection == LightSelection::Uniform) {
+        return selectedLightIrradiance(scene, scene.uniformSelection, sp, sampler);
+      } else if constexpr (kSelection == LightSelection::Power) {
+        return selectedLightIrradiance(scene, scene.powerSelection, sp, sampler);
+      } else if constexpr (kSelection == LightSelection::Bvh) {
+        return selectedLightIrradiance(scene, scene.lightBvh, sp, sampler);
+      } else if constexpr (kStrategy != Strategy::Simple) {
+        return everyLightIrradiance<kLightMeasure>(scene, sp, sampler, samples, UnitWeight{});
+      } else {
+        return Color3(0.f);  // delta lights only
+      }
+    });
   }
 
  private:
-  Color3 hemisphereIrradiance(const Scene& scene, const ShadingPoint& sp, Sampler& sampler) const {
-    Color3 E(0.f);
-    for (int i = 0; i < samples; ++i) {
-      Vec2 u = sampler.next2D(uint32_t(i), uint32_t(samples));  // one request: stratified among themselves
-      Vec3 local;
-      float cosOverPdf;  // cos θ / pdf, in closed form: π (cosine warp), 2π cos θ (uniform warp)
-      if constexpr (kStrategy == Strategy::DirectCosineHemisphere) {
-        local = Warp::squareToCosineHemisphere(u);
-        if (!(local.z > 0.f)) continue;
-        cosOverPdf = kPi;
-      } else {
-        local = Warp::squareToUniformHemisphere(u);
-        cosOverPdf = 2.f * kPi * local.z;
-      }
-      Vec3 w = sp.frame.toWorld(local);
-      if (!leavesSurface(sp, w, local.z)) continue;
-      SurfaceHit lightHit;
-      if (!scene.geometry.intersect(sp.spawnRay(w, INFINITY), lightHit)) continue;
-      int32_t light = scene.materials[lightHit.objectId].sphereLight;
-      if (light < 0) continue;
-      E += scene.sphereLights[light].eval(lightHit.p, lightHit.ng, w) * cosOverPdf;
-    }
-    return E * (1.f / float(samples));  // the reciprocal is off the critical path
-  }
-
   static constexpr LightMeasure kLightMeasure = samplesLightArea(kStrategy) ? LightMeasure::Area
                                                 : samplesLightSolidAngle(kStrategy)
                                                     ? LightMeasure::SolidAngle
                                                     : LightMeasure::ProjectedSolidAngle;
-
-  Color3 lightSamplingIrradiance(const Scene& scene, const ShadingPoint& sp, Sampler& sampler) const {
-    Color3 E(0.f);
-    for (const SphereLight& light : scene.sphereLights) {
-      const LightTechnique<kLightMeasure> technique(light, sp);
-      float lightScale = maxAbsComponent(light.sphere.center) + light.sphere.radius;
-      for (int i = 0; i < samples; ++i) {
-        // Drawn before the canSample() check: a light that cannot be sampled still takes its request.
-        Vec2 u = sampler.next2D(uint32_t(i), uint32_t(samples));  // one request per light
-        if (!technique.canSample()) continue;
-        LightSample s = technique.sample(u);
-        if (!(s.pdf > 0.f) || isBlack(s.Le)) continue;
-        float cosTheta = glm::dot(sp.ns, s.wi);
-        if (!leavesSurface(sp, s.wi, cosTheta)) continue;
-        // Every traced sample faces x (far-side area samples have Le = 0): the light cannot block it.
-        if (scene.geometry.occluded(sp.spawnShadowRayAlong(s.wi, s.dist, lightScale), light.geometryIndex))
-          continue;
-        E += s.Le * technique.cosOverPdf(s, cosTheta);
-      }
-    }
-    return E * (1.f / float(samples));
-  }
 
   // One light per shading sample, chosen by `selection` with probability pick.pmf, then sampled by
   // this strategy's measure: Le cos / (pdf · pmf) is unbiased for the sum over all lights.
@@ -126,14 +78,9 @@ struct DirectIntegrator {
       if (!(pick.pmf > 0.0)) continue;
       const SphereLight& light = scene.sphereLights[pick.light];
       const LightTechnique<kLightMeasure> technique(light, sp);
-      if (!technique.canSample()) continue;
-      LightSample s = technique.sample(u);
-      if (!(s.pdf > 0.f) || isBlack(s.Le)) continue;
-      float cosTheta = glm::dot(sp.ns, s.wi);
-      if (!leavesSurface(sp, s.wi, cosTheta)) continue;
-      const float lightScale = maxAbsComponent(light.sphere.center) + light.sphere.radius;
-      if (scene.geometry.occluded(sp.spawnShadowRayAlong(s.wi, s.dist, lightScale), light.geometryIndex))
-        continue;
+      LightSample s;
+      float cosTheta;
+      if (!unoccludedLightSample(scene, light, lightScaleOf(light), technique, sp, u, s, cosTheta)) continue;
       // Divided in double: pmfs of many lights are tiny. Projected solid angle keeps its closed-form
       // cos θ / pdf = Ω⊥ (no variance from the division).
       if constexpr (kLightMeasure == LightMeasure::ProjectedSolidAngle)

@@ -1,5 +1,6 @@
 // What every direct-lighting estimator shares: which directions can carry light to a shading point,
-// and the deterministic contribution of point and directional lights.
+// the deterministic contribution of point and directional lights, and the radiance of a camera ray
+// made from them and a strategy's estimate of the area-light integral.
 #pragma once
 
 #include "core/integrators/shading_point.h"
@@ -32,6 +33,25 @@ inline bool leavesSurface(const ShadingPoint& sp, const Vec3& w, float cosTheta)
     E += s.Li * cosTheta;
   }
   return E;
+}
+
+// The radiance along a camera ray by direct lighting on a diffuse surface: what the first surface
+// emits towards the camera plus albedo/π times its irradiance from the delta lights and
+// areaIrradiance(sp), the strategy's estimate of the area-light integral. kWithFrame: whether that
+// estimate samples about the normal (ShadingPoint's frame).
+template <bool kWithFrame, class AreaIrradiance>
+[[gnu::always_inline]] inline Color3 directRadiance(const Scene& scene, const Ray& ray,
+                                                    const AreaIrradiance& areaIrradiance) {
+  SurfaceHit hit;
+  if (!scene.geometry.intersect(ray, hit)) return Color3(0.f);
+  const SurfaceMaterial& material = scene.materials[hit.objectId];
+  const Color3 L = emittedAt(scene, material, hit, ray);
+  if (isBlack(material.albedo)) return L;
+
+  ShadingPoint sp(scene, ray, hit, kWithFrame);
+  Color3 E = deltaIrradiance(scene, sp);
+  E += areaIrradiance(sp);
+  return L + material.albedo * kInvPi * E;
 }
 
 }  // namespace penumbra

@@ -22,6 +22,7 @@
 #include "core/integrators/direct_lighting.h"
 #include "core/integrators/light_technique.h"
 #include "core/integrators/mis_weight.h"
+#include "core/integrators/sampling_loops.h"
 #include "core/integrators/shading_point.h"
 #include "core/sampling/sampler.h"
 #include "core/sampling/warp.h"
@@ -34,20 +35,12 @@ struct MisIntegrator {
   int bsdfSamples = 1;   // cosine-hemisphere directions per camera sample
 
   Color3 Li(const Scene& scene, const Ray& ray, Sampler& sampler) const {
-    SurfaceHit hit;
-    if (!scene.geometry.intersect(ray, hit)) return Color3(0.f);
-    const SurfaceMaterial& material = scene.materials[hit.objectId];
-    const Color3 L = emittedAt(scene, material, hit, ray);
-    if (isBlack(material.albedo)) return L;
-
-    ShadingPoint sp(scene, ray, hit);
-    Color3 E = deltaIrradiance(scene, sp);
-    if (scene.hasAreaLights()) {
+    return directRadiance<true>(scene, ray, [&](const ShadingPoint& sp) {
+      if (!scene.hasAreaLights()) return Color3(0.f);
       Color3 lightPart, bsdfPart;
       techniques(scene, sp, sampler, lightPart, bsdfPart);
-      E += lightPart + bsdfPart;
-    }
-    return L + material.albedo * kInvPi * E;
+      return lightPart + bsdfPart;
+    });
   }
 
   // The two techniques' weighted irradiance estimates at a shading point (their sum is the estimate;
@@ -69,48 +62,20 @@ struct MisIntegrator {
  private:
   Color3 lightTechnique(const Scene& scene, const ShadingPoint& sp, Sampler& sampler) const {
     const float nL = float(lightSamples), nB = float(bsdfSamples);
-    Color3 E(0.f);
-    for (const SphereLight& light : scene.sphereLights) {
-      const LightTechnique<kMeasure> technique(light, sp);
-      const float lightScale = maxAbsComponent(light.sphere.center) + light.sphere.radius;
-      for (int i = 0; i < lightSamples; ++i) {
-        // One request per light, stratified over its lightSamples; drawn before canSample().
-        Vec2 u = sampler.next2D(uint32_t(i), uint32_t(lightSamples));
-        if (!technique.canSample()) continue;
-        LightSample s = technique.sample(u);
-        if (!(s.pdf > 0.f) || isBlack(s.Le)) continue;
-        float cosTheta = glm::dot(sp.ns, s.wi);
-        if (!leavesSurface(sp, s.wi, cosTheta)) continue;
-        if (scene.geometry.occluded(sp.spawnShadowRayAlong(s.wi, s.dist, lightScale), light.geometryIndex))
-          continue;
-        const float weight = misWeight<kHeuristic>(nL * s.pdf, nB * bsdfPdf(cosTheta));
-        E += s.Le * (technique.cosOverPdf(s, cosTheta) * weight);
-      }
-    }
-    return E * (1.f / nL);
+    return everyLightIrradiance<kMeasure>(scene, sp, sampler, lightSamples,
+                                          [&](const LightSample& s, float cosTheta) {
+                                            return misWeight<kHeuristic>(nL * s.pdf, nB * bsdfPdf(cosTheta));
+                                          });
   }
 
   Color3 bsdfTechnique(const Scene& scene, const ShadingPoint& sp, Sampler& sampler) const {
     const float nL = float(lightSamples), nB = float(bsdfSamples);
-    Color3 E(0.f);
-    for (int i = 0; i < bsdfSamples; ++i) {
-      Vec2 u = sampler.next2D(uint32_t(i), uint32_t(bsdfSamples));  // one request after the lights'
-      Vec3 local = Warp::squareToCosineHemisphere(u);
-      if (!(local.z > 0.f)) continue;
-      Vec3 w = sp.frame.toWorld(local);
-      if (!leavesSurface(sp, w, local.z)) continue;
-      SurfaceHit lightHit;
-      if (!scene.geometry.intersect(sp.spawnRay(w, INFINITY), lightHit)) continue;
-      int32_t light = scene.materials[lightHit.objectId].sphereLight;
-      if (light < 0) continue;
-      const SphereLight& l = scene.sphereLights[light];
-      const Color3 Le = l.eval(lightHit.p, lightHit.ng, w);
-      if (isBlack(Le)) continue;
-      const float pL = lightSamples > 0 ? lightPdf(l, sp, w, lightHit.p, lightHit.ng) : 0.f;
-      const float weight = misWeight<kHeuristic>(nB * bsdfPdf(local.z), nL * pL);
-      E += Le * (kPi * weight);  // cos θ / pdf = π
-    }
-    return E * (1.f / nB);
+    return hemisphereIrradiance<HemisphereWarp::Cosine>(
+        scene, sp, sampler, bsdfSamples,
+        [&](const SphereLight& light, const SurfaceHit& lightHit, const Vec3& w, float cosTheta) {
+          const float pL = lightSamples > 0 ? lightPdf(light, sp, w, lightHit.p, lightHit.ng) : 0.f;
+          return misWeight<kHeuristic>(nB * bsdfPdf(cosTheta), nL * pL);
+        });
   }
 };
 
