@@ -3,8 +3,8 @@
 //  - ViewerMonkey: the monkey (`view --monkey`) on every scene under scenes/ and the built-in one,
 //    through the plain view, compare mode, the warp inspector and the MIS light-share view.
 //    PENUMBRA_MONKEY_FRAMES (frames per scene), PENUMBRA_MONKEY_SEED (added to each scene's seed)
-//    and PENUMBRA_MONKEY_FRAME_LIMIT (seconds) override the defaults; tools/monkey runs 10,000 frames
-//    per scene.
+//    and PENUMBRA_MONKEY_FRAME_LIMIT (seconds) override the defaults, PENUMBRA_MONKEY_VIEWER the
+//    viewer binary; tools/monkey runs 10,000 frames per scene. Each case runs on its own copy of scenes/.
 //  - ViewerWidgetIds: the widget-ID audit (`view --audit-ids`) on one scene of each kind.
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -62,18 +62,33 @@ std::string testName(const std::string& scene) {
   return n.substr(0, n.size() > 4 && n.substr(n.size() - 4) == "_xml" ? n.size() - 4 : n.size());
 }
 
+// The viewer binary under test: PENUMBRA_MONKEY_VIEWER (tools/monkey runs a copy, so that a rebuild
+// during a long run does not change what runs), else the one this build made.
+std::string viewerBinary() {
+  const char* v = std::getenv("PENUMBRA_MONKEY_VIEWER");
+  return v && *v ? v : PENUMBRA_OFFSCREEN_BINARY;
+}
+
 double envNumber(const char* name, double fallback) {
   const char* v = std::getenv(name);
   return v && *v ? std::atof(v) : fallback;
 }
 
-// A fresh working directory for the child: the monkey saves images and scenes where it stands.
+// A fresh working directory for the child, holding its own copy of scenes/: the monkey saves images
+// and scenes where it stands and, through paths it copies from the Scene panel and pastes into the
+// save fields, over the scenes it opened, so it must never see the source tree's.
 struct WorkDir {
   fs::path path;
   explicit WorkDir(const std::string& name) {
     path = fs::temp_directory_path() / ("penumbra-monkey-" + std::to_string(::getpid()) + "-" + name);
     fs::remove_all(path);
     fs::create_directories(path);
+    fs::copy(scenesDir(), scenes(), fs::copy_options::recursive);
+  }
+  fs::path scenes() const { return path / "scenes"; }
+  // The scene's copy in this directory; "" for the built-in scene.
+  std::string scene(const std::string& relative) const {
+    return relative == kBuiltIn ? "" : (scenes() / relative).string();
   }
   ~WorkDir() {
     std::error_code ec;
@@ -107,7 +122,7 @@ TEST_P(ViewerMonkey, SurvivesRandomInputInEveryMode) {
   const char* window = index % 2 ? "1920x1080" : "1280x800";  // the two screens
   WorkDir dir(testName(scene));
   const std::string log = (dir.path / "monkey-input.log").string();
-  const std::string path = scene == kBuiltIn ? "" : scenesDir() + "/" + scene;
+  const std::string path = dir.scene(scene);
   std::string sets;
   for (const auto& [name, set] : kSceneOverrides)
     if (scene == name) {
@@ -118,8 +133,8 @@ TEST_P(ViewerMonkey, SurvivesRandomInputInEveryMode) {
   const int timeoutSeconds = 120 + int(frames * std::max(limit, 1.0) * 0.5);
   std::string viewer;  // the viewer's command line without the monkey's own options
   auto monkeyCommand = [&](const std::string& scenePath, const std::string& extra) {
-    viewer = std::string(PENUMBRA_OFFSCREEN_BINARY) + " view " + scenePath + sets + " --window " + window +
-             " --frames " + std::to_string(frames) + " --monkey-frame-limit " + std::to_string(limit) + extra;
+    viewer = viewerBinary() + " view " + scenePath + sets + " --window " + window + " --frames " +
+             std::to_string(frames) + " --monkey-frame-limit " + std::to_string(limit) + extra;
     return viewer + " --monkey " + std::to_string(seed) + " --monkey-log " + log;
   };
   std::string command = monkeyCommand(path, "");
@@ -179,8 +194,7 @@ class ViewerWidgetIds : public testing::TestWithParam<std::string> {};
 TEST_P(ViewerWidgetIds, NoWindowHasTwoWidgetsWithOneId) {
   const std::string scene = GetParam();
   WorkDir dir("audit-" + testName(scene));
-  const std::string command = std::string(PENUMBRA_OFFSCREEN_BINARY) + " view " +
-                              (scene == kBuiltIn ? "" : scenesDir() + "/" + scene) +
+  const std::string command = viewerBinary() + " view " + dir.scene(scene) +
                               " --set camera.width=96 --set camera.height=72 --window 1280x800 --audit-ids";
   test::CommandResult r = test::runCommand("cd " + dir.path.string() + " && timeout -s KILL 600 " + command);
   EXPECT_EQ(r.exitCode, 0) << tail(r.out, 60) << "\n--- command:\n  " << command;

@@ -143,14 +143,18 @@ void drawDisplayPanel(ViewerController& c, PanelState& st) {
   ImGui::PushTextWrapPos(0.f);
   hintText(
       ".png: display (exposure applied); .exr/.pfm: accumulation. Save as writes the "
-      "scene with the live settings; mesh paths are rewritten to load from there.");
+      "scene with the live settings; mesh paths are rewritten to load from there. Replacing a file "
+      "takes a second press.");
   ImGui::PopTextWrapPos();
   ImGui::SetNextItemWidth(-70);
   ImGui::InputText("##savescene", st.sceneSavePath, sizeof st.sceneSavePath);
   ImGui::SameLine();
   if (ImGui::Button("Save as")) {
     try {
-      c.setOutputStatus(c.saveSceneAs(st.sceneSavePath));
+      if (st.sceneSaveGuard.allows(st.sceneSavePath))
+        c.setOutputStatus(c.saveSceneAs(st.sceneSavePath));
+      else
+        c.setOutputStatus(OverwriteGuard::refusal(st.sceneSavePath, "Save as"));
     } catch (const std::exception& e) {
       c.setOutputStatus(e.what());
     }

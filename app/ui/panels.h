@@ -5,6 +5,7 @@
 #include <string>
 
 #include "app/ui/convergence_tracker.h"
+#include "app/ui/overwrite_guard.h"
 #include "app/ui/viewer_controller.h"
 
 namespace penumbra::ui {
@@ -18,8 +19,9 @@ struct PanelState {
   bool hoverValid = false;  // pixel inspector: the cursor is over the image
   int hoverX = 0, hoverY = 0;
   bool requestSavePng = false;
-  double frameMs = 0;      // time the last UI frame took to draw and present
-  float layoutZoom = 1.f;  // the zoom the image was last drawn at (fit computes it)
+  OverwriteGuard imageSaveGuard, sceneSaveGuard;  // Save and Save as ask again before replacing a file
+  double frameMs = 0;                             // time the last UI frame took to draw and present
+  float layoutZoom = 1.f;                         // the zoom the image was last drawn at (fit computes it)
   // Convergence panel: live RMSE against time for each accumulation since the scene or camera changed.
   ConvergenceTracker convergence;
   char referencePath[1024] = "";

@@ -169,7 +169,10 @@ class ViewerApp : public BenchViewer, public DrivenViewer {
     if (st_.requestSavePng) {
       st_.requestSavePng = false;
       try {
-        c_.setOutputStatus(c_.saveImage(st_.savePath));
+        if (st_.imageSaveGuard.allows(st_.savePath))
+          c_.setOutputStatus(c_.saveImage(st_.savePath));
+        else
+          c_.setOutputStatus(OverwriteGuard::refusal(st_.savePath, "Save (or S)"));
       } catch (const std::exception& e) {
         c_.setOutputStatus(e.what());
       }

@@ -217,7 +217,7 @@ void Engine::renderPreview(const RowRenderer& renderRow, Sampler& sampler) {
   const int blockRows = (height + kPreviewBlock - 1) / kPreviewBlock;
   for (int b;
        !abandonRows_.load(std::memory_order_relaxed) && (b = nextPreviewRow_.fetch_add(1)) < blockRows;)
-    renderRow.preview(b * kPreviewBlock, kPreviewBlock, sampler, preview_);
+    renderRow.preview(b * kPreviewBlock, kPreviewBlock, sampler, preview_, abandonRows_);
   PassBarrier::Lock lk = barrier_.lock();
   if (barrier_.arrive(lk, [&] { return cancel_.load(); })) {
     if (!cancel_) {

@@ -204,6 +204,24 @@ TEST(Engine, CancelReachesInsideARowOfExpensivePixels) {
   EXPECT_EQ(engine.progress().spp, 0u);
 }
 
+TEST(Engine, CancelReachesInsideAPreviewRowOfExpensiveBlocks) {
+  // The preview's one block row of 4096 blocks (a sample each) takes tens of seconds, as the row above:
+  // a restart during the preview must not wait for it.
+  auto job = expensiveRowJob();
+  job->settings.camera.width = 4 * 4096;
+  Engine engine;
+  RenderLimits limits;
+  limits.preview = true;
+  engine.start(job, limits, 1);
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));  // let the worker enter the preview
+  auto t0 = std::chrono::steady_clock::now();
+  engine.cancel();
+  double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  EXPECT_LT(seconds, 5.0);  // generous (a block takes milliseconds): this catches waiting for the row
+  EXPECT_TRUE(engine.progress().finished);
+  EXPECT_EQ(engine.progress().spp, 0u);
+}
+
 TEST(Engine, RequestStopFinishesTheCurrentPass) {
   auto job = smallJob();
   Engine engine;
@@ -600,7 +618,7 @@ TEST(Engine, AFailureDuringThePreviewEndsTheRender) {
   Engine engine;
   engine.setRowRendererFactory([](const RenderJob& job) {
     RowRenderer rows = makeRowRenderer(job);
-    rows.preview = [](int, int, Sampler&, Image&) { throw std::bad_alloc(); };
+    rows.preview = [](int, int, Sampler&, Image&, const std::atomic<bool>&) { throw std::bad_alloc(); };
     return rows;
   });
   RenderLimits limits;

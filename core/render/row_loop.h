@@ -51,10 +51,12 @@ RowRenderer rowsFor(const RenderJob& job, Integrator integrator) {
       std::swap(current, upcoming);
     }
   };
-  r.preview = [camera, scene, integrator](int y0, int block, Sampler& sampler, Image& image) {
+  r.preview = [camera, scene, integrator](int y0, int block, Sampler& sampler, Image& image,
+                                          const std::atomic<bool>& cancel) {
     const int width = camera.width(), height = camera.height();
     const int y1 = std::min(y0 + block, height);
     for (int x0 = 0; x0 < width; x0 += block) {
+      if (cancel.load(std::memory_order_relaxed)) return;
       const int x1 = std::min(x0 + block, width);
       IVec2 centre((x0 + x1) / 2, (y0 + y1) / 2);
       sampler.startPixelSample(centre, 0);

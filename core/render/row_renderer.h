@@ -23,8 +23,10 @@ struct RowRenderer {
                      const std::atomic<bool>& cancel)>
       row;
   // A preview of the rows [y, y + block): one sample (index 0) per block x block square, written to
-  // every pixel of the square in `image`.
-  std::function<void(int y, int block, Sampler& sampler, Image& image)> preview;
+  // every pixel of the square in `image`. Stops between two squares once *cancel is set, as `row`
+  // does between two pixels.
+  std::function<void(int y, int block, Sampler& sampler, Image& image, const std::atomic<bool>& cancel)>
+      preview;
 };
 
 RowRenderer makeRowRenderer(const RenderJob& job);
