@@ -166,7 +166,7 @@ void bindScene(py::module_& m) {
           d["name"] = text(samplerKindName(r.kind));
           d["label"] = text(std::string(r.label));
           d["description"] = text(std::string(r.description));
-          d["uses_sample_count"] = r.usesSampleCount;
+          d["uses_sample_count"] = r.usesSampleCount();
           out.append(d);
         }
         return out;

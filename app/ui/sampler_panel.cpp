@@ -26,7 +26,7 @@ void drawSamplerPanel(ViewerController& c, PanelState&) {
     s.sampleCount = uint32_t(*count);
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip(
-        samplerRow(s.samplerKind).usesSampleCount
+        samplerRow(s.samplerKind).usesSampleCount()
             ? "The scene's <sampler sampleCount>: this sampler's strata, and the default target spp.\n"
               "While the target spp equals it, the target follows it."
             : "The scene's <sampler sampleCount>: the default target spp (this sampler ignores it).\n"

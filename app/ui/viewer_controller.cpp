@@ -454,7 +454,7 @@ void ViewerController::setLimits(const RenderLimits& l) {
   if (l.targetSpp == limits_.targetSpp && l.seconds == limits_.seconds) return;
   limits_ = l;
   // A sampler shaped by the count (stratified, zsobol) needs a new pattern for a new target.
-  if (samplerRow(settings_.samplerKind).usesSampleCount) return start();
+  if (samplerRow(settings_.samplerKind).usesSampleCount()) return start();
   const RenderLimits run = effectiveLimits();
   if (!engine_.extend(run)) startLeft();  // a new target continues the accumulation
   if (compare_ && !compareEngine_.extend(run)) startCompare();

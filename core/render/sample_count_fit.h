@@ -1,4 +1,4 @@
-// Samplers whose pattern depends on the sample count (their row's usesSampleCount: stratified's
+// Samplers whose pattern depends on the sample count (their row's fitSampleCount: stratified's
 // strata, zsobol's shared nets) need the run's final count up front. A run that knows it (render
 // --spp, converge --spp, the viewer's target spp) gets that count; one that does not (a time limit,
 // endless accumulation) keeps the scene's sampleCount, and is told what that means.
@@ -11,8 +11,9 @@
 
 namespace penumbra {
 
-// Sets s.sampleCount to targetSpp (0: unknown) for such samplers, and returns, with the numbers,
-// what the run does when it cannot be what was asked for (empty when it is, or for other samplers).
+// Applies the sampler row's rule: sets s.sampleCount for the run's final count targetSpp (0: unknown),
+// and returns, with the numbers, what the run does when it cannot be what was asked for (empty when
+// it is, or for samplers without a rule).
 std::string fitSampleCountToTarget(RenderSettings& s, uint32_t targetSpp);
 
 }  // namespace penumbra

@@ -46,12 +46,17 @@ inline float jittered(uint32_t stratum, float jitter, float invStrata) {
 
 }  // namespace
 
+uint32_t stratifiedGridSide(uint32_t sampleCount) {
+  const uint64_t n = std::max<uint32_t>(sampleCount, 1);
+  auto side = static_cast<uint64_t>(std::sqrt(static_cast<double>(n)));
+  while (side * side > n) --side;
+  while ((side + 1) * (side + 1) <= n) ++side;
+  return static_cast<uint32_t>(side);
+}
+
 Sampler::Sampler(SamplerKind kind, uint32_t sampleCount, uint64_t seed)
     : seed_(seed), seedHash_(mix64(seed)), sampleCount_(std::max<uint32_t>(sampleCount, 1)), kind_(kind) {
-  auto side = static_cast<uint32_t>(std::sqrt(static_cast<double>(sampleCount_)));
-  while (side * side > sampleCount_) --side;
-  while ((side + 1) * (side + 1) <= sampleCount_) ++side;
-  gridSide_ = std::max<uint32_t>(side, 1);
+  gridSide_ = stratifiedGridSide(sampleCount_);
   zsobolLog2Samples_ = zsobolLog2Samples(sampleCount_);
   startPixelSample(IVec2(0, 0), 0);
 }

@@ -17,6 +17,9 @@ namespace penumbra {
 enum class SamplerKind : uint8_t { Independent, Stratified, Sobol, ZSobol };
 inline constexpr int kSamplerKindCount = 4;
 
+// Stratified's strata per side of its 2-D grid for a sampleCount: floor(sqrt(max(sampleCount, 1))).
+uint32_t stratifiedGridSide(uint32_t sampleCount);
+
 class Sampler {
  public:
   // sampleCount: the scene's samples per pixel; for Stratified it is the number of strata per

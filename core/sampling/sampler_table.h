@@ -1,8 +1,10 @@
 // The samplers: one row each, in the order the viewer lists them. The scene builder, the XML and
-// metadata writers and the viewer's sampler panel read this table; none keeps its own list or
-// spelling. Adding a sampler: docs/architecture.md, "How to add a sampler".
+// metadata writers, the viewer's sampler panel and the fit of a run's sample count
+// (core/render/sample_count_fit.h) read this table; none keeps its own list, spelling or rule. Adding a
+// sampler: docs/architecture.md, "How to add a sampler".
 #pragma once
 
+#include <cstdint>
 #include <span>
 #include <string>
 #include <string_view>
@@ -12,12 +14,30 @@
 
 namespace penumbra {
 
+// What a sampler whose pattern the sample count shapes renders with in one run.
+struct SampleCountFit {
+  uint32_t sampleCount = 1;  // the count its pattern takes
+  // With the numbers, what the run does when the pattern cannot be the one asked for (a count that
+  // does not fit the pattern, or no known final count); empty when it is.
+  std::string note;
+};
+
+// A sampler's rule for fitting its sampleCount to a run: `sceneCount` is the scene's sampleCount,
+// `targetSpp` the run's final count (0: not known, as with a time limit or endless accumulation).
+using SampleCountRule = SampleCountFit (*)(uint32_t sceneCount, uint32_t targetSpp);
+
 struct SamplerRow {
   SamplerKind kind;
   Spellings name;                // <sampler type="..."> (canonical first) and --set sampler=...
   std::string_view label;        // short human name (viewer)
   std::string_view description;  // one sentence (viewer tooltip)
-  bool usesSampleCount;          // the scene's sampleCount shapes the pattern (not only the target spp)
+  // How the run's count sets the pattern, for samplers whose pattern the sample count shapes
+  // (stratified's strata, zsobol's shared nets); nullptr for the others, whose sampleCount only sets
+  // the default target spp. Applied by fitSampleCountToTarget (core/render/sample_count_fit.h).
+  SampleCountRule fitSampleCount;
+
+  // The scene's sampleCount shapes the pattern (not only the target spp).
+  constexpr bool usesSampleCount() const { return fitSampleCount != nullptr; }
 };
 
 std::span<const SamplerRow> samplerTable();
