@@ -141,15 +141,15 @@ BENCHMARK(BM_Yardstick_SphereArea)->Unit(benchmark::kMillisecond)->UseRealTime()
 // whole passes through the progressive engine; items are camera samples.
 void BM_Penumbra_SphereArea(benchmark::State& state) {
   LoadedScene s = loadSceneFromString(defaultSceneXml(), "<built-in sphere scene>", ".");
-  auto job = std::make_shared<RenderJob>();
-  job->scene = s.scene;
-  job->settings = s.settings;
-  job->settings.integrator = IntegratorDesc{Strategy::DirectArea, 1};
+  RenderSettings settings = s.settings;
+  settings.integrator = IntegratorDesc{Strategy::DirectArea, 1};
   const int threads = int(state.range(0));
   constexpr uint32_t kPasses = 8;
+  const RenderLimits limits{kPasses, 0.0};
+  const auto job = std::make_shared<const RenderJob>(s.scene, settings, limits);
   Engine engine;
   for (auto _ : state) {
-    engine.start(job, RenderLimits{kPasses, 0.0}, threads);
+    engine.start(job, limits, threads);
     engine.wait();
   }
   const Image image = engine.film().mean(kPasses);

@@ -11,7 +11,6 @@
 #include "core/math/argument_checks.h"
 #include "core/render/engine.h"
 #include "core/render/memory_estimate.h"
-#include "core/render/sample_count_fit.h"
 #include "python/arguments.h"
 #include "python/bindings.h"
 #include "python/interrupt.h"
@@ -53,16 +52,15 @@ RenderResult render(const PyScene& s, std::optional<int64_t> spp, std::optional<
   const std::string scenePath = s.loaded.path;  // what the GIL-released render reads is copied
   const CameraDesc& camera = s.loaded.settings.camera;
   checkRenderFitsInMemory(camera.width, camera.height, scenePath.empty() ? "render" : scenePath);
-  auto job = std::make_shared<RenderJob>();
-  job->scene = s.loaded.scene;
-  job->settings = s.loaded.settings;
-  job->settings.seed = seedValue;
+  RenderSettings settings = s.loaded.settings;
+  settings.seed = seedValue;
   RenderLimits limits;
   limits.seconds = time.value_or(0.0);
-  limits.targetSpp = spp ? uint32_t(*spp) : (time ? 0u : job->settings.sampleCount);
+  limits.targetSpp = spp ? uint32_t(*spp) : (time ? 0u : settings.sampleCount);
   // Stratified and zsobol take the run's count, as render --spp does (a warning when they cannot).
-  if (std::string note = fitSampleCountToTarget(job->settings, limits.targetSpp); !note.empty())
-    if (PyErr_WarnEx(PyExc_RuntimeWarning, note.c_str(), 1) != 0) throw py::error_already_set();
+  const auto job = std::make_shared<const RenderJob>(s.loaded.scene, settings, limits);
+  if (!job->samplerNote.empty())
+    if (PyErr_WarnEx(PyExc_RuntimeWarning, job->samplerNote.c_str(), 1) != 0) throw py::error_already_set();
 
   Engine engine;
   {

@@ -19,12 +19,11 @@ namespace fs = std::filesystem;
 
 RenderProgress renderScene(const LoadedScene& s, uint32_t spp, Image* mean = nullptr, Image* se = nullptr,
                            uint64_t seed = 0) {
-  auto job = std::make_shared<RenderJob>();
-  job->scene = s.scene;
-  job->settings = s.settings;
-  job->settings.seed = seed;
+  RenderSettings settings = s.settings;
+  settings.seed = seed;
+  const RenderLimits limits{spp, 0.0};
   Engine engine;
-  engine.start(job, RenderLimits{spp, 0.0});
+  engine.start(std::make_shared<const RenderJob>(s.scene, settings, limits), limits);
   engine.wait();
   if (mean) *mean = engine.film().mean(spp);
   if (se) *se = engine.film().standardError(spp);

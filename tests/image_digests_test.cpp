@@ -21,7 +21,6 @@
 
 #include "core/math/error.h"
 #include "core/render/engine.h"
-#include "core/render/sample_count_fit.h"
 #include "core/render/strategy_table.h"
 #include "core/sampling/sampler_table.h"
 #include "core/scene/scene_builder.h"
@@ -66,13 +65,11 @@ Overrides sceneOverrides(const std::string& scene, const Overrides& selection) {
 
 // Renders as `penumbra render --spp 4 --seed 1` does.
 std::string renderDigest(const LoadedScene& s) {
-  auto job = std::make_shared<RenderJob>();
-  job->scene = s.scene;
-  job->settings = s.settings;
-  job->settings.seed = 1;
-  fitSampleCountToTarget(job->settings, kSpp);
+  RenderSettings settings = s.settings;
+  settings.seed = 1;
+  const RenderLimits limits{kSpp, 0.0};
   Engine engine;
-  engine.start(job, RenderLimits{kSpp, 0.0});
+  engine.start(std::make_shared<const RenderJob>(s.scene, settings, limits), limits);
   engine.wait();
   char text[17];
   std::snprintf(text, sizeof text, "%016llx", (unsigned long long)digest(engine.film().mean(kSpp)));

@@ -44,11 +44,9 @@ struct BenchOptions {
 
 // One render of `spp` passes: camera samples per second.
 double fixedSppRun(const LoadedScene& s, const RenderSettings& settings, int threads, uint32_t spp) {
-  auto job = std::make_shared<RenderJob>();
-  job->scene = s.scene;
-  job->settings = settings;
+  const RenderLimits limits{spp, 0.0};
   Engine engine;
-  engine.start(job, RenderLimits{spp, 0.0}, threads);
+  engine.start(std::make_shared<const RenderJob>(s.scene, settings, limits), limits, threads);
   engine.wait();
   RenderProgress p = engine.progress();
   return double(p.samples) / p.seconds;
@@ -93,11 +91,9 @@ void scalingSeries(const BenchOptions& o, int threads) {
 
 // One timed run of `seconds`: camera samples per second.
 double timedRun(const LoadedScene& s, const RenderSettings& settings, int threads, double seconds) {
-  auto job = std::make_shared<RenderJob>();
-  job->scene = s.scene;
-  job->settings = settings;
+  const RenderLimits limits{0, seconds};
   Engine engine;
-  engine.start(job, RenderLimits{0, seconds}, threads);
+  engine.start(std::make_shared<const RenderJob>(s.scene, settings, limits), limits, threads);
   engine.wait();
   RenderProgress p = engine.progress();
   return double(p.samples) / p.seconds;

@@ -19,7 +19,6 @@
 #include "core/math/error.h"
 #include "core/render/engine.h"
 #include "core/render/memory_estimate.h"
-#include "core/render/sample_count_fit.h"
 #include "core/scene/light_selection_default.h"
 
 namespace penumbra::cli {
@@ -69,14 +68,12 @@ void drawProgress(const RenderProgress& p, uint32_t target, double seconds) {
 int runRender(const RenderOptions& o) {
   std::optional<net::DisplayServer> displayServer = o.display.resolve();
   LoadedScene loaded = o.scene.load();
-  auto job = std::make_shared<RenderJob>();
-  job->scene = loaded.scene;
-  job->settings = loaded.settings;
-  if (o.seed) job->settings.seed = *o.seed;
+  RenderSettings settings = loaded.settings;
+  if (o.seed) settings.seed = *o.seed;
   std::string output = o.output;
   if (o.reference) {
-    job->settings.integrator = referenceEstimator(job->settings.integrator);
-    if (!o.seed) job->settings.seed = kReferenceSeed;         // independent of the runs measured against it
+    settings.integrator = referenceEstimator(settings.integrator);
+    if (!o.seed) settings.seed = kReferenceSeed;              // independent of the runs measured against it
     if (output.empty()) output = referenceCachePath(loaded);  // where `penumbra converge` looks for it
   }
   if (output.empty()) throw Error("render: -o/--output is required (optional only with --reference)");
@@ -84,15 +81,15 @@ int runRender(const RenderOptions& o) {
   imageFormatFromPath(output);
   checkOutputPath(output);
   if (o.reference) checkOutputPath(standardErrorPath(output));
-  checkRenderFitsInMemory(job->settings.camera.width, job->settings.camera.height,
+  checkRenderFitsInMemory(settings.camera.width, settings.camera.height,
                           loaded.path.empty() ? "render" : loaded.path);
 
   RenderLimits limits;
   limits.seconds = o.seconds;
-  uint32_t defaultSpp = o.reference ? 4096u : job->settings.sampleCount;
+  uint32_t defaultSpp = o.reference ? 4096u : settings.sampleCount;
   limits.targetSpp = o.spp > 0 ? o.spp : (o.seconds > 0 ? 0 : defaultSpp);
-  if (std::string note = fitSampleCountToTarget(job->settings, limits.targetSpp); !note.empty())
-    std::fprintf(stderr, "warning: %s\n", note.c_str());
+  const auto job = std::make_shared<const RenderJob>(loaded.scene, settings, limits);
+  if (!job->samplerNote.empty()) std::fprintf(stderr, "warning: %s\n", job->samplerNote.c_str());
 
   std::snprintf(gNotWrittenMessage, sizeof gNotWrittenMessage,
                 "\ninterrupted again: stopped at once; %s not written (an existing file is unchanged)\n",

@@ -22,7 +22,6 @@
 #include "core/render/cpu_clock.h"
 #include "core/render/engine.h"
 #include "core/render/memory_estimate.h"
-#include "core/render/sample_count_fit.h"
 
 namespace penumbra::mpi {
 
@@ -32,10 +31,9 @@ using Options = DistributedRenderOptions;
 
 struct Loaded {
   LoadedScene scene;
-  std::shared_ptr<RenderJob> job;
+  std::shared_ptr<const RenderJob> job;  // its samplerNote is render's warning
   std::string output;
   uint64_t target = 0;         // samples per pixel over all ranks; 0: until the time limit
-  std::string samplerNote;     // what a count-shaped sampler does with this run's count (render's warning)
   RunDescription description;  // what this rank would render, compared between the ranks
 };
 
@@ -59,14 +57,12 @@ Loaded prepare(const Options& o, int rank) {
   if (!o.output.empty()) imageFormatFromPath(o.output);  // a bad extension fails before rendering
   Loaded l;
   l.scene = o.scene.load();
-  l.job = std::make_shared<RenderJob>();
-  l.job->scene = l.scene.scene;
-  l.job->settings = l.scene.settings;
-  if (o.seed >= 0) l.job->settings.seed = uint64_t(o.seed);
+  RenderSettings settings = l.scene.settings;
+  if (o.seed >= 0) settings.seed = uint64_t(o.seed);
   l.output = o.output;
   if (o.reference) {
-    l.job->settings.integrator = referenceEstimator(l.job->settings.integrator);
-    if (o.seed < 0) l.job->settings.seed = kReferenceSeed;
+    settings.integrator = referenceEstimator(settings.integrator);
+    if (o.seed < 0) settings.seed = kReferenceSeed;
     if (l.output.empty()) l.output = referenceCachePath(l.scene);
   }
   if (l.output.empty()) throw Error("render: -o/--output is required (optional only with --reference)");
@@ -74,12 +70,14 @@ Loaded prepare(const Options& o, int rank) {
     checkOutputPath(l.output);
     checkOutputPath(standardErrorPath(l.output));
   }
-  const CameraDesc& cam = l.job->settings.camera;
+  const CameraDesc& cam = settings.camera;
   checkRenderFitsInMemory(cam.width, cam.height, l.scene.path.empty() ? "render" : l.scene.path);
-  // Stratified and zsobol take the run's count, as in render: every rank the same, so the ranks'
-  // blocks of sample indices are blocks of one pattern.
-  l.target = o.spp > 0 ? o.spp : (o.seconds > 0 ? 0 : (o.reference ? 4096u : l.job->settings.sampleCount));
-  l.samplerNote = fitSampleCountToTarget(l.job->settings, uint32_t(l.target));
+  // The job is made for the whole run's count, as in render (not for one rank's passes): every rank
+  // the same, so stratified and zsobol draw one pattern and the ranks' blocks of sample indices are
+  // blocks of it.
+  l.target = o.spp > 0 ? o.spp : (o.seconds > 0 ? 0 : (o.reference ? 4096u : settings.sampleCount));
+  l.job =
+      std::make_shared<const RenderJob>(l.scene.scene, settings, RenderLimits{uint32_t(l.target), o.seconds});
   const RunChoices choices{l.target, o.seconds, o.block, o.reference,
                            formatName(imageFormatFromPath(l.output))};
   l.description = describeRun(l.job->settings, choices, l.scene.desc);
@@ -167,7 +165,8 @@ int runDistributedRender(const Options& o, const Session& mpi) {
   if (!everyRankSucceeded(mpi, failure)) return kExitBadInput;
   if (!everyRankAgrees(mpi, l.description)) return kExitBadInput;
 
-  if (rank == 0 && !l.samplerNote.empty()) std::fprintf(stderr, "warning: %s\n", l.samplerNote.c_str());
+  if (rank == 0 && !l.job->samplerNote.empty())
+    std::fprintf(stderr, "warning: %s\n", l.job->samplerNote.c_str());
   // Temporaries of this output left by a process killed while writing (a SIGKILL mid-write).
   if (rank == 0) {
     removeStaleTemporaries(l.output);

@@ -13,7 +13,6 @@
 #include "core/math/error.h"
 #include "core/math/frame.h"
 #include "core/render/light_selection_rows.h"
-#include "core/render/sample_count_fit.h"
 #include "core/sampling/sampler_table.h"
 #include "core/scene/light_selection_default.h"
 #include "core/scene/xml_parser.h"
@@ -165,16 +164,13 @@ std::string ViewerController::stopText() const {
   return buf;
 }
 void ViewerController::startLeft() {
-  auto job = std::make_shared<RenderJob>();
-  job->scene = scene_.scene;
-  job->settings = settings_;
   if (lightShareView_ && !lightShareOffered()) lightShareView_ = false;
-  job->output = lightShareView_ ? RenderOutput::MisLightShare : RenderOutput::Radiance;
-  leftOutput_ = job->output;
+  leftOutput_ = lightShareView_ ? RenderOutput::MisLightShare : RenderOutput::Radiance;
   bool wasPaused = engine_.paused();
+  // Compare runs at equal time (no target spp): the final count is then unknown too.
   RenderLimits limits = effectiveLimits();
-  // Compare runs at equal time: the final count is then unknown too.
-  samplerNote_ = fitSampleCountToTarget(job->settings, limits.seconds > 0 ? 0 : limits.targetSpp);
+  auto job = std::make_shared<const RenderJob>(scene_.scene, settings_, limits, leftOutput_);
+  samplerNote_ = job->samplerNote;
   limits.preview = true;  // a coarse first frame within milliseconds of any change
   engine_.start(std::move(job), limits, engineThreads());
   if (wasPaused) engine_.setPaused(true);
@@ -183,13 +179,11 @@ void ViewerController::startLeft() {
 }
 
 void ViewerController::startCompare() {
-  auto job = std::make_shared<RenderJob>();
-  job->scene = scene_.scene;
-  job->settings = settings_;
-  job->settings.integrator = renderedCompareIntegrator();
+  RenderSettings settings = settings_;
+  settings.integrator = renderedCompareIntegrator();
   bool wasPaused = engine_.paused();
   RenderLimits limits = effectiveLimits();
-  fitSampleCountToTarget(job->settings, limits.seconds > 0 ? 0 : limits.targetSpp);
+  auto job = std::make_shared<const RenderJob>(scene_.scene, settings, limits);
   limits.preview = true;
   compareEngine_.start(std::move(job), limits, engineThreads());
   if (wasPaused) compareEngine_.setPaused(true);

@@ -9,7 +9,6 @@
 #include "core/math/error.h"
 #include "core/render/cpu_clock.h"
 #include "core/render/engine.h"
-#include "core/render/sample_count_fit.h"
 #include "core/sampling/sampler_table.h"
 
 namespace penumbra {
@@ -142,14 +141,17 @@ ConvergenceRun runConvergence(const LoadedScene& scene, const IntegratorDesc& st
                               const ConvergenceOptions& o) {
   bool sppMode = o.spp > 0;
   if (!sppMode && !(o.seconds > 0)) throw Error("converge: give a time or an spp count");
-  auto job = std::make_shared<RenderJob>();
-  job->scene = scene.scene;
-  job->settings = scene.settings;
-  job->settings.integrator = strategy;
-  job->settings.samplerKind = sampler;
+  RenderSettings settings = scene.settings;
+  settings.integrator = strategy;
+  settings.samplerKind = sampler;
+  settings.seed = o.seed;
+  RenderLimits limits;
+  if (sppMode)
+    limits.targetSpp = o.spp;
+  else
+    limits.seconds = o.seconds;
   // A known final count shapes stratified's strata and zsobol's nets (as `render --spp` does).
-  fitSampleCountToTarget(job->settings, sppMode ? o.spp : 0);
-  job->settings.seed = o.seed;
+  const auto job = std::make_shared<const RenderJob>(scene.scene, settings, limits);
   const uint64_t pixels = uint64_t(job->settings.camera.width) * uint64_t(job->settings.camera.height);
 
   // Log-spaced targets (seconds or spp), the last one being the limit itself.
@@ -181,11 +183,6 @@ ConvergenceRun runConvergence(const LoadedScene& scene, const IntegratorDesc& st
   };
 
   Engine engine;
-  RenderLimits limits;
-  if (sppMode)
-    limits.targetSpp = o.spp;
-  else
-    limits.seconds = o.seconds;
   double cpuStart = processCpuSeconds();
   pollerCpuStart = threadCpuSeconds();
   engine.start(job, limits, o.threads);

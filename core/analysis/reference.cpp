@@ -106,11 +106,10 @@ std::string standardErrorPath(const std::string& referencePath) {
 Reference renderReference(const LoadedScene& scene, RenderLimits limits, int threads, uint64_t seed,
                           CancelFlag cancel) {
   if (limits.targetSpp == 0 && limits.seconds <= 0) throw Error("renderReference: no spp or time limit");
-  auto job = std::make_shared<RenderJob>();
-  job->scene = scene.scene;
-  job->settings = scene.settings;
-  job->settings.integrator = referenceEstimator(scene.settings.integrator);
-  job->settings.seed = seed;
+  RenderSettings settings = scene.settings;
+  settings.integrator = referenceEstimator(scene.settings.integrator);
+  settings.seed = seed;
+  const auto job = std::make_shared<const RenderJob>(scene.scene, settings, limits);
   Engine engine;
   engine.start(job, limits, threads);
   while (cancel && !engine.progress().finished) {

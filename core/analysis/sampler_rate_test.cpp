@@ -79,13 +79,11 @@ double renderMseSlope(const std::string& sampler, int seeds, int* pixelCount = n
   for (uint32_t spp : {4u, 16u, 64u, 256u}) {
     double mse = 0;
     for (int seed = 0; seed < seeds; ++seed) {
-      auto job = std::make_shared<RenderJob>();
-      job->scene = s.scene;
-      job->settings = s.settings;
-      job->settings.sampleCount = spp;
-      job->settings.seed = static_cast<uint64_t>(seed) + 1;
+      RenderSettings settings = s.settings;
+      settings.seed = static_cast<uint64_t>(seed) + 1;
+      const RenderLimits limits{spp, 0};  // the job fits zsobol's nets to spp
       Engine engine;
-      engine.start(job, RenderLimits{spp, 0}, 2);
+      engine.start(std::make_shared<const RenderJob>(s.scene, settings, limits), limits, 2);
       engine.wait();
       mse += maskedMse(engine.film().mean(spp), truth.mean, pixels) / seeds;
     }

@@ -32,14 +32,13 @@ struct Render {
 
 // The scene's own integrator, or `strategy` when given.
 Render render(const LoadedScene& s, uint32_t spp, uint64_t seed, std::optional<Strategy> strategy = {}) {
-  auto job = std::make_shared<RenderJob>();
-  job->scene = s.scene;
-  job->settings = s.settings;
-  job->settings.seed = seed;
-  if (strategy) job->settings.integrator.strategy = *strategy;
-  Engine engine;
+  RenderSettings settings = s.settings;
+  settings.seed = seed;
+  if (strategy) settings.integrator.strategy = *strategy;
   RenderLimits limits;
   limits.targetSpp = spp;
+  auto job = std::make_shared<const RenderJob>(s.scene, settings, limits);
+  Engine engine;
   engine.start(job, limits, 2);
   engine.wait();
   RenderProgress p = engine.progress();

@@ -49,18 +49,17 @@ std::shared_ptr<const Scene> smallScene() {
 
 // 48 x 32 pixels of that scene, direct lighting with the default strategy.
 std::shared_ptr<RenderJob> smallJob() {
-  auto job = std::make_shared<RenderJob>();
-  job->scene = smallScene();
-  CameraDesc& cam = job->settings.camera;
+  RenderSettings s;
+  CameraDesc& cam = s.camera;
   const Vec3 origin(4, 4, 0), dir = glm::normalize(Vec3(0.f) - origin);
   const Vec3 left = glm::normalize(glm::cross(Vec3(0, 0, 1), dir));
   cam.toWorld = cameraToWorld(origin, left, glm::cross(dir, left), dir);
   cam.fovDegrees = 40.f;
   cam.width = 48;
   cam.height = 32;
-  job->settings.sampleCount = 64;
-  job->settings.seed = 42;
-  return job;
+  s.sampleCount = 64;
+  s.seed = 42;
+  return std::make_shared<RenderJob>(smallScene(), s, RenderLimits{});
 }
 
 // One row whose 4096 pixels each take 65536 light samples: tens of seconds for the row, milliseconds

@@ -41,19 +41,17 @@ std::shared_ptr<const Scene> twoLightScene() {
 }
 
 std::shared_ptr<RenderJob> job(Strategy strategy, RenderOutput output) {
-  auto j = std::make_shared<RenderJob>();
-  j->scene = twoLightScene();
-  CameraDesc& cam = j->settings.camera;
+  RenderSettings s;
+  CameraDesc& cam = s.camera;
   const Vec3 origin(4, 4, 1.5f), dir = glm::normalize(Vec3(0.f, 0.f, -0.5f) - origin);
   const Vec3 left = glm::normalize(glm::cross(Vec3(0, 0, 1), dir));
   cam.toWorld = cameraToWorld(origin, left, glm::cross(dir, left), dir);
   cam.fovDegrees = 50.f;
   cam.width = 40;
   cam.height = 30;
-  j->settings.seed = 7;
-  j->settings.integrator = IntegratorDesc{strategy, 1, 2, 1};
-  j->output = output;
-  return j;
+  s.seed = 7;
+  s.integrator = IntegratorDesc{strategy, 1, 2, 1};
+  return std::make_shared<RenderJob>(twoLightScene(), s, RenderLimits{}, output);
 }
 
 Image render(const std::shared_ptr<RenderJob>& j, uint32_t spp, uint64_t& bad) {

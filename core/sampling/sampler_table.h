@@ -1,7 +1,7 @@
 // The samplers: one row each, in the order the viewer lists them. The scene builder, the XML and
-// metadata writers, the viewer's sampler panel and the fit of a run's sample count
-// (core/render/sample_count_fit.h) read this table; none keeps its own list, spelling or rule. Adding a
-// sampler: docs/architecture.md, "How to add a sampler".
+// metadata writers, the viewer's sampler panel and every RenderJob (which applies a row's sample
+// count rule) read this table; none keeps its own list, spelling or rule. Adding a sampler:
+// docs/architecture.md, "How to add a sampler".
 #pragma once
 
 #include <cstdint>
@@ -33,7 +33,7 @@ struct SamplerRow {
   std::string_view description;  // one sentence (viewer tooltip)
   // How the run's count sets the pattern, for samplers whose pattern the sample count shapes
   // (stratified's strata, zsobol's shared nets); nullptr for the others, whose sampleCount only sets
-  // the default target spp. Applied by fitSampleCountToTarget (core/render/sample_count_fit.h).
+  // the default target spp. Applied where a RenderJob is made (core/render/render_job.h).
   SampleCountRule fitSampleCount;
 
   // The scene's sampleCount shapes the pattern (not only the target spp).

@@ -60,12 +60,11 @@ Image renderScaling(const char* accel, const char* measure, bool expectBvh) {
   LoadedScene s =
       loadSceneFromString(scalingSceneXml(40, 24, 3), "scaling", ".", {{"integrator.measure", measure}});
   EXPECT_EQ(s.scene->geometry.spheresUseBvh(), expectBvh);
-  auto job = std::make_shared<RenderJob>();
-  job->scene = s.scene;
-  job->settings = s.settings;
-  job->settings.seed = 5;
+  RenderSettings settings = s.settings;
+  settings.seed = 5;
+  const RenderLimits limits{3, 0.0};
   Engine engine;
-  engine.start(job, RenderLimits{3, 0.0}, 2);
+  engine.start(std::make_shared<const RenderJob>(s.scene, settings, limits), limits, 2);
   engine.wait();
   return engine.film().mean(3);
 }
