@@ -16,6 +16,7 @@
 #include "core/render/sample_count_fit.h"
 #include "core/sampling/sampler_table.h"
 #include "core/scene/light_selection_default.h"
+#include "core/scene/scene_writer.h"
 #include "core/scene/xml_parser.h"
 
 namespace penumbra::ui {
@@ -766,112 +767,13 @@ std::vector<std::string> ViewerController::siblingScenes() const {
 
 // ---- output ---------------------------------------------------------------------------------------
 
-namespace {
-
-Property makeProp(const std::string& name, PropertyType type, const std::string& text) {
-  Property p;
-  if (!parsePropertyValue(type, text, p)) throw Error("internal: cannot encode " + name + " = " + text);
-  p.name = name;
-  p.used = true;
-  return p;
-}
-
-// Replaces (or adds) the named properties, dropping any alias spellings listed in `drop`.
-void replaceProps(SceneNode& node, const std::vector<Property>& props, std::vector<std::string> drop) {
-  for (const Property& p : props) drop.push_back(p.name);
-  PropertyList out;
-  out.setContext(node.file, node.tag, node.type);
-  for (const Property& p : node.props.properties())
-    if (std::find(drop.begin(), drop.end(), p.name) == drop.end()) out.add(p);
-  for (const Property& p : props) out.add(p);
-  node.props = std::move(out);
-}
-
-SceneNode& childOrNew(SceneNode& root, const std::string& tag, const std::string& type) {
-  for (SceneNode& c : root.children)
-    if (c.tag == tag) return c;
-  SceneNode n;
-  n.tag = tag;
-  n.type = type;
-  n.file = root.file;
-  n.baseDir = root.baseDir;
-  root.children.push_back(std::move(n));
-  return root.children.back();
-}
-
-std::string matrixText(const glm::mat4& m) {  // row-major, 16 numbers
-  std::string s;
-  for (int r = 0; r < 4; ++r)
-    for (int c = 0; c < 4; ++c) s += (s.empty() ? "" : " ") + formatFloat(m[c][r]);
-  return s;
-}
-
-}  // namespace
-
-// Rewrites every string property naming an existing file relative to its node's directory so that it
-// resolves from `saveDir`.
-static void rebaseFilePaths(SceneNode& node, const fs::path& saveDir) {
-  PropertyList out;
-  out.setContext(node.file, node.tag, node.type);
-  bool changed = false;
-  for (Property p : node.props.properties()) {
-    if (p.type == PropertyType::String && !p.stringValue.empty() && fs::path(p.stringValue).is_relative()) {
-      std::error_code ec;
-      fs::path file = fs::absolute(fs::path(node.baseDir.empty() ? "." : node.baseDir) / p.stringValue, ec);
-      if (!ec && fs::is_regular_file(file, ec)) {
-        file = fs::weakly_canonical(file, ec);
-        fs::path rel = file.lexically_relative(saveDir);
-        p.stringValue = (rel.empty() ? file : rel).generic_string();
-        changed = true;
-      }
-    }
-    out.add(p);
-  }
-  if (changed) node.props = std::move(out);
-  for (SceneNode& c : node.children) rebaseFilePaths(c, saveDir);
-}
-
 SceneNode ViewerController::liveDesc(const std::string& saveDir) const {
-  SceneNode root = scene_.desc;
-  if (!saveDir.empty()) {
-    std::error_code ec;
-    fs::path dir = fs::weakly_canonical(fs::absolute(saveDir), ec);
-    rebaseFilePaths(root, ec ? fs::absolute(saveDir) : dir);
-  }
-  const RenderSettings& s = settings_;
-
-  SceneNode& cam = childOrNew(root, "camera", "perspective");
-  Property toWorld = makeProp("toWorld", PropertyType::Transform, matrixText(s.camera.toWorld));
+  SceneWriteOptions options;
+  options.outputDir = saveDir;
   // A lookat camera is written as its <lookat>: a reload orbits about the same target and up.
-  const Vec3 origin(s.camera.toWorld[3]);
-  if (orbit_.isLookAt && matricesClose(lookAt(origin, orbit_.target, orbit_.worldUp), s.camera.toWorld)) {
-    toWorld.hasLookAt = true;
-    toWorld.lookAtOrigin = origin;
-    toWorld.lookAtTarget = orbit_.target;
-    toWorld.lookAtUp = orbit_.worldUp;
-  }
-  replaceProps(cam,
-               {toWorld, makeProp("fov", PropertyType::Float, formatFloat(s.camera.fovDegrees)),
-                makeProp("width", PropertyType::Integer, std::to_string(s.camera.width)),
-                makeProp("height", PropertyType::Integer, std::to_string(s.camera.height))},
-               {});
-
-  SceneNode& smp = childOrNew(root, "sampler", samplerKindName(s.samplerKind));
-  smp.type = samplerKindName(s.samplerKind);
-  replaceProps(smp,
-               {makeProp("sampleCount", PropertyType::Integer, std::to_string(s.sampleCount)),
-                makeProp("seed", PropertyType::Integer, std::to_string(s.seed))},
-               {});
-
-  const std::string type(strategyRow(s.integrator.strategy).xmlType);
-  SceneNode& integ = childOrNew(root, "integrator", type);
-  integ.type = type;
-  integ.props = PropertyList();
-  integ.props.setContext(integ.file, integ.tag, integ.type);
-  for (const CanonicalProperty& p : canonicalProperties(s.integrator))
-    integ.props.add(
-        makeProp(std::string(p.name), p.isInteger ? PropertyType::Integer : PropertyType::String, p.value));
-  return root;
+  if (orbit_.isLookAt)
+    options.cameraLookAt = CameraLookAt{Vec3(settings_.camera.toWorld[3]), orbit_.target, orbit_.worldUp};
+  return sceneWithSettings(scene_.desc, settings_, options);
 }
 
 std::string ViewerController::liveSceneXml(const std::string& saveDir) const {

@@ -251,9 +251,10 @@ class ViewerController {
   bool sceneHasAreaLights() const { return scene_.scene && scene_.scene->hasAreaLights(); }
 
   // ---- output ----------------------------------------------------------------------------------
-  // The scene description with the live settings written into it, as XML. With `saveDir`, relative
-  // file paths (meshes) are rewritten to resolve from that directory: relative when the two share a
-  // root, absolute otherwise.
+  // The scene description with the live settings written into it, as XML (core/scene/scene_writer.h;
+  // the camera as a <lookat> while it is the orbit's lookat). With `saveDir`, relative file paths
+  // (meshes) are rewritten to resolve from that directory: relative when the two share a root,
+  // absolute otherwise.
   SceneNode liveDesc(const std::string& saveDir = "") const;
   std::string liveSceneXml(const std::string& saveDir = "") const;
   // PNG of the display (current exposure, sRGB), EXR/PFM of the accumulation, scene XML; all atomic.
