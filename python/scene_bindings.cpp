@@ -6,6 +6,7 @@
 
 #include "core/render/strategy_table.h"
 #include "core/sampling/sampler_table.h"
+#include "core/scene/scene_writer.h"
 #include "core/scene/xml_parser.h"
 #include "python/bindings.h"
 #include "python/text.h"
@@ -120,8 +121,9 @@ void bindScene(py::module_& m) {
           "warnings", [](const PyScene& s) { return textList(s.loaded.warnings); },
           "Warnings of loading (e.g. unused properties).")
       .def(
-          "to_xml", [](const PyScene& s) { return text(writeSceneXml(s.loaded.desc)); },
-          "The description, overrides and set() applied, as scene XML.")
+          "to_xml", [](const PyScene& s) { return text(writeScene(s.loaded.desc, s.loaded.settings)); },
+          "The description, overrides and set() applied, with its settings in canonical spelling (the "
+          "integrator's properties, the sampler's type), as scene XML.")
       .def("__repr__", [](const PyScene& s) {
         return py::str("<penumbra.Scene {} {}x{} {}>")
             .format(s.loaded.path.empty() ? py::str("<string>") : pathText(s.loaded.path),

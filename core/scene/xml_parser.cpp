@@ -215,25 +215,6 @@ std::string dirOf(const std::string& path) {
   return d.empty() ? std::string(".") : d.string();
 }
 
-// Whether the transform is exactly its <lookat> (up to float rounding of the same construction), so
-// that writing the <lookat> instead of the matrix reads back to the same camera.
-bool isItsLookAt(const Property& p) {
-  if (!p.hasLookAt) return false;
-  glm::mat4 m;
-  try {
-    m = lookAtMatrix(p.lookAtOrigin, p.lookAtTarget, p.lookAtUp, "", 0);
-  } catch (const Error&) {
-    return false;
-  }
-  float scale = 1.f;
-  for (int c = 0; c < 4; ++c)
-    for (int r = 0; r < 3; ++r) scale = std::max(scale, std::abs(p.matrix[c][r]));
-  for (int c = 0; c < 4; ++c)
-    for (int r = 0; r < 4; ++r)
-      if (!(std::abs(m[c][r] - p.matrix[c][r]) <= 1e-5f * scale)) return false;
-  return true;
-}
-
 void writeNode(tinyxml2::XMLPrinter& out, const SceneNode& node) {
   out.OpenElement(node.tag.c_str());
   if (!node.type.empty()) out.PushAttribute("type", node.type.c_str());
@@ -315,6 +296,23 @@ glm::mat4 lookAtMatrix(const Vec3& origin, const Vec3& target, const Vec3& up, c
   Vec3 left = c / cl;
   Vec3 newUp = glm::normalize(glm::cross(dir, left));
   return cameraToWorld(origin, left, newUp, dir);
+}
+
+bool isItsLookAt(const Property& p) {
+  if (!p.hasLookAt) return false;
+  glm::mat4 m;
+  try {
+    m = lookAtMatrix(p.lookAtOrigin, p.lookAtTarget, p.lookAtUp, "", 0);
+  } catch (const Error&) {
+    return false;
+  }
+  float scale = 1.f;
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 3; ++r) scale = std::max(scale, std::abs(p.matrix[c][r]));
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r)
+      if (!(std::abs(m[c][r] - p.matrix[c][r]) <= 1e-5f * scale)) return false;
+  return true;
 }
 
 glm::mat4 parseTransformElement(const tinyxml2::XMLElement& element, const std::string& file,

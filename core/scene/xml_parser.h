@@ -62,4 +62,9 @@ glm::mat4 parseTransformElement(const tinyxml2::XMLElement& element, const std::
 glm::mat4 lookAtMatrix(const Vec3& origin, const Vec3& target, const Vec3& up, const std::string& file,
                        int line);
 
+// Whether a transform property is exactly its <lookat> (up to float rounding of the same
+// construction), so that writing the <lookat> instead of the matrix reads back to the same transform.
+// writeSceneXml writes such a transform as its <lookat>.
+bool isItsLookAt(const Property& transform);
+
 }  // namespace penumbra
