@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "app/ui/engine_session.h"
+#include "app/ui/wait_until_test_support.h"
 #include "core/scene/scene_builder.h"
 
 using namespace penumbra;
@@ -22,15 +23,7 @@ SessionJob smallJob() {
   return SessionJob{s.scene, s.settings, RenderOutput::Radiance};
 }
 
-template <class F>
-bool waitUntil(F done) {
-  auto t0 = std::chrono::steady_clock::now();
-  while (!done()) {
-    if (std::chrono::steady_clock::now() - t0 > std::chrono::seconds(30)) return false;
-    std::this_thread::sleep_for(std::chrono::milliseconds(2));
-  }
-  return true;
-}
+using test::waitUntil;
 
 }  // namespace
 

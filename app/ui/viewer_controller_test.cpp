@@ -14,6 +14,7 @@
 #include <thread>
 
 #include "app/ui/light_share_map.h"
+#include "app/ui/wait_until_test_support.h"
 #include "core/image/image_io.h"
 #include "core/image/tonemap.h"
 #include "core/integrators/mis_light_share.h"
@@ -38,15 +39,7 @@ void waitForSpp(ui::ViewerController& c, uint32_t spp) {
     std::this_thread::sleep_for(std::chrono::milliseconds(2));
 }
 
-template <class F>
-bool waitUntil(F done) {
-  auto t0 = std::chrono::steady_clock::now();
-  while (!done()) {
-    if (std::chrono::steady_clock::now() - t0 > std::chrono::seconds(30)) return false;
-    std::this_thread::sleep_for(std::chrono::milliseconds(2));
-  }
-  return true;
-}
+using test::waitUntil;
 
 IntegratorDesc directWith(Strategy m) {
   IntegratorDesc d;

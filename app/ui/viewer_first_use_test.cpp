@@ -9,11 +9,13 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <string>
 #include <thread>
 
 #include "app/ui/readouts.h"
 #include "app/ui/viewer_controller.h"
+#include "app/ui/wait_until_test_support.h"
 #include "core/math/error.h"
 #include "core/scene/scene_builder.h"
 
@@ -22,14 +24,9 @@ using namespace penumbra;
 
 namespace {
 
-template <class F>
-bool waitUntil(F done) {
-  auto t0 = std::chrono::steady_clock::now();
-  while (!done()) {
-    if (std::chrono::steady_clock::now() - t0 > std::chrono::seconds(60)) return false;
-    std::this_thread::sleep_for(std::chrono::milliseconds(2));
-  }
-  return true;
+// Loads and first passes of the assignment scenes on a loaded machine take longer.
+bool waitUntil(const std::function<bool()>& done) {
+  return test::waitUntil(done, std::chrono::seconds(60));
 }
 
 // A fresh directory under the system temp dir, removed when the test ends.
