@@ -32,7 +32,8 @@ struct BenchOptions {
   std::string sphereScene;  // default: the built-in sphere scene (defaultSceneXml)
   std::string aoScene;      // default: scenes/standin/rock-ao.xml next to the executable's repo
   // Many short pairs rather than a few long ones: the two runs of a pair are closer in time (less
-  // drift between them) and the median has more to go on. The figures in docs/performance.md use these defaults.
+  // drift between them) and the median has more to go on. The figures in docs/performance.md use these
+  // defaults.
   double seconds = 1.0;
   int repeats = 9;
   int threads = 0;

@@ -6,9 +6,9 @@
 #include <cmath>
 #include <vector>
 
+#include "core/analysis/analysis_test_support.h"
 #include "core/analysis/error_metrics.h"
 #include "core/analysis/reference.h"
-#include "core/analysis/analysis_test_support.h"
 #include "core/render/camera.h"
 #include "core/render/engine.h"
 
