@@ -142,7 +142,7 @@ BENCHMARK(BM_Yardstick_SphereArea)->Unit(benchmark::kMillisecond)->UseRealTime()
 void BM_Penumbra_SphereArea(benchmark::State& state) {
   LoadedScene s = loadSceneFromString(defaultSceneXml(), "<built-in sphere scene>", ".");
   RenderSettings settings = s.settings;
-  settings.integrator = IntegratorDesc{Strategy::DirectArea, 1};
+  settings.integrator = withSamples(directByLight(LightMeasure::Area), 1);
   const int threads = int(state.range(0));
   constexpr uint32_t kPasses = 8;
   const RenderLimits limits{kPasses, 0.0};

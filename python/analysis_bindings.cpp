@@ -110,8 +110,9 @@ py::dict runToDict(const ConvergenceRun& r) {
 }
 
 py::dict converge(const PyScene& s, const py::object& strategies, const py::object& samplers,
-                  std::optional<double> time, std::optional<int64_t> spp, const py::object& reference,
-                  int64_t seed, std::optional<int64_t> threads) {
+                  const py::object& lightSelection, const py::object& lightMeasure,
+                  const py::object& heuristic, std::optional<double> time, std::optional<int64_t> spp,
+                  const py::object& reference, int64_t seed, std::optional<int64_t> threads) {
   if (!time && !spp)
     throw py::value_error("time or spp: give one (seconds, or samples per pixel per strategy)");
   if (time) checkedSeconds(*time, "time");
@@ -120,8 +121,15 @@ py::dict converge(const PyScene& s, const py::object& strategies, const py::obje
   if (seedValue == kReferenceSeed) throw py::value_error("seed: must differ from the reference's seed");
   const int threadCount = checkedThreads(threads);
   const LoadedScene scene = s.loaded;  // what the GIL-released runs read
+  StrategyLists lists{joinNames(strategies, "strategies"), "", "", ""};
+  if (!lightSelection.is_none()) lists.lightSelections = joinNames(lightSelection, "light_selection");
+  if (!lightMeasure.is_none()) lists.lightMeasures = joinNames(lightMeasure, "light_measure");
+  if (!heuristic.is_none()) lists.heuristics = joinNames(heuristic, "heuristic");
   std::vector<IntegratorDesc> list = parsedArgument("strategies", [&] {
-    return parseStrategies(scene.settings.integrator, joinNames(strategies, "strategies"));
+    ParsedStrategies parsed = parseStrategyLists(scene.settings.integrator, lists);
+    for (const std::string& notice : parsed.notices)
+      PyErr_WarnEx(PyExc_DeprecationWarning, notice.c_str(), 1);
+    return parsed.strategies;
   });
   std::vector<SamplerKind> kinds;
   if (!samplers.is_none())
@@ -225,14 +233,20 @@ py::object broadcast(F f, const std::array<py::object, N>& args) {
 
 void bindAnalysis(py::module_& m) {
   m.def("converge", &converge, py::arg("scene"), py::arg("strategies") = "all",
-        py::arg("samplers") = py::none(), py::arg("time") = py::none(), py::arg("spp") = py::none(),
-        py::arg("reference") = py::none(), py::arg("seed") = 0, py::arg("threads") = py::none(),
+        py::arg("samplers") = py::none(), py::arg("light_selection") = py::none(),
+        py::arg("light_measure") = py::none(), py::arg("heuristic") = py::none(),
+        py::arg("time") = py::none(), py::arg("spp") = py::none(), py::arg("reference") = py::none(),
+        py::arg("seed") = 0, py::arg("threads") = py::none(),
         "Error against time (time=seconds per strategy) or samples (spp=N) from a cold start, as "
         "`penumbra converge` measures it.\n\n"
-        "strategies: 'all' or names (a str 'area,solid-angle' or a list) of the scene integrator's "
-        "strategies (see strategies()); an empty str or list is a ValueError. samplers: None (the "
-        "scene's), 'all' (every row of samplers(), as --samplers all) or names: every strategy runs with "
-        "each. reference: None (closed form for analytic scenes, else the cached or a freshly rendered "
+        "strategies: 'all' or measures (a str 'area,solid-angle,mis' or a list; see axes()) of the "
+        "scene integrator; an empty str or list is a ValueError. light_selection, light_measure, "
+        "heuristic: None (the scene's) or names crossed with each light measure (light_selection) "
+        "and with mis (light_measure, heuristic), as --light-selection, --light-measure, --heuristic. "
+        "An old flattened name ('solid-angle-bvh') still works with a DeprecationWarning. samplers: "
+        "None (the scene's), 'all' (every row of samplers(), as --samplers all) or names: every "
+        "strategy runs with each. reference: None (closed form for analytic scenes, else the cached or a "
+        "freshly rendered "
         "one), a path (str, bytes, os.PathLike) to an EXR/PFM, 'closed-form', an H x W x 3 array, or a "
         "RenderResult (its stderr is then subtracted from the measured error as the CLI does for "
         "rendered references). time: a finite number of seconds > 0 (as --time).\n\n"

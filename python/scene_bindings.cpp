@@ -1,10 +1,10 @@
 // Scenes: load from a file or a string with overrides, read and change settings, list the
-// strategies and samplers of the tables.
+// strategy axes and the samplers of their tables.
 #include <pybind11/stl.h>
 
 #include <filesystem>
 
-#include "core/render/strategy_table.h"
+#include "core/render/strategy_axes.h"
 #include "core/sampling/sampler_table.h"
 #include "core/scene/scene_writer.h"
 #include "core/scene/xml_parser.h"
@@ -14,6 +14,35 @@
 namespace penumbra::python {
 
 namespace {
+
+py::dict axisRow(const Spellings& spellings, std::string_view description) {
+  py::dict d;
+  d["name"] = text(std::string(spellings.canonical()));
+  py::list aliases;
+  for (std::string_view a : spellings.list().subspan(1)) aliases.append(text(std::string(a)));
+  d["aliases"] = aliases;
+  d["description"] = text(std::string(description));
+  return d;
+}
+
+template <class Row, size_t N>
+py::list axisRows(const std::array<Row, N>& table, Spellings Row::*spellings) {
+  py::list out;
+  for (const Row& r : table) out.append(axisRow(r.*spellings, r.description));
+  return out;
+}
+
+py::dict sceneAxes(const PyScene& s) {
+  const IntegratorDesc& d = s.loaded.settings.integrator;
+  py::dict out;
+  const auto put = [&](const char* axis, std::string_view name) { out[axis] = text(std::string(name)); };
+  put("integrator", nameOf(d.type));
+  if (d.usesEstimator()) put("measure", measureName(d));
+  if (d.usesWarp()) put("warp", nameOf(d.warp));
+  if (d.usesLightSelection()) put("light_selection", nameOf(d.lightSelection));
+  if (d.usesMisAxes()) put("light_measure", nameOf(d.lightMeasure)), put("heuristic", nameOf(d.heuristic));
+  return out;
+}
 
 // "True"/"False" for bools (the scene syntax), str() for everything else.
 std::string overrideValue(const py::handle& value, const std::string& key) {
@@ -101,6 +130,9 @@ void bindScene(py::module_& m) {
       .def_property_readonly(
           "strategy", [](const PyScene& s) { return text(strategyLabel(s.loaded.settings.integrator)); },
           "The strategy label, e.g. 'direct/solid-angle'.")
+      .def_property_readonly("axes", &sceneAxes,
+                             "The integrator's axes that apply, e.g. {'integrator': 'direct', 'measure': "
+                             "'area', 'light_selection': 'bvh'} (names as axes() spells them).")
       .def_property_readonly(
           "sampler", [](const PyScene& s) { return text(samplerKindName(s.loaded.settings.samplerKind)); },
           "The sampler's canonical name, e.g. 'independent'.")
@@ -142,23 +174,27 @@ void bindScene(py::module_& m) {
         "current directory); name is the file name in error messages.");
 
   m.def(
-      "strategies",
+      "axes",
       [] {
-        py::list out;
-        for (const StrategyRow& r : strategyTable()) {
-          py::dict d;
-          d["label"] = text(std::string(r.label));
-          d["short_name"] = text(std::string(r.shortName));
-          d["integrator"] = text(std::string(r.xmlType));
-          d["description"] = text(std::string(r.description));
-          d["reference"] = r.reference;
-          d["baseline"] = r.baseline;
-          out.append(d);
-        }
+        py::dict out;
+        out["integrator"] = axisRows(kIntegratorTypes, &IntegratorTypeRow::xmlType);
+        py::list measures;
+        for (const EstimatorRow& e : kEstimators)
+          if (e.estimator == Estimator::Light)
+            for (py::handle row : axisRows(kLightMeasures, &LightMeasureRow::spellings)) measures.append(row);
+          else
+            measures.append(axisRow(e.measure, e.description));
+        out["measure"] = measures;
+        out["warp"] = axisRows(kWarps, &WarpRow::spellings);
+        out["light_selection"] = axisRows(kLightSelections, &LightSelectionRow::spellings);
+        out["light_measure"] = axisRows(kLightMeasures, &LightMeasureRow::spellings);
+        out["heuristic"] = axisRows(kHeuristics, &HeuristicRow::spellings);
         return out;
       },
-      "Every sampling strategy of the strategy table, in table order: label, short_name, integrator "
-      "(the XML type), description, reference and baseline flags.");
+      "The axes a strategy is composed of, each {axis: [{name, aliases, description}]} in table "
+      "order: integrator (the XML type), measure (direct: hemisphere, each light measure, mis), warp "
+      "(ao, and the hemisphere measure), light_selection (the light measures), light_measure and "
+      "heuristic (mis).");
   m.def(
       "samplers",
       [] {

@@ -33,7 +33,10 @@ TEST(ConvergeCli, ReportFilesExistAndParse) {
   fs::path dir = fs::temp_directory_path() / ("penumbra-converge-" + std::to_string(::getpid()));
   test::CommandResult r = penumbraCli(
       "converge '" + analyticScene() +
-      "' --set camera.width=40 --set camera.height=32 --time 0.4 --strategies all -o '" + dir.string() + "'");
+      "' --set camera.width=40 --set camera.height=32 --time 0.4 --strategies all --light-selection "
+      "all,uniform,power,bvh --light-measure area,solid-angle,projected-solid-angle --heuristic "
+      "power,balance -o '" +
+      dir.string() + "'");
   ASSERT_EQ(r.exitCode, 0) << r.out;
   // CSV: header with the documented columns, one row per measurement, numbers that parse.
   std::ifstream csv(dir / "convergence.csv");
@@ -60,7 +63,7 @@ TEST(ConvergeCli, ReportFilesExistAndParse) {
     }
     EXPECT_EQ(cols, 15) << line;
   }
-  EXPECT_GE(rows, 20 * 3);  // every direct strategy, three measurements or more each
+  EXPECT_GE(rows, 20 * 3);  // every measure crossed with every axis: 20 strategies, three measurements each
   EXPECT_EQ(strategies, (std::set<std::string>{"uniform-hemisphere",
                                                "cosine-hemisphere",
                                                "area",
@@ -127,6 +130,32 @@ TEST(ConvergeCli, RejectsUnknownSampler) {
   EXPECT_EQ(r.exitCode, 2) << r.out;
   EXPECT_NE(r.out.find("unknown sampler 'halton'"), std::string::npos) << r.out;
   fs::remove_all(dir);
+}
+
+// Old flattened names still run, with a notice that says how to write them with the axes; the help
+// lists the axes' own values only.
+TEST(ConvergeCli, OldNamesRunWithANoticeAndHelpListsTheAxes) {
+  fs::path dir = fs::temp_directory_path() / ("penumbra-converge-old-" + std::to_string(::getpid()));
+  test::CommandResult r = penumbraCli("converge '" + analyticScene() +
+                                      "' --set camera.width=8 --set camera.height=8 --spp 2 --strategies "
+                                      "solid-angle-bvh -o '" +
+                                      dir.string() + "'");
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  EXPECT_NE(
+      r.out.find("\"solid-angle-bvh\" is an old name; write --strategies solid-angle --light-selection bvh"),
+      std::string::npos)
+      << r.out;
+  std::ifstream csv(dir / "convergence.csv");
+  std::string header, row;
+  std::getline(csv, header);
+  std::getline(csv, row);
+  EXPECT_EQ(row.substr(0, row.find(',')), "solid-angle-bvh");
+  fs::remove_all(dir);
+  test::CommandResult help = penumbraCli("converge --help");
+  EXPECT_NE(help.out.find("--light-selection"), std::string::npos) << help.out;
+  EXPECT_NE(help.out.find("--heuristic"), std::string::npos) << help.out;
+  EXPECT_EQ(help.out.find("solid-angle-bvh"), std::string::npos) << help.out;
+  EXPECT_EQ(help.out.find("mis-area"), std::string::npos) << help.out;
 }
 
 TEST(ConvergeCli, RejectsUnknownStrategy) {

@@ -21,7 +21,7 @@
 
 #include "core/math/error.h"
 #include "core/render/engine.h"
-#include "core/render/strategy_table.h"
+#include "core/render/strategy_axes.h"
 #include "core/sampling/sampler_table.h"
 #include "core/scene/scene_builder.h"
 #include "tests/test_support.h"
@@ -109,10 +109,10 @@ std::vector<std::string> sceneFiles() {
 // The name under which the scene's <integrator> already gives the property `canonical` (an override
 // in another spelling would be a second spelling of one setting); `canonical` when it gives none.
 std::string sceneSpelling(const SceneNode& integrator, std::string_view canonical) {
-  for (const StrategyRow& row : strategyTable())
-    for (const StrategyProperty& p : row.select)
-      if (!p.name.empty() && p.name.canonical() == canonical)
-        if (const Property* given = integrator.props.find(p.name.list())) return given->name;
+  for (const Spellings* p : {&kMeasureProperty, &kWarpProperty, &kLightSelectionProperty,
+                             &kLightMeasureProperty, &kHeuristicProperty})
+    if (p->canonical() == canonical)
+      if (const Property* given = integrator.props.find(p->list())) return given->name;
   return std::string(canonical);
 }
 
@@ -126,10 +126,7 @@ std::vector<DigestLine> recordScene(const std::string& scene) {
   } catch (const Error&) {
     return out;  // the stiff cases that must not load (their own tests say so)
   }
-  const std::string type(strategyRow(base.settings.integrator.strategy).xmlType);
-  for (Strategy strategy : strategiesOfType(type)) {
-    IntegratorDesc desc = base.settings.integrator;
-    desc.strategy = strategy;
+  for (const IntegratorDesc& desc : everyStrategyOfType(base.settings.integrator)) {
     Overrides strategySelection;
     const SceneNode* integrator = base.desc.child("integrator");
     for (const CanonicalProperty& p : canonicalProperties(desc))
@@ -140,7 +137,8 @@ std::vector<DigestLine> recordScene(const std::string& scene) {
       Overrides selection = strategySelection;
       selection.emplace_back("sampler.type", samplerKindName(sampler.kind));
       LoadedScene s = loadScene(test::sourcePath("scenes/" + scene), sceneOverrides(scene, selection));
-      EXPECT_EQ(s.settings.integrator.strategy, strategy) << scene << " " << joinSelection(selection);
+      EXPECT_EQ(strategyLabel(s.settings.integrator), strategyLabel(desc))
+          << scene << " " << joinSelection(selection);
       EXPECT_EQ(s.settings.samplerKind, sampler.kind) << scene << " " << joinSelection(selection);
       out.push_back({scene, joinSelection(selection), renderDigest(s)});
     }

@@ -60,22 +60,23 @@ void scalingSeries(const BenchOptions& o, int threads) {
       "\nscaling series: n sphere lights + n spheres over a floor, 128x128, %d spp, %d threads,\n"
       "camera samples/s (M/s) per light selection; time per sample relative to n = 100 in ()\n",
       o.scalingSpp, threads);
-  const Strategy selections[] = {Strategy::DirectSolidAngle, Strategy::DirectSolidAngleUniform,
-                                 Strategy::DirectSolidAnglePower, Strategy::DirectSolidAngleBvh};
+  std::vector<IntegratorDesc> selections;
+  for (const LightSelectionRow& r : kLightSelections)
+    selections.push_back(directByLight(LightMeasure::SolidAngle, r.selection));
   std::printf("%8s %8s", "lights", "BVH");
-  for (Strategy st : selections) std::printf(" %22s", std::string(strategyRow(st).label).c_str());
+  for (const IntegratorDesc& st : selections) std::printf(" %22s", strategyLabel(st).c_str());
   std::printf("\n");
-  std::vector<double> at100(std::size(selections), 0.0);
+  std::vector<double> at100(selections.size(), 0.0);
   for (int n : {10, 100, 1000, 10000}) {
     LoadedScene scene = loadSceneFromString(scalingSceneXml(n, 128, o.scalingSpp), "<scaling scene>", ".");
     std::printf("%8d %8s", n, scene.scene->geometry.spheresUseBvh() ? "spheres" : "-");
-    for (size_t i = 0; i < std::size(selections); ++i) {
-      if (selections[i] == Strategy::DirectSolidAngle && n > 1000) {
+    for (size_t i = 0; i < selections.size(); ++i) {
+      if (selections[i].lightSelection == LightSelection::All && n > 1000) {
         std::printf(" %22s", "(skipped)");
         continue;
       }
       RenderSettings settings = scene.settings;
-      settings.integrator = IntegratorDesc{selections[i], 1};
+      settings.integrator = selections[i];
       const double rate = fixedSppRun(scene, settings, threads, uint32_t(o.scalingSpp));
       if (n == 100) at100[i] = rate;
       char cell[40];
@@ -143,10 +144,10 @@ Scaling measure(const LoadedScene& s, const RenderSettings& settings, int all, c
           cpuShareBetween(first, readCpuClock(), all).steal};
 }
 
-// Width of the first column: the longest strategy label (the mis rows', 40 characters) fits.
+// Width of the first column: the longest strategy label (the mis strategies', 40 characters) fits.
 int labelWidth() {
   size_t w = 28;
-  for (const StrategyRow& row : strategyTable()) w = std::max(w, row.label.size());
+  for (const IntegratorDesc& d : everyStrategy()) w = std::max(w, strategyLabel(d).size());
   return int(w);
 }
 
@@ -240,15 +241,16 @@ int runBench(const BenchOptions& o) {
                            ? loadSceneFromString(defaultSceneXml(), "<built-in sphere scene>", ".")
                            : loadScene(o.sphereScene);
   // Every strategy of the scene's integrator type (the built-in scene: direct), in table order.
-  const std::string_view type = strategyRow(sphere.settings.integrator.strategy).xmlType;
+  const std::string_view type = nameOf(sphere.settings.integrator.type);
   std::string header = std::string(type) + " strategy (" + std::to_string(sphere.settings.camera.width) +
                        "x" + std::to_string(sphere.settings.camera.height) + ")";
   printHeader(header.c_str());
-  for (Strategy strategy : strategiesOfType(type)) {
+  for (const IntegratorDesc& strategy :
+       everyStrategyOfType(integratorOfType(sphere.settings.integrator.type))) {
     // One light: choosing one per sample is the same work as sampling each (the scaling series below).
-    if (lightSelectionOf(strategy) != LightSelection::All) continue;
+    if (strategy.usesLightSelection() && strategy.lightSelection != LightSelection::All) continue;
     RenderSettings s = sphere.settings;
-    s.integrator = IntegratorDesc{strategy, 1};
+    s.integrator = strategy;
     Scaling m = measure(sphere, s, all, o);
     printRow(strategyLabel(s.integrator), m, 1e-6);
   }

@@ -11,6 +11,7 @@
 #include "core/analysis/convergence.h"
 #include "core/image/atomic_file.h"
 #include "core/math/error.h"
+#include "core/render/strategy_axes.h"
 #include "core/sampling/sampler_table.h"
 
 namespace penumbra::cli {
@@ -19,7 +20,7 @@ namespace {
 
 struct ConvergeOptions {
   SceneOptions scene;
-  std::string strategies = "all";
+  StrategyLists lists{"all", "", "", ""};
   std::string samplers;  // empty: the scene's sampler
   double seconds = 0;
   uint32_t spp = 0;
@@ -51,7 +52,9 @@ int runConverge(const ConvergeOptions& o) {
   std::optional<net::DisplayServer> displayServer = o.display.resolve();
   LoadedScene loaded = o.scene.load();
   if (o.spp == 0 && o.seconds <= 0) throw Error("converge: give --time SECONDS or --spp N");
-  std::vector<IntegratorDesc> strategies = parseStrategies(loaded.settings.integrator, o.strategies);
+  ParsedStrategies parsed = parseStrategyLists(loaded.settings.integrator, o.lists);
+  for (const std::string& notice : parsed.notices) std::fprintf(stderr, "%s\n", notice.c_str());
+  const std::vector<IntegratorDesc>& strategies = parsed.strategies;
   std::vector<SamplerKind> samplers = parseSamplers(loaded.settings.samplerKind, o.samplers);
   if (o.seed == kReferenceSeed) throw Error("converge: --seed must differ from the reference's seed");
   // The report's files can be written (the directory is made if missing): found now, not after the runs.
@@ -112,9 +115,17 @@ void addConvergeCommand(CLI::App& app, int& exitCode) {
   auto opts = std::make_shared<ConvergeOptions>();
   CLI::App* cmd = app.add_subcommand("converge", "Error against time (or spp) for every sampling strategy");
   opts->scene.addTo(*cmd);
-  cmd->add_option(
-      "--strategies", opts->strategies,
-      "all, or a comma-separated list of the scene integrator's strategies (" + strategyNamesHelp() + ")");
+  cmd->add_option("--strategies", opts->lists.strategies,
+                  "all, or a comma-separated list of measures (" + strategyNamesHelp() + ")");
+  cmd->add_option("--light-selection", opts->lists.lightSelections,
+                  "Light selections to cross with each light measure (" + acceptedLightSelections(false) +
+                      "; default: the scene's)");
+  cmd->add_option("--light-measure", opts->lists.lightMeasures,
+                  "Light measures to cross with mis (" + acceptedLightMeasures(false) +
+                      "; default: the scene's, else solid-angle)");
+  cmd->add_option("--heuristic", opts->lists.heuristics,
+                  "MIS heuristics to cross with mis (" + acceptedHeuristics(false) +
+                      "; default: the scene's, else power)");
   cmd->add_option("--samplers", opts->samplers,
                   "Comma-separated samplers to cross with the strategies, or all (" + acceptedSamplerNames() +
                       "; default: the scene's sampler)");

@@ -203,13 +203,13 @@ std::size_t indexOf(std::vector<Key>& seen, const Key& k) {
 }
 struct RunStyles {
   std::vector<std::size_t> colour, dash;
-  std::vector<Strategy> strategies;
+  std::vector<IntegratorDesc> strategies;
   std::vector<SamplerKind> samplers;
 };
 RunStyles runStyles(const std::vector<ConvergenceRun>& runs) {
   RunStyles st;
   for (const ConvergenceRun& r : runs) {
-    st.colour.push_back(indexOf(st.strategies, r.integrator.strategy));
+    st.colour.push_back(indexOf(st.strategies, r.integrator));
     st.dash.push_back(indexOf(st.samplers, r.sampler));
   }
   return st;
@@ -503,7 +503,7 @@ void writeSummary(const std::string& path, const std::vector<ConvergenceRun>& ru
   // Speed-ups are against the baseline strategy with the first sampler listed.
   const ConvergenceRun* base = nullptr;
   for (const ConvergenceRun& r : runs)
-    if (strategyRow(r.integrator.strategy).baseline && r.sampler == runs.front().sampler) base = &r;
+    if (isBaseline(r.integrator) && r.sampler == runs.front().sampler) base = &r;
   out << "| strategy | sampler | spp | wall s | CPU s | MSE | RMSE | relMSE | slope | slope (CPU) | "
          "efficiency (wall) | speed-up (wall) | speed-up (CPU) | MSE no-light | slope no-light | "
          "efficiency no-light (wall) | speed-up no-light (wall) | speed-up no-light (CPU) |\n";

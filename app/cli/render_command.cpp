@@ -171,7 +171,7 @@ int runRender(const RenderOptions& o) {
   meta.add("interrupted", interrupted ? "true" : "false");
   // Whether the light selection was the scene's or the light-count default (a reference has its own).
   const std::string selection = job->settings.integrator == loaded.settings.integrator
-                                    ? lightSelectionSummary(loaded.desc, job->settings.integrator.strategy)
+                                    ? lightSelectionSummary(loaded.desc, job->settings.integrator)
                                     : "";
   if (!selection.empty()) meta.add("lightSelectionChoice", selection);
   if (o.reference) {
@@ -214,8 +214,9 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("-o,--output", opts->output,
                   "Output image (.exr float, .pfm float, .png sRGB 8-bit); required unless --reference");
   std::string references;
-  for (const StrategyRow& row : strategyTable())
-    if (row.reference) (references += references.empty() ? "" : ", ") += row.label;
+  for (const IntegratorType type : {IntegratorType::Direct, IntegratorType::Ao})
+    (references += references.empty() ? "" : ", ") +=
+        strategyLabel(referenceStrategy(integratorOfType(type)));
   cmd->add_flag(
       "--reference", opts->reference,
       "Converged reference: the lowest-variance estimator (" + references +

@@ -10,7 +10,7 @@
 
 #include "core/math/error.h"
 #include "core/render/filter.h"
-#include "core/render/strategy_table.h"
+#include "core/render/strategy_axes.h"
 #include "core/sampling/sampler_table.h"
 #include "core/scene/property.h"
 #include "core/scene/xml_parser.h"
@@ -115,7 +115,7 @@ RunDescription describeRun(const RenderSettings& s, const RunChoices& c, const S
   add("seed", std::to_string(s.seed));
   add("sampler.type", samplerKindName(s.samplerKind));
   add("sampler.sampleCount", std::to_string(s.sampleCount));
-  add("integrator", std::string(strategyRow(s.integrator.strategy).xmlType));
+  add("integrator", std::string(nameOf(s.integrator.type)));
   for (const CanonicalProperty& p : canonicalProperties(s.integrator))
     add("integrator." + std::string(p.name), p.value);
   add("rfilter", filterTypeName(s.filter.type));

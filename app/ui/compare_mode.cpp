@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <thread>
 
+#include "app/ui/strategy_choices.h"
+#include "core/render/strategy_axes.h"
+
 namespace penumbra::ui {
 
 CompareMode::CompareMode(int threads, std::shared_ptr<PublishSignal> signal)
@@ -37,7 +40,8 @@ std::string CompareMode::startLeft(SessionJob job, const RenderLimits& chosen) {
 }
 
 void CompareMode::startRight(SessionJob job, const RenderLimits& chosen) {
-  job.settings.integrator = renderedIntegrator(job.scene && job.scene->hasAreaLights());
+  job.settings.integrator =
+      renderedIntegrator(job.settings.integrator, job.scene && job.scene->hasAreaLights());
   right_.start(std::move(job), effectiveLimits(chosen), engineThreads(), left_.paused());
   right_.clearSnapshot();
 }
@@ -64,24 +68,16 @@ bool CompareMode::setIntegrator(const IntegratorDesc& d) {
   return true;
 }
 
-void CompareMode::chooseDefault(const std::vector<Strategy>& choices, Strategy left) {
-  if (choices.empty()) return;
-  bool valid = std::find(choices.begin(), choices.end(), integrator_.strategy) != choices.end();
-  if (valid && integrator_.strategy != left) return;
+void CompareMode::chooseDefault(const IntegratorDesc& left, bool sceneHasAreaLights) {
+  if (!offersCompare(left)) return;
+  const bool valid = comparable(integrator_, left, sceneHasAreaLights);
+  if (valid && !(withCountsOf(integrator_, left) == left)) return;
   if (valid && userChosen_) return;
-  Strategy pick = choices.front();
-  for (Strategy s : choices)
-    if (s != left) {
-      pick = s;
-      break;
-    }
-  integrator_.strategy = pick;
+  integrator_ = defaultCompareStrategy(left, sceneHasAreaLights);
 }
 
-IntegratorDesc CompareMode::renderedIntegrator(bool sceneHasAreaLights) const {
-  IntegratorDesc d = integrator_;
-  d.strategy = applicableStrategy(d.strategy, sceneHasAreaLights);
-  return d;
+IntegratorDesc CompareMode::renderedIntegrator(const IntegratorDesc& left, bool sceneHasAreaLights) const {
+  return applicableStrategy(withCountsOf(integrator_, left), sceneHasAreaLights);
 }
 
 }  // namespace penumbra::ui

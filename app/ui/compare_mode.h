@@ -1,8 +1,8 @@
 // Compare mode: two EngineSessions at equal time. The left side renders the live settings; while
 // compare mode is on, the right side renders the same scene, camera and sampler with its own strategy
-// (one of the left integrator type's, strategy_choices.h), each engine on half of the threads (at
-// least one), and unless the user chose a time budget both stop after kSeconds instead of at an spp
-// count, so both strategies get equal shares of time.
+// (one of the left integrator type's, with its counts; strategy_choices.h), each engine on half of the
+// threads (at least one), and unless the user chose a time budget both stop after kSeconds instead of at an
+// spp count, so both strategies get equal shares of time.
 #pragma once
 
 #include <memory>
@@ -51,16 +51,17 @@ class CompareMode {
   const IntegratorDesc& integrator() const { return integrator_; }
   // The user's choice; kept while it applies. Returns whether it changed.
   bool setIntegrator(const IntegratorDesc& d);
-  // Keeps the right side's strategy one of `choices` (what the scene can render) that differs from
-  // the left side's `left` when another applies; the user's choice stays while it is one of them.
-  void chooseDefault(const std::vector<Strategy>& choices, Strategy left);
-  // What the right side renders: integrator(), or its fallback when the scene lacks what it needs.
-  IntegratorDesc renderedIntegrator(bool sceneHasAreaLights) const;
+  // Keeps the right side's strategy one of left's type that the scene can render and that differs
+  // from `left` when another applies; the user's choice stays while it is comparable.
+  void chooseDefault(const IntegratorDesc& left, bool sceneHasAreaLights);
+  // What the right side renders: integrator() with the left side's counts, or its fallback when the
+  // scene lacks what it needs.
+  IntegratorDesc renderedIntegrator(const IntegratorDesc& left, bool sceneHasAreaLights) const;
 
  private:
   int threads_;
   bool enabled_ = false;
-  IntegratorDesc integrator_{Strategy::DirectSolidAngle, 1};
+  IntegratorDesc integrator_;
   bool userChosen_ = false;  // setIntegrator was called: keep it while it applies
   EngineSession left_, right_;
 };

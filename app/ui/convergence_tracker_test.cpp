@@ -23,7 +23,7 @@ TEST(ConvergenceTracker, KeepsOneCurvePerStrategy) {
   ui::ViewerController c(std::move(scene), {}, 2);
   ui::ConvergenceTracker t;
   RenderSettings s = c.settings();
-  s.integrator.strategy = Strategy::DirectArea;
+  s.integrator = withCountsOf(directByLight(LightMeasure::Area), s.integrator);
   c.setSettings(s);
   c.setLimits(RenderLimits{256, 0});
   c.start();
@@ -40,7 +40,7 @@ TEST(ConvergenceTracker, KeepsOneCurvePerStrategy) {
   ASSERT_TRUE(t.hasReference()) << t.error();
   EXPECT_EQ(t.reference().source, "closed-form");
   ASSERT_EQ(t.curves().size(), 1u);
-  s.integrator.strategy = Strategy::DirectSolidAngle;
+  s.integrator = withCountsOf(directByLight(LightMeasure::SolidAngle), s.integrator);
   c.setSettings(s);
   c.start();
   drive();

@@ -79,15 +79,20 @@ TEST(CompareMode, SplitsTheThreadsAndRendersBothSidesForTheSameTime) {
   EXPECT_EQ(c.effectiveLimits(chosen).seconds, 2.0);
 
   // The right side renders its own strategy, falling back where the scene lacks what it needs.
-  c.chooseDefault({Strategy::DirectSolidAngle, Strategy::DirectArea}, Strategy::DirectSolidAngle);
-  EXPECT_EQ(c.integrator().strategy, Strategy::DirectArea);
-  EXPECT_TRUE(c.setIntegrator(IntegratorDesc{Strategy::DirectMisSolidAnglePower, 1}));
-  EXPECT_FALSE(c.setIntegrator(IntegratorDesc{Strategy::DirectMisSolidAnglePower, 1}));
-  EXPECT_NE(c.renderedIntegrator(false).strategy, Strategy::DirectMisSolidAnglePower);
+  const IntegratorDesc left = directByLight(LightMeasure::SolidAngle);
+  c.chooseDefault(left, true);
+  EXPECT_EQ(strategyLabel(c.integrator()), strategyLabel(directByHemisphere(HemisphereWarp::Uniform)));
+  EXPECT_TRUE(c.setIntegrator(withSamples(directByMis(LightMeasure::SolidAngle, MisHeuristic::Power), 1)));
+  EXPECT_FALSE(c.setIntegrator(withSamples(directByMis(LightMeasure::SolidAngle, MisHeuristic::Power), 1)));
+  EXPECT_NE(strategyLabel(c.renderedIntegrator(left, false)),
+            strategyLabel(directByMis(LightMeasure::SolidAngle, MisHeuristic::Power)));
+  // The right side renders with the left side's counts.
+  EXPECT_EQ(c.renderedIntegrator(withSamples(left, 7), true).samples, 7);
   c.startLeft(smallJob(), chosen);
   c.startRight(smallJob(), chosen);
   ASSERT_TRUE(c.right().engine().job());
-  EXPECT_EQ(c.right().engine().job()->settings.integrator.strategy, Strategy::DirectMisSolidAnglePower);
+  EXPECT_EQ(strategyLabel(c.right().engine().job()->settings.integrator),
+            strategyLabel(directByMis(LightMeasure::SolidAngle, MisHeuristic::Power)));
   EXPECT_EQ(c.left().engine().threadCount(), 2);
   ASSERT_TRUE(waitUntil([&] {
     c.poll(false, true);

@@ -12,8 +12,7 @@
 
 #include "app/ui/input_frame.h"
 #include "app/ui/item_log.h"
-#include "core/render/light_selection_rows.h"
-#include "core/render/strategy_table.h"
+#include "core/render/strategy_axes.h"
 #include "core/sampling/sampler_table.h"
 
 namespace penumbra::ui {
@@ -89,17 +88,29 @@ class IdAuditDriver final : public FrameDriver {
     for (int i = 1; i < frames; ++i) queue_.push_back(AuditFrame{state, nullptr, {}});
   }
 
+  // Each strategy of every integrator type, its light selection (where it takes one) `all`: the
+  // states below vary the light selection of those that take one.
+  static std::vector<IntegratorDesc> auditedStrategies() {
+    std::vector<IntegratorDesc> out;
+    for (const IntegratorDesc& d : everyStrategy())
+      if (!d.usesLightSelection() || d.lightSelection == LightSelection::All) out.push_back(d);
+    return out;
+  }
+
   // Every panel state the scene offers: one frame for each strategy, light selection and sampler (the
   // panels draw the state set before the frame), two for the others (the second sees it settled).
   void planSettings(ViewerController& c) {
     const RenderSettings initial = c.settings();
-    for (Strategy s : c.strategyChoices()) {
-      std::vector<LightSelection> selections = lightSelectionsOf(s);
-      if (selections.empty()) selections.push_back(c.defaultLightSelection());
+    for (const IntegratorDesc& s : auditedStrategies()) {
+      std::vector<LightSelection> selections;
+      if (s.usesLightSelection())
+        for (const LightSelectionRow& r : kLightSelections) selections.push_back(r.selection);
+      else
+        selections.push_back(c.defaultLightSelection());
       for (LightSelection l : selections)
         for (const SamplerRow& sampler : samplerTable()) {
-          const std::string state = std::string(strategyRow(s).label) + ", " +
-                                    std::string(lightSelectionName(l)) + ", " + std::string(sampler.label);
+          const std::string state =
+              strategyLabel(s) + ", " + std::string(nameOf(l)) + ", " + std::string(sampler.label);
           add(
               state,
               [s, l, kind = sampler.kind](DrivenViewer& v) {
@@ -112,27 +123,27 @@ class IdAuditDriver final : public FrameDriver {
               },
               1);
         }
-      add(std::string(strategyRow(s).label) + ", time budget", [](DrivenViewer& v) {
+      add(strategyLabel(s) + ", time budget", [](DrivenViewer& v) {
         RenderLimits l = v.controller().limits();
         l.seconds = 5, l.targetSpp = 0;
         v.controller().setLimits(l);
       });
-      add(std::string(strategyRow(s).label) + ", target spp", [](DrivenViewer& v) {
+      add(strategyLabel(s) + ", target spp", [](DrivenViewer& v) {
         RenderLimits l = v.controller().limits();
         l.seconds = 0, l.targetSpp = 64;
         v.controller().setLimits(l);
       });
-      add(std::string(strategyRow(s).label) + ", compare", [s](DrivenViewer& v) {
+      add(strategyLabel(s) + ", compare", [s](DrivenViewer& v) {
         v.controller().setStrategy(s);
         v.controller().setCompare(true);
       });
       queue_.push_back(AuditFrame{"compare choices", [this, s](DrivenViewer& v) { planCompare(v, s); }, {}});
-      add(std::string(strategyRow(s).label) + ", MIS light share", [](DrivenViewer& v) {
+      add(strategyLabel(s) + ", MIS light share", [](DrivenViewer& v) {
         ViewerController& c = v.controller();
         c.setCompare(false);
         if (c.lightShareOffered()) c.setLightShareView(true);
       });
-      add(std::string(strategyRow(s).label) + ", colour view",
+      add(strategyLabel(s) + ", colour view",
           [](DrivenViewer& v) { v.controller().setLightShareView(false); });
     }
     add(
@@ -146,19 +157,14 @@ class IdAuditDriver final : public FrameDriver {
   }
 
   // Each right-side strategy of compare mode, queued at the front when compare mode is on for `s`.
-  void planCompare(DrivenViewer& v, Strategy s) {
+  void planCompare(DrivenViewer& v, const IntegratorDesc& s) {
     ViewerController& c = v.controller();
     std::deque<AuditFrame> frames;
-    for (Strategy right : c.compareChoices()) {
-      const std::string state =
-          std::string(strategyRow(s).label) + " | " + std::string(strategyRow(right).label);
+    for (const IntegratorDesc& right : everyStrategyOfType(c.settings().integrator)) {
+      if (!c.comparableWithLeft(right)) continue;
+      const std::string state = strategyLabel(s) + " | " + strategyLabel(right);
       frames.push_back(
-          AuditFrame{state,
-                     [right](DrivenViewer& v) {
-                       ViewerController& c = v.controller();
-                       c.setCompareIntegrator(IntegratorDesc{right, c.compareIntegrator().samples});
-                     },
-                     {}});
+          AuditFrame{state, [right](DrivenViewer& v) { v.controller().setCompareIntegrator(right); }, {}});
       frames.push_back(AuditFrame{state, nullptr, {}});
     }
     frames.push_back(
@@ -171,7 +177,7 @@ class IdAuditDriver final : public FrameDriver {
   // opened (a combo's list, a popup, a tree node, an active text field), then Escape.
   void planClickWalk(DrivenViewer& v) {
     const std::vector<RecordedItem> items = lastItems_;
-    const bool compare = !v.controller().compareChoices().empty();
+    const bool compare = v.controller().compareOffered();
     int w = 0, h = 0;
     v.windowSize(w, h);
     for (const RecordedItem& it : items) {

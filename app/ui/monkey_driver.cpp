@@ -16,7 +16,7 @@
 #include "app/ui/input_frame.h"
 #include "app/ui/item_log.h"
 #include "app/ui/monkey.h"
-#include "core/render/strategy_table.h"
+#include "core/render/strategy_axes.h"
 
 namespace penumbra::ui {
 
@@ -228,16 +228,16 @@ class MonkeyDriver final : public FrameDriver {
     if (p != Phase::Compare && c.compareEnabled()) c.setCompare(false);
     std::string note;
     if (p == Phase::Compare) {
-      for (Strategy s : c.strategyChoices()) {
-        if (!c.compareChoices().empty()) break;
-        if (strategyApplies(s, c.sceneHasAreaLights())) c.setStrategy(s);
+      for (const IntegratorTypeRow& t : kIntegratorTypes) {
+        if (c.compareOffered()) break;
+        c.setStrategy(applicableStrategy(integratorOfType(t.type), c.sceneHasAreaLights()));
       }
-      if (c.compareChoices().empty())
+      if (!c.compareOffered())
         note = " (not offered: no strategy of this scene has another to compare with)";
       else
         c.setCompare(true);
     } else if (p == Phase::LightShare) {
-      for (Strategy s : c.strategyChoices()) {
+      for (const IntegratorDesc& s : everyStrategyOfType(integratorOfType(IntegratorType::Direct))) {
         if (c.lightShareOffered()) break;
         if (offersLightShare(s) && strategyApplies(s, c.sceneHasAreaLights())) c.setStrategy(s);
       }

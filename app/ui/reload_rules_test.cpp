@@ -11,15 +11,16 @@ TEST(ReloadRules, TheUsersChangeSurvivesUnlessTheFileChangedTheSameSetting) {
   file.camera.fovDegrees = 40.f;
   file.seed = 1;
   RenderSettings live = file;
-  live.camera.fovDegrees = 50.f;                    // the user's camera
-  live.integrator.strategy = Strategy::DirectArea;  // and integrator
+  live.camera.fovDegrees = 50.f;                                                       // the user's camera
+  live.integrator = withCountsOf(directByLight(LightMeasure::Area), live.integrator);  // and integrator
   RenderSettings changed = file;
-  changed.integrator.strategy = Strategy::AoCosine;  // the file changed the integrator
-  changed.seed = 7;                                  // and the sampler
+  changed.integrator =
+      withCountsOf(aoBy(HemisphereWarp::Cosine), changed.integrator);  // the file changed the integrator
+  changed.seed = 7;                                                    // and the sampler
 
   const ReloadedSettings r = keepUserChanges(file, live, changed);
   EXPECT_EQ(r.settings.camera.fovDegrees, 50.f);
-  EXPECT_EQ(r.settings.integrator.strategy, Strategy::AoCosine);
+  EXPECT_EQ(strategyLabel(r.settings.integrator), strategyLabel(aoBy(HemisphereWarp::Cosine)));
   EXPECT_EQ(r.settings.seed, 7u);
   EXPECT_EQ(r.kept, std::vector<std::string>{"camera"});
 

@@ -32,8 +32,8 @@ void drawStatsPanel(ViewerController& c, PanelState& st) {
   // The strategy on a line as tall as the longest label needs (it wraps in a narrow column), so the
   // sections below stay put when it changes.
   float labelHeight = 0.f;
-  for (const StrategyRow& row : strategyTable())
-    labelHeight = std::max(labelHeight, textBlockHeight(std::string(row.label).c_str()));
+  for (const IntegratorDesc& d : everyStrategy())
+    labelHeight = std::max(labelHeight, textBlockHeight(strategyLabel(d).c_str()));
   const float top = ImGui::GetCursorPosY();
   ImGui::TextUnformatted(strategyLabel(c.settings().integrator).c_str());
   padBlockTo(top, labelHeight);

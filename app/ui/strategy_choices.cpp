@@ -1,69 +1,62 @@
 #include "app/ui/strategy_choices.h"
 
+#include "core/analysis/strategy_lists.h"
 #include "core/math/error.h"
-#include "core/render/light_selection_rows.h"
-#include "core/render/strategy_table.h"
+#include "core/render/strategy_axes.h"
 #include "core/scene/light_selection_default.h"
 
 namespace penumbra::ui {
 
-std::vector<Strategy> strategyChoices() {
-  std::vector<Strategy> out;
-  for (const StrategyRow& row : strategyTable())
-    if (allLightsRow(row.strategy) == row.strategy) out.push_back(row.strategy);
-  return out;
-}
-
-Strategy strategyForChoice(Strategy choice, Strategy live, LightSelection sceneDefault) {
-  const LightSelection keep = penumbra::takesLightSelection(live) ? lightSelectionOf(live) : sceneDefault;
-  return withLightSelection(choice, keep).value_or(choice);
-}
-
-std::string strategyUnavailableReason(Strategy choice, const Scene* scene) {
+std::string strategyUnavailableReason(const IntegratorDesc& choice, const Scene* scene) {
   const bool areaLights = scene && scene->hasAreaLights();
-  const StrategyRow& row = strategyRow(choice);
   if (!strategyApplies(choice, areaLights))
-    return std::string(sceneNeedText(row.needs)) + " (renders " +
-           std::string(strategyRow(applicableStrategy(choice, false)).label) + " here)";
+    return std::string(sceneNeedText(sceneNeed(choice))) + " (renders " +
+           strategyLabel(applicableStrategy(choice, false)) + " here)";
   const bool deltaLights = scene && scene->hasDeltaLights();
-  // simple lights with point and directional lights only; the hemisphere strategies find area
-  // lights by chance and add the point and directional ones: without any, both render black.
-  if (choice == Strategy::Simple && !deltaLights) return "needs point or directional lights";
-  const bool hemisphere =
-      choice == Strategy::DirectUniformHemisphere || choice == Strategy::DirectCosineHemisphere;
+  // simple lights with point and directional lights only; hemisphere directions find area lights
+  // by chance and add the point and directional ones: without any, both render black.
+  if (choice.type == IntegratorType::Simple && !deltaLights) return "needs point or directional lights";
+  const bool hemisphere = choice.type == IntegratorType::Direct && choice.estimator == Estimator::Hemisphere;
   if (hemisphere && !deltaLights && !areaLights) return "needs lights: the scene has none";
   return {};
 }
 
 std::string lightSelectionDefaultText(size_t sphereLights) {
   return "default for " + sphereLightsText(sphereLights) + ": " +
-         std::string(lightSelectionName(defaultLightSelection(sphereLights))) + " (" +
-         std::string(lightSelectionName(LightSelection::All)) + " up to " + std::to_string(kAllLightsUpTo) +
-         ")";
+         std::string(nameOf(defaultLightSelection(sphereLights))) + " (" +
+         std::string(nameOf(LightSelection::All)) + " up to " + std::to_string(kAllLightsUpTo) + ")";
 }
 
-std::vector<Strategy> compareChoices(Strategy left, bool sceneHasAreaLights) {
-  std::vector<Strategy> out;
-  for (const StrategyRow& row : strategyTable())
-    if (!row.samplesProperty.empty() && sameIntegratorType(row.strategy, left) &&
-        strategyApplies(row.strategy, sceneHasAreaLights))
-      out.push_back(row.strategy);
-  return out;
+bool offersCompare(const IntegratorDesc& left) {
+  return everyStrategyOfType(left).size() > 1;
+}
+
+bool comparable(const IntegratorDesc& right, const IntegratorDesc& left, bool sceneHasAreaLights) {
+  return offersCompare(left) && right.type == left.type && strategyApplies(right, sceneHasAreaLights);
+}
+
+IntegratorDesc defaultCompareStrategy(const IntegratorDesc& left, bool sceneHasAreaLights) {
+  for (const IntegratorDesc& d : everyStrategyOfType(left))
+    if (strategyApplies(d, sceneHasAreaLights) && !(d == left)) return d;
+  return left;
 }
 
 IntegratorDesc parseCompareStrategy(const std::string& name, const IntegratorDesc& left,
                                     bool sceneHasAreaLights) {
-  std::vector<Strategy> choices = compareChoices(left.strategy, sceneHasAreaLights);
-  std::string names;
-  for (Strategy s : choices) {
-    const StrategyRow& row = strategyRow(s);
-    if (name == row.shortName || name == row.label) return IntegratorDesc{s, left.samples};
-    names += (names.empty() ? "" : ", ") + std::string(row.shortName);
-  }
-  if (choices.empty())
+  if (!offersCompare(left))
     throw Error("--compare " + name + ": the scene's " + strategyLabel(left) +
                 " has no other strategy to compare with");
-  throw Error("--compare " + name + ": expected one strategy that applies to this scene: " + names);
+  try {
+    const std::vector<IntegratorDesc> named = parseStrategies(left, name);
+    if (named.size() == 1 && strategyApplies(named.front(), sceneHasAreaLights)) return named.front();
+  } catch (const Error&) {
+  }
+  std::string accepted;
+  for (std::string_view measure : measureChoices(left.type))
+    if (strategyApplies(parseStrategies(left, std::string(measure)).front(), sceneHasAreaLights))
+      (accepted += accepted.empty() ? "" : ", ") += measure;
+  throw Error("--compare " + name + ": expected one " + std::string(nameOf(left.type)) +
+              " strategy that applies to this scene: " + accepted);
 }
 
 }  // namespace penumbra::ui

@@ -7,7 +7,6 @@
 #include "app/ui/reload_rules.h"
 #include "app/ui/strategy_choices.h"
 #include "app/ui/viewer_output.h"
-#include "core/render/light_selection_rows.h"
 #include "core/sampling/sampler_table.h"
 #include "core/scene/light_selection_default.h"
 #include "core/scene/scene_writer.h"
@@ -88,8 +87,12 @@ void ViewerController::setCompareIntegrator(const IntegratorDesc& d) {
   if (compare_.setIntegrator(d) && compare_.enabled()) startCompare();
 }
 
-std::vector<Strategy> ViewerController::compareChoices() const {
-  return ui::compareChoices(settings_.integrator.strategy, sceneHasAreaLights());
+bool ViewerController::compareOffered() const {
+  return ui::offersCompare(settings_.integrator);
+}
+
+bool ViewerController::comparableWithLeft(const IntegratorDesc& d) const {
+  return ui::comparable(d, settings_.integrator, sceneHasAreaLights());
 }
 
 IntegratorDesc ViewerController::parseCompareStrategy(const std::string& name) const {
@@ -97,13 +100,13 @@ IntegratorDesc ViewerController::parseCompareStrategy(const std::string& name) c
 }
 
 IntegratorDesc ViewerController::renderedCompareIntegrator() const {
-  return compare_.renderedIntegrator(sceneHasAreaLights());
+  return compare_.renderedIntegrator(settings_.integrator, sceneHasAreaLights());
 }
 
 // The right side's strategy stays one the scene can render, and differs from the left one when
 // another applies.
 void ViewerController::chooseCompareDefault() {
-  compare_.chooseDefault(compareChoices(), settings_.integrator.strategy);
+  compare_.chooseDefault(settings_.integrator, sceneHasAreaLights());
 }
 
 // ---- live settings ----------------------------------------------------------------------------------
@@ -120,10 +123,11 @@ void ViewerController::setSettings(const RenderSettings& s) {
   bool onlyIntegrator = sameSettings(sameIntegrator, settings_);
   // The target spp follows the sampler's sampleCount while the two are equal.
   limits_.followSampleCount(settings_.sampleCount, s.sampleCount);
-  const IntegratorDesc oldCompare = compare_.integrator();
+  const IntegratorDesc oldCompare = renderedCompareIntegrator();
   settings_ = s;
   chooseCompareDefault();  // the left side's type may have changed
-  if (compare_.enabled() && !(oldCompare == compare_.integrator())) {
+  // The right side renders with the left side's counts: a change of either restarts it too.
+  if (compare_.enabled() && !(oldCompare == renderedCompareIntegrator())) {
     start();
     return;
   }
@@ -148,29 +152,20 @@ std::string ViewerController::stopText() const {
 
 // ---- strategy and light selection -------------------------------------------------------------------
 
-std::vector<Strategy> ViewerController::strategyChoices() const {
-  return ui::strategyChoices();
-}
-
-void ViewerController::setStrategy(Strategy choice) {
+void ViewerController::setStrategy(const IntegratorDesc& axes) {
   RenderSettings s = settings_;
-  s.integrator.strategy = strategyForChoice(choice, s.integrator.strategy, defaultLightSelection());
+  s.integrator = withCountsOf(axes, s.integrator);
   setSettings(s);
 }
 
-std::string ViewerController::strategyUnavailableReason(Strategy choice) const {
+std::string ViewerController::strategyUnavailableReason(const IntegratorDesc& choice) const {
   return ui::strategyUnavailableReason(choice, scene_.scene.get());
 }
 
-bool ViewerController::takesLightSelection() const {
-  return penumbra::takesLightSelection(settings_.integrator.strategy);
-}
-
 void ViewerController::setLightSelection(LightSelection selection) {
-  std::optional<Strategy> row = withLightSelection(settings_.integrator.strategy, selection);
-  if (!row) return;
+  if (!settings_.integrator.usesLightSelection()) return;
   RenderSettings s = settings_;
-  s.integrator.strategy = *row;
+  s.integrator.lightSelection = selection;
   setSettings(s);
 }
 
@@ -190,7 +185,7 @@ std::string ViewerController::lightSelectionDefaultText() const {
 
 bool ViewerController::lightShareOffered() const {
   return !compare_.enabled() &&
-         offersLightShare(applicableStrategy(settings_.integrator.strategy, sceneHasAreaLights()));
+         offersLightShare(applicableStrategy(settings_.integrator, sceneHasAreaLights()));
 }
 
 void ViewerController::setLightShareView(bool on) {

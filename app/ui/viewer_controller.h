@@ -75,14 +75,15 @@ class ViewerController {
   bool compareEnabled() const { return compare_.enabled(); }
   const IntegratorDesc& compareIntegrator() const { return compare_.integrator(); }
   void setCompareIntegrator(const IntegratorDesc& d);
-  // What the right side may render: the strategies of the left side's integrator type that have
-  // shading samples and apply to the scene (strategy table), in table order.
-  std::vector<Strategy> compareChoices() const;
-  // `--compare NAME`: one of compareChoices() by its short name or label; throws penumbra::Error
-  // naming the accepted values.
+  // Whether the left side's integrator type has other strategies to compare with (direct, ao).
+  bool compareOffered() const;
+  // Whether `d` may be the right side's strategy: the left side's type, applicable to the scene.
+  bool comparableWithLeft(const IntegratorDesc& d) const;
+  // `--compare NAME` (strategy_choices.h: parseCompareStrategy); throws penumbra::Error naming the
+  // accepted values.
   IntegratorDesc parseCompareStrategy(const std::string& name) const;
-  // What the right side renders: compareIntegrator(), or its fallback when the scene lacks what it
-  // needs (strategy table).
+  // What the right side renders: compareIntegrator() with the left side's counts, or its fallback
+  // when the scene lacks what it needs.
   IntegratorDesc renderedCompareIntegrator() const;
   RenderProgress compareProgress() const { return compare_.right().progress(); }
   const FilmSnapshot& compareSnapshot() const { return compare_.right().snapshot(); }
@@ -116,16 +117,12 @@ class ViewerController {
   double chosenSeconds() const { return limits_.chosenSeconds(); }
   static constexpr double kDefaultSeconds = StopLimits::kDefaultSeconds;
 
-  // ---- strategy and light selection (strategy_choices.h) ---------------------------------------
-  std::vector<Strategy> strategyChoices() const;
-  // Switches to one of strategyChoices(), keeping the live light selection where both take one (a
-  // strategy that takes none hands over to the scene's default). Restarts when it changed.
-  void setStrategy(Strategy choice);
-  // Why `s` cannot light this scene, for its greyed-out entry in the list ("" when it can).
-  std::string strategyUnavailableReason(Strategy s) const;
-  // Whether the live strategy takes a light selection (the panel shows its control only then).
-  bool takesLightSelection() const;
-  // Switches the live strategy to the row of its measure with `selection`; ignored where it has none.
+  // ---- strategy axes (strategy_choices.h) ------------------------------------------------------
+  // Switches to the type and every axis of `axes`, keeping the live counts. Restarts when it changed.
+  void setStrategy(const IntegratorDesc& axes);
+  // Why `s` cannot light this scene, for its greyed-out entry ("" when it can).
+  std::string strategyUnavailableReason(const IntegratorDesc& s) const;
+  // Switches the live light selection; ignored where the live strategy takes none.
   void setLightSelection(LightSelection selection);
   // The scene's sphere lights, and the selection the scene builder picks for them when the scene
   // names none (core/scene/light_selection_default.h).
@@ -138,7 +135,7 @@ class ViewerController {
   // The "MIS light share" view renders the strategy's light-share output (RenderOutput::MisLightShare:
   // per pixel, the luminance of the light-sampling and of the cosine-hemisphere part of the MIS
   // estimate) and shows the light technique's share as a false-colour map. Offered while the rendered
-  // strategy is a mis row (strategy table: offersLightShare) and compare mode is off; a change that
+  // strategy is MIS (offersLightShare) and compare mode is off; a change that
   // stops offering it (another strategy, compare on, a scene without area lights) turns it off.
   // Switching it restarts the accumulation.
   bool lightShareOffered() const;

@@ -41,10 +41,11 @@ void waitForSpp(ui::ViewerController& c, uint32_t spp) {
 
 using test::waitUntil;
 
-IntegratorDesc directWith(Strategy m) {
-  IntegratorDesc d;
-  d.strategy = m;
-  return d;
+// Picks direct's measure `name` as the Integrator panel does: that axis alone changes.
+void pickMeasure(ui::ViewerController& c, std::string_view name) {
+  RenderSettings s = c.settings();
+  ASSERT_TRUE(applyMeasure(name, s.integrator)) << name;
+  c.setSettings(s);
 }
 
 }  // namespace
@@ -74,12 +75,12 @@ TEST(ViewerController, MeasureChangeRestartsAccumulationExposureDoesNot) {
   // A change of measure: restart, the counter resets.
   uint32_t running = c.progress().spp;
   RenderSettings s = c.settings();
-  ASSERT_EQ(s.integrator.strategy, Strategy::DirectSolidAngle);
-  s.integrator.strategy = Strategy::DirectArea;
+  ASSERT_EQ(strategyLabel(s.integrator), strategyLabel(directByLight(LightMeasure::SolidAngle)));
+  s.integrator = withCountsOf(directByLight(LightMeasure::Area), s.integrator);
   c.setSettings(s);
   EXPECT_EQ(c.restartCount(), restarts + 1);
   EXPECT_LT(c.progress().spp, running);
-  EXPECT_EQ(c.settings().integrator.strategy, Strategy::DirectArea);
+  EXPECT_EQ(strategyLabel(c.settings().integrator), strategyLabel(directByLight(LightMeasure::Area)));
   // The shared scene is reused, not rebuilt.
   EXPECT_EQ(c.engine().job()->scene.get(), c.scene().scene.get());
 }
@@ -129,7 +130,7 @@ TEST(ViewerController, CameraAndSamplerChangesRestartAndLiveXmlRoundTrips) {
   RenderSettings s = c.settings();
   s.seed = 17;
   s.samplerKind = SamplerKind::Stratified;
-  s.integrator.strategy = Strategy::AoUniform;
+  s.integrator = withCountsOf(aoBy(HemisphereWarp::Uniform), s.integrator);
   s.integrator.samples = 3;
   c.setSettings(s);
   EXPECT_EQ(c.restartCount(), r0 + 4);
@@ -139,7 +140,7 @@ TEST(ViewerController, CameraAndSamplerChangesRestartAndLiveXmlRoundTrips) {
   const RenderSettings& t = again.settings;
   EXPECT_EQ(t.seed, 17u);
   EXPECT_EQ(t.samplerKind, SamplerKind::Stratified);
-  EXPECT_EQ(t.integrator.strategy, Strategy::AoUniform);
+  EXPECT_EQ(strategyLabel(t.integrator), strategyLabel(aoBy(HemisphereWarp::Uniform)));
   EXPECT_EQ(t.integrator.samples, 3);
   EXPECT_EQ(t.camera.width, 48);
   for (int i = 0; i < 4; ++i)
@@ -194,63 +195,67 @@ TEST(ViewerController, InvalidSceneKeepsTheLastGoodOneAndShowsFileAndLine) {
   fs::remove(bad);
 }
 
-// The light-selection control: the strategy list shows each measure once, the selection switches the
-// row live (a restart, the same shared scene), a measure change keeps it, and the saved XML names it.
-TEST(ViewerController, LightSelectionSwitchesTheRowLiveAndTheListShowsEachMeasureOnce) {
+// The light-selection control: the selection switches the strategy live (a restart, the same shared
+// scene), a measure change keeps it, and the saved XML names it.
+TEST(ViewerController, LightSelectionSwitchesLiveAndAMeasureChangeKeepsIt) {
   const int many = int(kAllLightsUpTo) + 1;
   ui::ViewerController c(loadSceneFromString(scalingSceneXml(many, 16, 100000), "scaling.xml", "."), {}, 2);
   EXPECT_EQ(c.sphereLightCount(), size_t(many));
   EXPECT_EQ(c.defaultLightSelection(), kManyLightsSelection);
   // The scene names no lightSelection: the builder resolved it by the light count.
-  EXPECT_EQ(c.settings().integrator.strategy, Strategy::DirectSolidAngleBvh);
-  EXPECT_TRUE(c.takesLightSelection());
+  EXPECT_EQ(strategyLabel(c.settings().integrator),
+            strategyLabel(directByLight(LightMeasure::SolidAngle, LightSelection::Bvh)));
+  EXPECT_TRUE(c.settings().integrator.usesLightSelection());
   EXPECT_EQ(c.lightSelectionDefaultText(), "default for " + std::to_string(many) +
                                                " sphere lights: bvh (all up to " +
                                                std::to_string(kAllLightsUpTo) + ")");
-
-  std::vector<Strategy> list = c.strategyChoices();
-  for (Strategy s : list) EXPECT_EQ(lightSelectionOf(s), LightSelection::All) << strategyRow(s).label;
-  for (Strategy s : {Strategy::DirectUniformHemisphere, Strategy::DirectCosineHemisphere,
-                     Strategy::DirectArea, Strategy::DirectSolidAngle, Strategy::AoCosine, Strategy::Normals})
-    EXPECT_NE(std::find(list.begin(), list.end(), s), list.end()) << strategyRow(s).label;
 
   c.start();
   waitForSpp(c, 1);
   uint64_t r0 = c.restartCount();
   c.setLightSelection(LightSelection::Power);
-  EXPECT_EQ(c.settings().integrator.strategy, Strategy::DirectSolidAnglePower);
+  EXPECT_EQ(strategyLabel(c.settings().integrator),
+            strategyLabel(directByLight(LightMeasure::SolidAngle, LightSelection::Power)));
   EXPECT_EQ(c.restartCount(), r0 + 1);
-  EXPECT_EQ(c.engine().job()->settings.integrator.strategy, Strategy::DirectSolidAnglePower);
+  EXPECT_EQ(strategyLabel(c.engine().job()->settings.integrator),
+            strategyLabel(directByLight(LightMeasure::SolidAngle, LightSelection::Power)));
   EXPECT_EQ(c.engine().job()->scene.get(), c.scene().scene.get());
   c.setLightSelection(LightSelection::Power);  // unchanged: no restart
   EXPECT_EQ(c.restartCount(), r0 + 1);
   // Another measure keeps the selection.
-  c.setStrategy(Strategy::DirectArea);
-  EXPECT_EQ(c.settings().integrator.strategy, Strategy::DirectAreaPower);
+  pickMeasure(c, "area");
+  EXPECT_EQ(strategyLabel(c.settings().integrator),
+            strategyLabel(directByLight(LightMeasure::Area, LightSelection::Power)));
   EXPECT_EQ(c.restartCount(), r0 + 2);
   // The saved XML names the selection the render used.
   LoadedScene saved = loadSceneFromString(c.liveSceneXml(), "live.xml", ".");
-  EXPECT_EQ(saved.settings.integrator.strategy, Strategy::DirectAreaPower);
+  EXPECT_EQ(strategyLabel(saved.settings.integrator),
+            strategyLabel(directByLight(LightMeasure::Area, LightSelection::Power)));
   EXPECT_NE(c.liveSceneXml().find("name=\"lightSelection\" value=\"power\""), std::string::npos);
-  // A measure without light selection: no control, and the control's setter does nothing.
-  c.setStrategy(Strategy::DirectCosineHemisphere);
-  EXPECT_FALSE(c.takesLightSelection());
+  // A measure without light selection: the control's setter does nothing, and MIS's XML names none.
+  pickMeasure(c, "mis");
+  EXPECT_FALSE(c.settings().integrator.usesLightSelection());
+  EXPECT_EQ(c.liveSceneXml().find("lightSelection"), std::string::npos);
+  pickMeasure(c, "hemisphere");
   uint64_t r1 = c.restartCount();
   c.setLightSelection(LightSelection::Uniform);
-  EXPECT_EQ(c.settings().integrator.strategy, Strategy::DirectCosineHemisphere);
+  EXPECT_EQ(strategyLabel(c.settings().integrator),
+            strategyLabel(directByHemisphere(HemisphereWarp::Cosine)));
   EXPECT_EQ(c.restartCount(), r1);
-  // Back to a light-sampling measure: the scene's default selection.
-  c.setStrategy(Strategy::DirectSolidAngle);
-  EXPECT_EQ(c.settings().integrator.strategy, Strategy::DirectSolidAngleBvh);
-  c.setLightSelection(LightSelection::All);
-  EXPECT_EQ(c.settings().integrator.strategy, Strategy::DirectSolidAngle);
+  // Back to a light-sampling measure: the selection chosen before.
+  pickMeasure(c, "solid-angle");
+  EXPECT_EQ(strategyLabel(c.settings().integrator),
+            strategyLabel(directByLight(LightMeasure::SolidAngle, LightSelection::Power)));
+  // setStrategy sets every axis.
+  c.setStrategy(directByLight(LightMeasure::Area));
+  EXPECT_EQ(strategyLabel(c.settings().integrator), strategyLabel(directByLight(LightMeasure::Area)));
 }
 
 TEST(ViewerController, TheAssignmentSceneDefaultsToAllLights) {
   ui::ViewerController c(smallDefaultScene(), {}, 1);
   EXPECT_EQ(c.sphereLightCount(), 1u);
   EXPECT_EQ(c.defaultLightSelection(), LightSelection::All);
-  EXPECT_EQ(c.settings().integrator.strategy, Strategy::DirectSolidAngle);
+  EXPECT_EQ(strategyLabel(c.settings().integrator), strategyLabel(directByLight(LightMeasure::SolidAngle)));
   EXPECT_EQ(c.lightSelectionDefaultText(),
             "default for 1 sphere light: all (all up to " + std::to_string(kAllLightsUpTo) + ")");
 }
@@ -259,7 +264,7 @@ TEST(ViewerCompare, EnablingStartsASecondAccumulationDisablingStopsIt) {
   ui::ViewerController c(smallDefaultScene(), {}, 2);
   c.start();
   EXPECT_FALSE(c.compareEnabled());
-  c.setCompareIntegrator(directWith(Strategy::DirectArea));  // compare off: nothing starts
+  c.setCompareIntegrator(directByLight(LightMeasure::Area));  // compare off: nothing starts
   EXPECT_EQ(c.compareRestartCount(), 0u);
   EXPECT_EQ(c.compareProgress().spp, 0u);
 
@@ -273,8 +278,10 @@ TEST(ViewerCompare, EnablingStartsASecondAccumulationDisablingStopsIt) {
   // Same scene object and settings, only the integrator differs.
   ASSERT_TRUE(c.compareEngine().job());
   EXPECT_EQ(c.compareEngine().job()->scene.get(), c.scene().scene.get());
-  EXPECT_EQ(c.compareEngine().job()->settings.integrator.strategy, Strategy::DirectArea);
-  EXPECT_EQ(c.engine().job()->settings.integrator.strategy, Strategy::DirectSolidAngle);
+  EXPECT_EQ(strategyLabel(c.compareEngine().job()->settings.integrator),
+            strategyLabel(directByLight(LightMeasure::Area)));
+  EXPECT_EQ(strategyLabel(c.engine().job()->settings.integrator),
+            strategyLabel(directByLight(LightMeasure::SolidAngle)));
   EXPECT_EQ(c.compareEngine().job()->settings.camera.toWorld, c.settings().camera.toWorld);
 
   // Both spp counters grow; both snapshots are published.
@@ -303,7 +310,7 @@ TEST(ViewerCompare, EnablingStartsASecondAccumulationDisablingStopsIt) {
 
 TEST(ViewerCompare, ChangingOneSidesStrategyRestartsOnlyThatSide) {
   ui::ViewerController c(smallDefaultScene(), {}, 2);
-  c.setCompareIntegrator(directWith(Strategy::DirectArea));
+  c.setCompareIntegrator(directByLight(LightMeasure::Area));
   c.setCompare(true);
   ASSERT_TRUE(waitUntil([&] { return c.progress().spp >= 3 && c.compareProgress().spp >= 3; }));
 
@@ -311,24 +318,27 @@ TEST(ViewerCompare, ChangingOneSidesStrategyRestartsOnlyThatSide) {
   uint64_t left = c.restartCount(), right = c.compareRestartCount();
   uint32_t rightSpp = c.compareProgress().spp;
   RenderSettings s = c.settings();
-  s.integrator.strategy = Strategy::DirectUniformHemisphere;
+  s.integrator = withCountsOf(directByHemisphere(HemisphereWarp::Uniform), s.integrator);
   c.setSettings(s);
   EXPECT_EQ(c.restartCount(), left + 1);
   EXPECT_EQ(c.compareRestartCount(), right);
   EXPECT_GE(c.compareProgress().spp, rightSpp);
   ASSERT_TRUE(waitUntil([&] { return c.compareProgress().spp >= rightSpp + 2; }));
-  EXPECT_EQ(c.engine().job()->settings.integrator.strategy, Strategy::DirectUniformHemisphere);
-  EXPECT_EQ(c.compareEngine().job()->settings.integrator.strategy, Strategy::DirectArea);
+  EXPECT_EQ(strategyLabel(c.engine().job()->settings.integrator),
+            strategyLabel(directByHemisphere(HemisphereWarp::Uniform)));
+  EXPECT_EQ(strategyLabel(c.compareEngine().job()->settings.integrator),
+            strategyLabel(directByLight(LightMeasure::Area)));
 
   // Right strategy: only the right restarts.
   ASSERT_TRUE(waitUntil([&] { return c.progress().spp >= 3; }));
   uint32_t leftSpp = c.progress().spp;
   left = c.restartCount();
-  c.setCompareIntegrator(directWith(Strategy::DirectSolidAngle));
+  c.setCompareIntegrator(directByLight(LightMeasure::SolidAngle));
   EXPECT_EQ(c.restartCount(), left);
   EXPECT_EQ(c.compareRestartCount(), right + 1);
   EXPECT_GE(c.progress().spp, leftSpp);
-  EXPECT_EQ(c.compareEngine().job()->settings.integrator.strategy, Strategy::DirectSolidAngle);
+  EXPECT_EQ(strategyLabel(c.compareEngine().job()->settings.integrator),
+            strategyLabel(directByLight(LightMeasure::SolidAngle)));
 
   // The camera is shared: moving it restarts both sides.
   right = c.compareRestartCount();
@@ -348,7 +358,7 @@ TEST(ViewerController, LightShareViewIsOfferedForMisStrategiesOnly) {
   EXPECT_FALSE(c.lightShareView());
 
   RenderSettings s = c.settings();
-  s.integrator = directWith(Strategy::DirectMisProjectedBalance);
+  s.integrator = directByMis(LightMeasure::ProjectedSolidAngle, MisHeuristic::Balance);
   c.setSettings(s);
   ASSERT_TRUE(c.lightShareOffered());
   const uint64_t restarts = c.restartCount();
@@ -372,7 +382,7 @@ TEST(ViewerController, LightShareViewIsOfferedForMisStrategiesOnly) {
   EXPECT_GT(withShare, 100);
 
   // Another mis row keeps it; compare mode and a non-mis strategy turn it off.
-  s.integrator = directWith(Strategy::DirectMisAreaPower);
+  s.integrator = directByMis(LightMeasure::Area, MisHeuristic::Power);
   c.setSettings(s);
   EXPECT_TRUE(c.lightShareView());
   c.setCompare(true);
@@ -381,7 +391,7 @@ TEST(ViewerController, LightShareViewIsOfferedForMisStrategiesOnly) {
   c.setCompare(false);
   c.setLightShareView(true);
   EXPECT_TRUE(c.lightShareView());
-  s.integrator = directWith(Strategy::DirectCosineHemisphere);
+  s.integrator = directByHemisphere(HemisphereWarp::Cosine);
   c.setSettings(s);
   EXPECT_FALSE(c.lightShareOffered());
   EXPECT_FALSE(c.lightShareView());
@@ -396,7 +406,7 @@ TEST(ViewerController, LightShareViewIsOfferedForMisStrategiesOnly) {
 TEST(ViewerController, LightShareViewSavesTheMapAndTheSplit) {
   ui::ViewerController c(smallDefaultScene(), {{"integrator.measure", "mis"}}, 2);
   RenderSettings s = c.settings();
-  s.integrator = directWith(Strategy::DirectMisSolidAnglePower);
+  s.integrator = directByMis(LightMeasure::SolidAngle, MisHeuristic::Power);
   c.setSettings(s);
   c.setLightShareView(true);
   ASSERT_TRUE(waitUntil([&] {

@@ -124,31 +124,33 @@ TEST(ViewerFirstUse, CompareOffersOnlyApplicableStrategiesAndRendersWhatItShows)
   // A direct-lighting scene without area lights (like the hw1 teapot).
   ui::ViewerController d(loadSceneFromString(sceneXml(kDirect), "d.xml", "."), {}, 2);
   ASSERT_FALSE(d.sceneHasAreaLights());
-  for (Strategy s : d.compareChoices()) {
-    EXPECT_TRUE(strategyApplies(s, false)) << strategyRow(s).label;
-    EXPECT_TRUE(sameIntegratorType(s, Strategy::DirectUniformHemisphere)) << strategyRow(s).label;
-  }
-  ASSERT_GE(d.compareChoices().size(), 2u);
-  EXPECT_NE(d.compareIntegrator().strategy, d.settings().integrator.strategy);
-  EXPECT_EQ(d.renderedCompareIntegrator(), d.compareIntegrator());  // the combo shows what renders
+  EXPECT_TRUE(d.compareOffered());
+  EXPECT_TRUE(d.comparableWithLeft(directByHemisphere(HemisphereWarp::Uniform)));
+  EXPECT_FALSE(d.comparableWithLeft(directByLight(LightMeasure::Area)));  // needs area lights
+  EXPECT_FALSE(d.comparableWithLeft(aoBy(HemisphereWarp::Uniform)));
+  EXPECT_TRUE(strategyApplies(d.compareIntegrator(), false)) << strategyLabel(d.compareIntegrator());
+  EXPECT_NE(strategyLabel(d.compareIntegrator()), strategyLabel(d.settings().integrator));
+  EXPECT_EQ(d.renderedCompareIntegrator(), withCountsOf(d.compareIntegrator(), d.settings().integrator));
   d.setCompare(true);
-  EXPECT_EQ(d.compareEngine().job()->settings.integrator.strategy, d.compareIntegrator().strategy);
+  EXPECT_EQ(strategyLabel(d.compareEngine().job()->settings.integrator),
+            strategyLabel(d.compareIntegrator()));
 
   // An AO scene: the right side is the other AO strategy, never a (black) direct one.
   ui::ViewerController ao(loadSceneFromString(sceneXml(kAo), "ao.xml", "."), {}, 2);
-  EXPECT_EQ(ao.compareChoices(), (std::vector<Strategy>{Strategy::AoUniform, Strategy::AoCosine}));
-  EXPECT_EQ(ao.compareIntegrator().strategy, Strategy::AoUniform);
-  EXPECT_EQ(ao.renderedCompareIntegrator().strategy, Strategy::AoUniform);
+  EXPECT_TRUE(ao.compareOffered());
+  EXPECT_EQ(strategyLabel(ao.compareIntegrator()), strategyLabel(aoBy(HemisphereWarp::Uniform)));
+  EXPECT_EQ(strategyLabel(ao.renderedCompareIntegrator()), strategyLabel(aoBy(HemisphereWarp::Uniform)));
 
   // --compare: the message names exactly what is accepted; "all" is not claimed and not accepted.
-  EXPECT_EQ(ao.parseCompareStrategy("ao-cosine").strategy, Strategy::AoCosine);
+  EXPECT_EQ(strategyLabel(ao.parseCompareStrategy("ao-cosine")), strategyLabel(aoBy(HemisphereWarp::Cosine)));
+  EXPECT_EQ(strategyLabel(ao.parseCompareStrategy("cosine")), strategyLabel(aoBy(HemisphereWarp::Cosine)));
   try {
     ao.parseCompareStrategy("all");
     ADD_FAILURE() << "all accepted";
   } catch (const Error& e) {
     std::string msg = e.what();
     EXPECT_EQ(msg.find("expected all"), std::string::npos) << msg;
-    EXPECT_NE(msg.find("ao-uniform, ao-cosine"), std::string::npos) << msg;
+    EXPECT_NE(msg.find(": uniform-hemisphere, cosine-hemisphere"), std::string::npos) << msg;
   }
   EXPECT_THROW(ao.parseCompareStrategy("solid-angle"), Error);  // a direct strategy on an AO scene
 }
@@ -160,7 +162,8 @@ TEST(ViewerFirstUse, ReloadKeepsLiveChangesUnlessTheFileChangedThem) {
   ui::ViewerController c(loadScene(file.string()), {}, 1);
   c.start();
   RenderSettings s = c.settings();
-  s.integrator.strategy = Strategy::DirectUniformHemisphere;  // chosen in the UI (the file: cosine)
+  s.integrator = withCountsOf(directByHemisphere(HemisphereWarp::Uniform),
+                              s.integrator);  // chosen in the UI (the file: cosine)
   c.setSettings(s);
   c.orbit(30.f, 0.f);
   const glm::mat4 orbited = c.settings().camera.toWorld;
@@ -168,7 +171,8 @@ TEST(ViewerFirstUse, ReloadKeepsLiveChangesUnlessTheFileChangedThem) {
   // The file changes only the sampler's seed: the UI's integrator and camera survive.
   writeFile(file, sceneXml(kDirect, "<integer name=\"seed\" value=\"9\"/>"));
   ASSERT_TRUE(c.reloadScene());
-  EXPECT_EQ(c.settings().integrator.strategy, Strategy::DirectUniformHemisphere);
+  EXPECT_EQ(strategyLabel(c.settings().integrator),
+            strategyLabel(directByHemisphere(HemisphereWarp::Uniform)));
   EXPECT_EQ(c.settings().camera.toWorld, orbited);
   EXPECT_EQ(c.settings().seed, 9u);
   EXPECT_NE(c.sceneStatus().find("reloaded scene.xml"), std::string::npos) << c.sceneStatus();
@@ -180,7 +184,8 @@ TEST(ViewerFirstUse, ReloadKeepsLiveChangesUnlessTheFileChangedThem) {
                            "<integer name=\"nSamples\" value=\"3\"/></integrator>",
                            "<integer name=\"seed\" value=\"9\"/>"));
   ASSERT_TRUE(c.reloadScene());
-  EXPECT_EQ(c.settings().integrator.strategy, Strategy::DirectCosineHemisphere);
+  EXPECT_EQ(strategyLabel(c.settings().integrator),
+            strategyLabel(directByHemisphere(HemisphereWarp::Cosine)));
   EXPECT_EQ(c.settings().integrator.samples, 3);
   EXPECT_EQ(c.settings().camera.toWorld, orbited);
 }

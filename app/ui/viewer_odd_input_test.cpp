@@ -176,24 +176,28 @@ TEST(ViewerOddInput, SavedOrbitedCameraReopensAboutTheSameTarget) {
 TEST(ViewerOddInput, StrategiesThatCannotLightTheSceneSayWhy) {
   {
     ui::ViewerController areaOnly(litBy(kAreaLight), {}, 1);
-    EXPECT_EQ(areaOnly.strategyUnavailableReason(Strategy::Simple), "needs point or directional lights");
-    EXPECT_EQ(areaOnly.strategyUnavailableReason(Strategy::DirectCosineHemisphere), "");
-    EXPECT_EQ(areaOnly.strategyUnavailableReason(Strategy::DirectSolidAngle), "");
+    EXPECT_EQ(areaOnly.strategyUnavailableReason(integratorOfType(IntegratorType::Simple)),
+              "needs point or directional lights");
+    EXPECT_EQ(areaOnly.strategyUnavailableReason(directByHemisphere(HemisphereWarp::Cosine)), "");
+    EXPECT_EQ(areaOnly.strategyUnavailableReason(directByLight(LightMeasure::SolidAngle)), "");
   }
   {
     ui::ViewerController pointOnly(litBy(kPointLight), {}, 1);
-    EXPECT_EQ(pointOnly.strategyUnavailableReason(Strategy::Simple), "");
-    EXPECT_EQ(pointOnly.strategyUnavailableReason(Strategy::DirectUniformHemisphere), "");
-    EXPECT_NE(pointOnly.strategyUnavailableReason(Strategy::DirectArea).find("needs area lights"),
-              std::string::npos);
+    EXPECT_EQ(pointOnly.strategyUnavailableReason(integratorOfType(IntegratorType::Simple)), "");
+    EXPECT_EQ(pointOnly.strategyUnavailableReason(directByHemisphere(HemisphereWarp::Uniform)), "");
+    EXPECT_NE(
+        pointOnly.strategyUnavailableReason(directByLight(LightMeasure::Area)).find("needs area lights"),
+        std::string::npos);
   }
   {
     ui::ViewerController dark(litBy(""), {}, 1);
-    for (Strategy s : {Strategy::DirectUniformHemisphere, Strategy::DirectCosineHemisphere})
+    for (const IntegratorDesc& s :
+         {directByHemisphere(HemisphereWarp::Uniform), directByHemisphere(HemisphereWarp::Cosine)})
       EXPECT_EQ(dark.strategyUnavailableReason(s), "needs lights: the scene has none");
-    EXPECT_NE(dark.strategyUnavailableReason(Strategy::Simple), "");
-    for (Strategy s : {Strategy::AoCosine, Strategy::AoUniform, Strategy::Normals})
-      EXPECT_EQ(dark.strategyUnavailableReason(s), "") << strategyRow(s).label;
+    EXPECT_NE(dark.strategyUnavailableReason(integratorOfType(IntegratorType::Simple)), "");
+    for (const IntegratorDesc& s : {aoBy(HemisphereWarp::Cosine), aoBy(HemisphereWarp::Uniform),
+                                    integratorOfType(IntegratorType::Normals)})
+      EXPECT_EQ(dark.strategyUnavailableReason(s), "") << strategyLabel(s);
   }
 }
 

@@ -14,6 +14,7 @@
 
 #include "core/analysis/error_metrics.h"
 #include "core/analysis/reference.h"
+#include "core/analysis/strategy_lists.h"
 #include "core/math/cancellation.h"
 
 namespace penumbra {
@@ -47,15 +48,6 @@ struct ConvergenceOptions {
   double firstFraction = 1e-3;  // first target = firstFraction * limit (time mode)
   CancelFlag cancel = nullptr;  // set: the run stops within milliseconds and throws Cancelled
 };
-
-// Every strategy of base's integrator type in table order (core/render/strategy_table.h), or those
-// named in `list`: "all", or comma separated names, each a row's label with or without the
-// integrator type ("direct/area", "area"), its short name or a spelling of its selecting property's
-// value ("solidAngle", "uniform"). Throws Error.
-std::vector<IntegratorDesc> parseStrategies(const IntegratorDesc& base, const std::string& list);
-// "direct: uniform-hemisphere, ...; ao: ao-uniform, ao-cosine": the short names parseStrategies
-// accepts for each integrator type with strategies to compare.
-std::string strategyNamesHelp();
 
 // The scene's samplers, or those named in `list` (comma separated sampler names, or "all" for every
 // row of the sampler table). Throws Error.

@@ -14,7 +14,8 @@
 
 #include "core/analysis/closed_forms.h"
 #include "core/analysis/ray_estimate.h"
-#include "core/render/strategy_table.h"
+#include "core/render/strategy_axes.h"
+#include "core/render/strategy_dispatch.h"
 #include "core/sampling/sampler_table.h"
 #include "core/scene/scene_builder.h"
 
@@ -43,11 +44,11 @@ LoadedScene planeAndLight(const Vec3& c, float r, float Le, float planeHalf = 10
 
 using analysis::shallowRayOnto;
 
-// The strategy table's estimator of `strategy`, one shading sample per camera sample, with one
-// sampler (the tests below run every sampler of the table).
-Estimate directAt(Strategy strategy, const LoadedScene& s, const Vec3& x, int n, uint64_t seed,
+// The estimator of `strategy`, one shading sample per camera sample, with one sampler (the tests
+// below run every sampler of the table).
+Estimate directAt(const IntegratorDesc& strategy, const LoadedScene& s, const Vec3& x, int n, uint64_t seed,
                   SamplerKind sampler = SamplerKind::Independent) {
-  return strategyRow(strategy).estimateRay(*s.scene, shallowRayOnto(x), 1, n, seed, sampler);
+  return estimateRayOf(withSamples(strategy, 1), *s.scene, shallowRayOnto(x), n, seed, sampler);
 }
 
 struct LightCase {
@@ -87,23 +88,27 @@ TEST_P(DirectClosedForm, EveryMeasureMatchesTheIrradianceClosedForm) {
     for (uint64_t seed : {1u, 2u}) {
       SCOPED_TRACE(std::string(sampler.label));
       const SamplerKind kind = sampler.kind;
-      checkAgainstTruth("solid-angle", directAt(Strategy::DirectSolidAngle, s, x, n, seed, kind), truth);
+      checkAgainstTruth("solid-angle", directAt(directByLight(LightMeasure::SolidAngle), s, x, n, seed, kind),
+                        truth);
       // Unoccluded: projected-solid-angle sampling's every sample is the closed form (zero variance).
-      const Estimate psa = directAt(Strategy::DirectProjectedSolidAngle, s, x, n, seed, kind);
+      const Estimate psa = directAt(directByLight(LightMeasure::ProjectedSolidAngle), s, x, n, seed, kind);
       checkAgainstTruth("projected-solid-angle", psa, truth);
       EXPECT_LE(psa.standardError, 1e-6 * truth) << "projected-solid-angle";
-      if (lc.areaToo) checkAgainstTruth("area", directAt(Strategy::DirectArea, s, x, n, seed, kind), truth);
-      // Every MIS row (light measure x heuristic, one light and one cosine sample per camera sample).
-      for (const StrategyRow& row : strategyTable()) {
-        if (row.counts[0].name.empty()) continue;
-        if (!lc.areaToo && row.select[1].value.accepts("area")) continue;
-        checkAgainstTruth(std::string(row.label).c_str(), directAt(row.strategy, s, x, n, seed, kind), truth);
+      if (lc.areaToo)
+        checkAgainstTruth("area", directAt(directByLight(LightMeasure::Area), s, x, n, seed, kind), truth);
+      // Every MIS strategy (light measure x heuristic, one light and one cosine sample per camera sample).
+      for (const IntegratorDesc& d : everyStrategyOfType(integratorOfType(IntegratorType::Direct))) {
+        if (!d.usesMisAxes()) continue;
+        if (!lc.areaToo && d.lightMeasure == LightMeasure::Area) continue;
+        checkAgainstTruth(strategyLabel(d).c_str(), directAt(d, s, x, n, seed, kind), truth);
       }
       if (lc.hemisphereToo) {
         checkAgainstTruth("cosine-hemisphere",
-                          directAt(Strategy::DirectCosineHemisphere, s, x, 4 * n, seed, kind), truth);
+                          directAt(directByHemisphere(HemisphereWarp::Cosine), s, x, 4 * n, seed, kind),
+                          truth);
         checkAgainstTruth("uniform-hemisphere",
-                          directAt(Strategy::DirectUniformHemisphere, s, x, 4 * n, seed, kind), truth);
+                          directAt(directByHemisphere(HemisphereWarp::Uniform), s, x, 4 * n, seed, kind),
+                          truth);
       }
     }
 }
@@ -126,10 +131,11 @@ INSTANTIATE_TEST_SUITE_P(
 TEST(DirectClosedForm, LightBelowTheHorizonGivesExactlyZero) {
   LoadedScene s = planeAndLight(Vec3(0, 2, -1.5f), 1.f, 100.f);
   for (const SamplerRow& sampler : samplerTable())
-    for (Strategy strategy : {Strategy::DirectSolidAngle, Strategy::DirectProjectedSolidAngle,
-                              Strategy::DirectArea, Strategy::DirectUniformHemisphere}) {
+    for (const IntegratorDesc& strategy :
+         {directByLight(LightMeasure::SolidAngle), directByLight(LightMeasure::ProjectedSolidAngle),
+          directByLight(LightMeasure::Area), directByHemisphere(HemisphereWarp::Uniform)}) {
       const Estimate e = directAt(strategy, s, Vec3(0), 1000, 3, sampler.kind);
-      EXPECT_EQ(e.mean, 0.0) << strategyRow(strategy).label << ", " << sampler.label;
+      EXPECT_EQ(e.mean, 0.0) << strategyLabel(strategy) << ", " << sampler.label;
       EXPECT_EQ(e.bad, 0u);
     }
 }
@@ -173,10 +179,10 @@ constexpr int kSelectionCameraSamples = 50000;
 TEST(DirectClosedForm, EveryLightSelectionMatchesTheSumOfTheLightsClosedForms) {
   const SeveralLights s = severalLights();
   ASSERT_EQ(s.scene.scene->sphereLights.size(), 6u);
-  // Every light-sampling row that takes a light selection (each measure with all, uniform, power, bvh).
-  std::vector<Strategy> strategies;
-  for (const StrategyRow& row : strategyTable())
-    if (row.select[1].name.canonical() == "lightSelection") strategies.push_back(row.strategy);
+  // Every light-sampling strategy (each light measure with all, uniform, power, bvh).
+  std::vector<IntegratorDesc> strategies;
+  for (const IntegratorDesc& d : everyStrategyOfType(integratorOfType(IntegratorType::Direct)))
+    if (d.usesLightSelection()) strategies.push_back(d);
   ASSERT_EQ(strategies.size(), 12u);
   for (const Vec3 x : {Vec3(0.31f, 0.17f, 0.f), Vec3(-2.1f, 0.4f, 0.f), Vec3(-0.8f, -1.f, 0.f)}) {
     // The truth at the point and normal the integrator shades (the shallow camera ray meets the plane
@@ -188,16 +194,16 @@ TEST(DirectClosedForm, EveryLightSelectionMatchesTheSumOfTheLightsClosedForms) {
       truth += s.radiance[i] / M_PI *
                sphereLightIrradianceFactor(glm::dvec3(hit.p), glm::dvec3(hit.ns),
                                            glm::dvec3(s.lights[i].first), double(s.lights[i].second));
-    for (Strategy strategy : strategies)
+    for (const IntegratorDesc& strategy : strategies)
       for (const SamplerRow& sampler : samplerTable()) {
-        const std::string what = std::string(strategyRow(strategy).label) + " at " + std::to_string(x.x) +
-                                 ", " + std::string(sampler.label);
+        const std::string what =
+            strategyLabel(strategy) + " at " + std::to_string(x.x) + ", " + std::string(sampler.label);
         // Independent: one shading sample per camera sample. The others: 4 per camera sample, so the
         // choice of the light and the point on it are two interleaved array requests of 4 points.
         const bool independent = sampler.kind == SamplerKind::Independent;
-        const Estimate e = strategyRow(strategy).estimateRay(
-            *s.scene.scene, shallowRayOnto(x), independent ? 1 : 4,
-            independent ? 400000 : kSelectionCameraSamples, 4, sampler.kind);
+        const Estimate e =
+            estimateRayOf(withSamples(strategy, independent ? 1 : 4), *s.scene.scene, shallowRayOnto(x),
+                          independent ? 400000 : kSelectionCameraSamples, 4, sampler.kind);
         if (std::getenv("PENUMBRA_VERBOSE"))
           std::printf("%-40s est %.6g ± %.3g truth %.6g (SE %.2f %% of truth)\n", what.c_str(), e.mean,
                       e.standardError, truth, 100 * e.standardError / truth);
@@ -229,9 +235,9 @@ LoadedScene restingSphere(float R, float planeHalf = 2000.f) {
   return loadSceneFromString(xml.str(), "ao.xml", ".");
 }
 
-Estimate aoAt(Strategy strategy, const LoadedScene& s, const Ray& ray, int n, uint64_t seed,
+Estimate aoAt(const IntegratorDesc& strategy, const LoadedScene& s, const Ray& ray, int n, uint64_t seed,
               SamplerKind sampler = SamplerKind::Independent) {
-  return strategyRow(strategy).estimateRay(*s.scene, ray, 1, n, seed, sampler);
+  return estimateRayOf(withSamples(strategy, 1), *s.scene, ray, n, seed, sampler);
 }
 
 TEST(AoClosedForm, PlaneNextToARestingSphere) {
@@ -243,8 +249,10 @@ TEST(AoClosedForm, PlaneNextToARestingSphere) {
     Ray ray = rayOnto(Vec3(rho, 0, 0), Vec3(0, 0, 1), 1e-3f);
     for (const SamplerRow& sampler : samplerTable()) {
       SCOPED_TRACE(std::string(sampler.label));
-      checkAgainstTruth("ao uniform", aoAt(Strategy::AoUniform, s, ray, 100000, 5, sampler.kind), truth);
-      checkAgainstTruth("ao cosine", aoAt(Strategy::AoCosine, s, ray, 100000, 6, sampler.kind), truth);
+      checkAgainstTruth("ao uniform", aoAt(aoBy(HemisphereWarp::Uniform), s, ray, 100000, 5, sampler.kind),
+                        truth);
+      checkAgainstTruth("ao cosine", aoAt(aoBy(HemisphereWarp::Cosine), s, ray, 100000, 6, sampler.kind),
+                        truth);
     }
   }
 }
@@ -279,8 +287,10 @@ TEST(AoClosedForm, PointsOnARestingSphere) {
     Ray ray = rayOnto(p, n, 0.01f);
     for (const SamplerRow& sampler : samplerTable()) {
       SCOPED_TRACE(std::string(sampler.label));
-      checkAgainstTruth("ao uniform", aoAt(Strategy::AoUniform, s, ray, 100000, 7, sampler.kind), truth);
-      checkAgainstTruth("ao cosine", aoAt(Strategy::AoCosine, s, ray, 100000, 8, sampler.kind), truth);
+      checkAgainstTruth("ao uniform", aoAt(aoBy(HemisphereWarp::Uniform), s, ray, 100000, 7, sampler.kind),
+                        truth);
+      checkAgainstTruth("ao cosine", aoAt(aoBy(HemisphereWarp::Cosine), s, ray, 100000, 8, sampler.kind),
+                        truth);
     }
   }
 }
@@ -290,7 +300,7 @@ TEST(AoClosedForm, ACameraRayThatMissesIsBlack) {
   Ray ray;
   ray.o = Vec3(0, 0, 5);
   ray.d = Vec3(0, 0, 1);
-  Estimate e = aoAt(Strategy::AoCosine, s, ray, 100, 1);
+  Estimate e = aoAt(aoBy(HemisphereWarp::Cosine), s, ray, 100, 1);
   EXPECT_EQ(e.mean, 0.0);
 }
 

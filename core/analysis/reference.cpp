@@ -23,16 +23,14 @@ namespace penumbra {
 namespace fs = std::filesystem;
 
 IntegratorDesc referenceEstimator(const IntegratorDesc& sceneIntegrator) {
-  IntegratorDesc d = sceneIntegrator;
-  d.strategy = referenceStrategy(d.strategy);
-  return d;
+  return referenceStrategy(sceneIntegrator);
 }
 
 namespace {
 
 // The closed form is direct illumination from sphere lights: any strategy of the direct integrator.
 bool hasDirectClosedForm(const IntegratorDesc& d) {
-  return sameIntegratorType(d.strategy, Strategy::DirectSolidAngle);
+  return d.type == IntegratorType::Direct;
 }
 
 void fnv(uint64_t& h, const char* data, std::size_t n) {

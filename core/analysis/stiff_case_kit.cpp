@@ -12,7 +12,8 @@
 #include "core/math/float_util.h"
 #include "core/render/engine.h"
 #include "core/render/film.h"
-#include "core/render/strategy_table.h"
+#include "core/render/strategy_axes.h"
+#include "core/render/strategy_dispatch.h"
 #include "core/sampling/sampler.h"
 #include "core/sampling/sampler_table.h"
 #include "core/sampling/warp.h"
@@ -94,14 +95,12 @@ double directTruth(const Scene& scene, const Vec3& x, const Vec3& n) {
   return sum;
 }
 
-// One strategy's estimate along `ray`, one shading sample per camera sample (the strategy table's
-// instance of its integrator).
-Estimate estimate(Strategy s, const Scene& scene, const Ray& ray, int n, uint64_t seed) {
-  return strategyRow(s).estimateRay(scene, ray, 1, n, seed, SamplerKind::Independent);
+Estimate estimate(const IntegratorDesc& s, const Scene& scene, const Ray& ray, int n, uint64_t seed) {
+  return estimateRayOf(withSamples(s, 1), scene, ray, n, seed, SamplerKind::Independent);
 }
 
-std::string nameOf(Strategy s) {
-  return std::string(strategyRow(s).shortName);
+std::string nameOf(const IntegratorDesc& s) {
+  return strategyShortName(s);
 }
 
 // Direct lighting of the receiver point by each strategy in `strategies`: light sampling first, then
@@ -123,24 +122,13 @@ CaseResult directCase(const CaseOptions& o, const std::string& file, unsigned st
   double truth = directTruth(scene, hit.p);
   bool first = true;
   n = count(o, n);
-  const Strategy order[] = {Strategy::DirectSolidAngle,
-                            Strategy::DirectArea,
-                            Strategy::DirectProjectedSolidAngle,
-                            Strategy::DirectCosineHemisphere,
-                            Strategy::DirectUniformHemisphere,
-                            kMisRows[0],
-                            kMisRows[1],
-                            kMisRows[2],
-                            kMisRows[3],
-                            kMisRows[4],
-                            kMisRows[5]};
-  for (unsigned i = 0; i < std::size(order); ++i) {
-    if (!(strategies & bit(order[i]))) continue;
-    const bool mis = kMis & bit(order[i]);
-    int samples = mis && misSamples > 0                                  ? misSamples
-                  : strategyRow(order[i]).needs == SceneNeed::AreaLights ? n
-                                                                         : hemisphereFactor * n;
-    merge(acc, fromEstimate(estimate(order[i], scene, ray, samples, o.seed + i), truth), nameOf(order[i]),
+  for (unsigned i = 0; i < std::size(kDirectCaseOrder); ++i) {
+    const IntegratorDesc& strategy = kDirectCaseOrder[i];
+    if (!(strategies & (1u << i))) continue;
+    const int samples = strategy.usesMisAxes() && misSamples > 0       ? misSamples
+                        : sceneNeed(strategy) == SceneNeed::AreaLights ? n
+                                                                       : hemisphereFactor * n;
+    merge(acc, fromEstimate(estimate(strategy, scene, ray, samples, o.seed + i), truth), nameOf(strategy),
           first);
   }
   return acc;

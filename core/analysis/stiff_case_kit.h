@@ -36,26 +36,32 @@ CaseResult finiteOnly(const Estimate& e);
 // Reflected radiance Lr of the albedo-1 receiver at x (normal n) lit by every sphere light.
 double directTruth(const Scene& scene, const Vec3& x, const Vec3& n = kUp);
 
-// One strategy's estimate along `ray`, one shading sample per camera sample (the strategy table's
-// instance of its integrator).
-Estimate estimate(Strategy s, const Scene& scene, const Ray& ray, int n, uint64_t seed);
-std::string nameOf(Strategy s);
+// One strategy's estimate along `ray`, one shading sample per camera sample.
+Estimate estimate(const IntegratorDesc& s, const Scene& scene, const Ray& ray, int n, uint64_t seed);
+std::string nameOf(const IntegratorDesc& s);
 
-// The strategies a case runs, as bits of Strategy.
-constexpr unsigned bit(Strategy s) {
-  return 1u << unsigned(s);
-}
-// The mis rows: every light measure with both heuristics (one light and one cosine sample each).
-inline constexpr Strategy kMisRows[] = {
-    Strategy::DirectMisSolidAnglePower, Strategy::DirectMisSolidAngleBalance,
-    Strategy::DirectMisAreaPower,       Strategy::DirectMisAreaBalance,
-    Strategy::DirectMisProjectedPower,  Strategy::DirectMisProjectedBalance};
-inline constexpr unsigned kSolid = bit(Strategy::DirectSolidAngle), kArea = bit(Strategy::DirectArea),
-                          kProjected = bit(Strategy::DirectProjectedSolidAngle),
-                          kCosine = bit(Strategy::DirectCosineHemisphere),
-                          kUniform = bit(Strategy::DirectUniformHemisphere),
-                          kMis = bit(kMisRows[0]) | bit(kMisRows[1]) | bit(kMisRows[2]) | bit(kMisRows[3]) |
-                                 bit(kMisRows[4]) | bit(kMisRows[5]),
+// The mis strategies: every light measure with both heuristics (one light and one cosine sample each).
+inline constexpr IntegratorDesc kMisRows[] = {
+    directByMis(LightMeasure::SolidAngle, MisHeuristic::Power),
+    directByMis(LightMeasure::SolidAngle, MisHeuristic::Balance),
+    directByMis(LightMeasure::Area, MisHeuristic::Power),
+    directByMis(LightMeasure::Area, MisHeuristic::Balance),
+    directByMis(LightMeasure::ProjectedSolidAngle, MisHeuristic::Power),
+    directByMis(LightMeasure::ProjectedSolidAngle, MisHeuristic::Balance)};
+// The strategies directCase runs, in its order, and the bit of each in its `strategies` mask.
+inline constexpr IntegratorDesc kDirectCaseOrder[] = {directByLight(LightMeasure::SolidAngle),
+                                                      directByLight(LightMeasure::Area),
+                                                      directByLight(LightMeasure::ProjectedSolidAngle),
+                                                      directByHemisphere(HemisphereWarp::Cosine),
+                                                      directByHemisphere(HemisphereWarp::Uniform),
+                                                      kMisRows[0],
+                                                      kMisRows[1],
+                                                      kMisRows[2],
+                                                      kMisRows[3],
+                                                      kMisRows[4],
+                                                      kMisRows[5]};
+inline constexpr unsigned kSolid = 1u << 0, kArea = 1u << 1, kProjected = 1u << 2, kCosine = 1u << 3,
+                          kUniform = 1u << 4, kMis = 0x3fu << 5,
                           kAll = kSolid | kArea | kProjected | kCosine | kUniform | kMis;
 
 // Direct lighting of the receiver point by each strategy in `strategies`: light sampling first, then
@@ -79,7 +85,8 @@ CaseResult inside(const CaseOptions& o);
 
 // ---- stiff_cases_images.cpp (whole renders, contact, far side, extremes, bad input, the film) ----
 // kind "ao" or "direct"; the scene's own strategy, or `strategy` when given.
-CaseResult scaleCase(const CaseOptions& o, const std::string& kind, std::optional<Strategy> strategy = {});
+CaseResult scaleCase(const CaseOptions& o, const std::string& kind,
+                     std::optional<IntegratorDesc> strategy = {});
 CaseResult aoOnSphereNearContact(const CaseOptions& o);
 CaseResult aoOnPlaneNearContact(const CaseOptions& o);
 CaseResult areaFarSide(const CaseOptions& o);

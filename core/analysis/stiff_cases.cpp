@@ -16,7 +16,7 @@
 #include "core/math/float_util.h"
 #include "core/render/engine.h"
 #include "core/render/film.h"
-#include "core/render/strategy_table.h"
+#include "core/render/strategy_axes.h"
 #include "core/sampling/sampler.h"
 #include "core/sampling/sampler_table.h"
 #include "core/sampling/warp.h"
@@ -117,11 +117,13 @@ std::vector<StiffCase> makeCases() {
         bool first = false;
         Ray ray = shallowRayOnto(kReceiver);
         merge(r,
-              finiteOnly(estimate(Strategy::DirectCosineHemisphere, *s.scene, ray, count(o, 20000), o.seed)),
-              nameOf(Strategy::DirectCosineHemisphere), first);
+              finiteOnly(estimate(directByHemisphere(HemisphereWarp::Cosine), *s.scene, ray, count(o, 20000),
+                                  o.seed)),
+              nameOf(directByHemisphere(HemisphereWarp::Cosine)), first);
         merge(r,
-              finiteOnly(estimate(Strategy::DirectUniformHemisphere, *s.scene, ray, count(o, 20000), o.seed)),
-              nameOf(Strategy::DirectUniformHemisphere), first);
+              finiteOnly(estimate(directByHemisphere(HemisphereWarp::Uniform), *s.scene, ray, count(o, 20000),
+                                  o.seed)),
+              nameOf(directByHemisphere(HemisphereWarp::Uniform)), first);
         equalPowerTruths(o, "equal-power-r1e-3.xml", r);
         return r;
       });
@@ -129,12 +131,12 @@ std::vector<StiffCase> makeCases() {
       [](const CaseOptions& o) { return scaleCase(o, "ao"); });
   add("scale-direct", "scale", "direct image at scales 1e-4 and 1e4 vs 1",
       [](const CaseOptions& o) { return scaleCase(o, "direct"); });
-  const std::pair<Strategy, const char*> misScales[] = {{kMisRows[0], "scale-mis-solid-angle"},
-                                                        {kMisRows[3], "scale-mis-area"},
-                                                        {kMisRows[4], "scale-mis-projected"}};
+  const std::pair<IntegratorDesc, const char*> misScales[] = {{kMisRows[0], "scale-mis-solid-angle"},
+                                                              {kMisRows[3], "scale-mis-area"},
+                                                              {kMisRows[4], "scale-mis-projected"}};
   for (const auto& [row, name] : misScales) {
-    const Strategy mis = row;  // a plain copy: clang before 16 cannot capture a structured binding
-    add(name, "scale", "direct image at scales 1e-4 and 1e4 vs 1, " + std::string(strategyRow(mis).label),
+    const IntegratorDesc mis = row;  // a plain copy: clang before 16 cannot capture a structured binding
+    add(name, "scale", "direct image at scales 1e-4 and 1e4 vs 1, " + strategyLabel(mis),
         [mis](const CaseOptions& o) { return scaleCase(o, "direct", mis); });
   }
   add("ao-sphere-near-contact", "contact", "AO on a resting sphere near its contact point",

@@ -14,7 +14,7 @@
 #include "core/math/float_util.h"
 #include "core/render/engine.h"
 #include "core/render/film.h"
-#include "core/render/strategy_table.h"
+#include "core/render/strategy_axes.h"
 #include "core/sampling/sampler.h"
 #include "core/sampling/sampler_table.h"
 #include "core/sampling/warp.h"
@@ -31,10 +31,11 @@ struct Render {
 };
 
 // The scene's own integrator, or `strategy` when given.
-Render render(const LoadedScene& s, uint32_t spp, uint64_t seed, std::optional<Strategy> strategy = {}) {
+Render render(const LoadedScene& s, uint32_t spp, uint64_t seed,
+              std::optional<IntegratorDesc> strategy = {}) {
   RenderSettings settings = s.settings;
   settings.seed = seed;
-  if (strategy) settings.integrator.strategy = *strategy;
+  if (strategy) settings.integrator = withCountsOf(*strategy, settings.integrator);
   RenderLimits limits;
   limits.targetSpp = spp;
   auto job = std::make_shared<const RenderJob>(s.scene, settings, limits);
@@ -58,7 +59,7 @@ void imageMean(const Render& r, double& mean, double& se) {
 
 }  // namespace
 
-CaseResult scaleCase(const CaseOptions& o, const std::string& kind, std::optional<Strategy> strategy) {
+CaseResult scaleCase(const CaseOptions& o, const std::string& kind, std::optional<IntegratorDesc> strategy) {
   const uint32_t spp = o.quick ? 16 : 64;
   Render ref = render(load(o, "scale-" + kind + "-1.xml"), spp, o.seed, strategy);
   double m1, se1;
@@ -102,8 +103,9 @@ CaseResult aoOnSphereNearContact(const CaseOptions& o) {
     Vec3 n(float(std::sin(psi)), 0.f, float(std::cos(psi)));
     Vec3 p = Vec3(0, 0, 1) + n;
     Ray ray = rayOnto(p, n, 1e-3f);
-    CaseResult sub = fromEstimate(estimate(Strategy::AoCosine, *s.scene, ray, count(o, 60000), o.seed),
-                                  aoOnRestingConvexBody(psi));
+    CaseResult sub =
+        fromEstimate(estimate(aoBy(HemisphereWarp::Cosine), *s.scene, ray, count(o, 60000), o.seed),
+                     aoOnRestingConvexBody(psi));
     merge(acc, sub, "psi " + num(psiDeg), first);
   }
   acc.note += " (-> (pi-psi)^2/4)";
@@ -116,8 +118,9 @@ CaseResult aoOnPlaneNearContact(const CaseOptions& o) {
   bool first = true;
   for (float rho : {0.05f, 0.1f}) {
     Ray ray = rayOnto(Vec3(rho, 0, 0), kUp, 5e-4f);
-    CaseResult sub = fromEstimate(estimate(Strategy::AoCosine, *s.scene, ray, count(o, 60000), o.seed),
-                                  aoPlaneNearRestingSphere(rho, 1.0));
+    CaseResult sub =
+        fromEstimate(estimate(aoBy(HemisphereWarp::Cosine), *s.scene, ray, count(o, 60000), o.seed),
+                     aoPlaneNearRestingSphere(rho, 1.0));
     merge(acc, sub, "rho " + num(rho), first);
   }
   acc.note += " (~ 1.5 rho^2/R^2)";
@@ -179,14 +182,16 @@ CaseResult brightOccluded(const CaseOptions& o) {
   CaseResult acc;
   bool first = true;
   int n = count(o, 40000);
-  merge(acc, fromEstimate(estimate(Strategy::DirectSolidAngle, scene, ray, n, o.seed), truth),
-        nameOf(Strategy::DirectSolidAngle), first);
-  merge(acc, fromEstimate(estimate(Strategy::DirectArea, scene, ray, n, o.seed + 1), truth),
-        nameOf(Strategy::DirectArea), first);
+  merge(acc, fromEstimate(estimate(directByLight(LightMeasure::SolidAngle), scene, ray, n, o.seed), truth),
+        nameOf(directByLight(LightMeasure::SolidAngle)), first);
+  merge(acc, fromEstimate(estimate(directByLight(LightMeasure::Area), scene, ray, n, o.seed + 1), truth),
+        nameOf(directByLight(LightMeasure::Area)), first);
   // Hemisphere sampling finds the visible ring with probability ~2e-4: 400k samples (~80 hits) even
   // in --quick, so the standard error is itself estimated well enough for a z-test.
-  merge(acc, fromEstimate(estimate(Strategy::DirectCosineHemisphere, scene, ray, 400000, o.seed + 2), truth),
-        nameOf(Strategy::DirectCosineHemisphere), first);
+  merge(acc,
+        fromEstimate(estimate(directByHemisphere(HemisphereWarp::Cosine), scene, ray, 400000, o.seed + 2),
+                     truth),
+        nameOf(directByHemisphere(HemisphereWarp::Cosine)), first);
   // MIS: the light samples carry the estimate; a cosine direction that finds the visible ring weighs
   // 1e6 by a weight near 0.
   for (unsigned i = 0; i < std::size(kMisRows); ++i)

@@ -13,7 +13,7 @@
 #include "core/math/float_util.h"
 #include "core/render/engine.h"
 #include "core/render/film.h"
-#include "core/render/strategy_table.h"
+#include "core/render/strategy_axes.h"
 #include "core/sampling/sampler.h"
 #include "core/sampling/sampler_table.h"
 #include "core/sampling/warp.h"
@@ -284,12 +284,13 @@ CaseResult inside(const CaseOptions& o) {
   CaseResult acc;
   bool first = true;
   int n = count(o, 4000);
-  merge(acc, fromEstimate(estimate(Strategy::DirectSolidAngle, *s.scene, ray, n, o.seed), 0.0),
-        nameOf(Strategy::DirectSolidAngle), first);
-  merge(acc, fromEstimate(estimate(Strategy::DirectArea, *s.scene, ray, n, o.seed), 0.0),
-        nameOf(Strategy::DirectArea), first);
-  merge(acc, fromEstimate(estimate(Strategy::DirectCosineHemisphere, *s.scene, ray, n, o.seed), 0.0),
-        nameOf(Strategy::DirectCosineHemisphere), first);
+  merge(acc, fromEstimate(estimate(directByLight(LightMeasure::SolidAngle), *s.scene, ray, n, o.seed), 0.0),
+        nameOf(directByLight(LightMeasure::SolidAngle)), first);
+  merge(acc, fromEstimate(estimate(directByLight(LightMeasure::Area), *s.scene, ray, n, o.seed), 0.0),
+        nameOf(directByLight(LightMeasure::Area)), first);
+  merge(acc,
+        fromEstimate(estimate(directByHemisphere(HemisphereWarp::Cosine), *s.scene, ray, n, o.seed), 0.0),
+        nameOf(directByHemisphere(HemisphereWarp::Cosine)), first);
   acc.relSlack = 0;
   double truth = sphereLightIrradianceFactor(glm::dvec3(kReceiver), glm::dvec3(kUp),
                                              glm::dvec3(light.sphere.center), light.sphere.radius);

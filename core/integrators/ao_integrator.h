@@ -10,10 +10,8 @@
 
 namespace penumbra {
 
-// kStrategy: AoUniform or AoCosine.
-template <Strategy kStrategy>
+template <HemisphereWarp kWarp>
 struct AoIntegrator {
-  static_assert(kStrategy == Strategy::AoUniform || kStrategy == Strategy::AoCosine);
   int samples = 1;
 
   Color3 Li(const Scene& scene, const Ray& ray, Sampler& sampler) const {
@@ -23,13 +21,13 @@ struct AoIntegrator {
     float sum = 0.f;
     for (int i = 0; i < samples; ++i) {
       Vec2 u = sampler.next2D(uint32_t(i), uint32_t(samples));  // one request: stratified among themselves
-      Vec3 local = kStrategy == Strategy::AoCosine ? Warp::squareToCosineHemisphere(u)
+      Vec3 local = kWarp == HemisphereWarp::Cosine ? Warp::squareToCosineHemisphere(u)
                                                    : Warp::squareToUniformHemisphere(u);
       Vec3 w = sp.frame.toWorld(local);
       if (glm::dot(w, sp.ng) <= 0.f) continue;  // below the true surface: blocked by it
       if (scene.geometry.occluded(sp.spawnRay(w, scene.rayLengthBound))) continue;
       // V cos / (pi pdf): 1 for cosine sampling, 2 cos for uniform sampling.
-      sum += kStrategy == Strategy::AoCosine ? 1.f : 2.f * local.z;
+      sum += kWarp == HemisphereWarp::Cosine ? 1.f : 2.f * local.z;
     }
     return Color3(sum * (1.f / float(samples)));
   }

@@ -11,11 +11,11 @@ namespace {
 
 using namespace test;  // the hand-built scenes
 
-template <Strategy W>
+template <IntegratorDesc W>
 Color3 sample(const Scene& scene, const Ray& ray, uint32_t index, int samples = 1) {
   Sampler sampler(SamplerKind::Independent, 1, 11);
   sampler.startPixelSample(IVec2(2, 9), index);
-  return AoIntegrator<W>{samples}.Li(scene, ray, sampler);
+  return test::integratorOf<W>(samples).Li(scene, ray, sampler);
 }
 
 TEST(AoIntegrator, AnOpenPlaneIsUnoccludedAndAlbedoIsNotApplied) {
@@ -23,12 +23,12 @@ TEST(AoIntegrator, AnOpenPlaneIsUnoccludedAndAlbedoIsNotApplied) {
   finish(*scene);
   // Cosine sampling: V cos / (π pdf) = 1 for every visible direction, so every sample is exactly 1.
   for (uint32_t i = 0; i < 256; ++i)
-    ASSERT_EQ(sample<Strategy::AoCosine>(*scene, rayDownOnto(0.1f, 0.2f), i), Color3(1.f)) << i;
+    ASSERT_EQ(sample<aoBy(HemisphereWarp::Cosine)>(*scene, rayDownOnto(0.1f, 0.2f), i), Color3(1.f)) << i;
   // Uniform sampling: 2 cos θ per sample, mean 1 and standard deviation 1/√3.
   const int n = 8192;
   double sum = 0;
   for (int i = 0; i < n; ++i) {
-    float v = sample<Strategy::AoUniform>(*scene, rayDownOnto(0.1f, 0.2f), uint32_t(i)).x;
+    float v = sample<aoBy(HemisphereWarp::Uniform)>(*scene, rayDownOnto(0.1f, 0.2f), uint32_t(i)).x;
     ASSERT_TRUE(v >= 0.f && v <= 2.f) << v;
     sum += v;
   }
@@ -40,8 +40,8 @@ TEST(AoIntegrator, InsideAClosedSphereEverythingIsOccluded) {
   auto scene = planeScene(3.f);
   addSphere(*scene, Vec3(0.f), 5.f);
   finish(*scene);
-  EXPECT_EQ(sample<Strategy::AoCosine>(*scene, rayDownOnto(0, 0), 0, 64), Color3(0.f));
-  EXPECT_EQ(sample<Strategy::AoUniform>(*scene, rayDownOnto(0, 0), 0, 64), Color3(0.f));
+  EXPECT_EQ(sample<aoBy(HemisphereWarp::Cosine)>(*scene, rayDownOnto(0, 0), 0, 64), Color3(0.f));
+  EXPECT_EQ(sample<aoBy(HemisphereWarp::Uniform)>(*scene, rayDownOnto(0, 0), 0, 64), Color3(0.f));
 }
 
 TEST(AoIntegrator, ACameraRayThatMissesIsBlack) {
@@ -50,12 +50,12 @@ TEST(AoIntegrator, ACameraRayThatMissesIsBlack) {
   Ray up;
   up.o = Vec3(0, 0, 1);
   up.d = Vec3(0, 0, 1);
-  EXPECT_EQ(sample<Strategy::AoCosine>(*scene, up, 0), Color3(0.f));
+  EXPECT_EQ(sample<aoBy(HemisphereWarp::Cosine)>(*scene, up, 0), Color3(0.f));
 }
 
 // A sphere of radius 1 at height 3 straight above x blocks the cone of half-angle α (sin α = 1/3):
 // AO = 1 − sin²α for both warps.
-template <Strategy W>
+template <IntegratorDesc W>
 void expectCapOccluded() {
   auto scene = planeScene();
   addSphere(*scene, Vec3(0, 0, 3), 1.f);
@@ -73,11 +73,11 @@ void expectCapOccluded() {
 }
 
 TEST(AoIntegrator, CosineSamplingUnderASphereMatchesTheClosedForm) {
-  expectCapOccluded<Strategy::AoCosine>();
+  expectCapOccluded<aoBy(HemisphereWarp::Cosine)>();
 }
 
 TEST(AoIntegrator, UniformSamplingUnderASphereMatchesTheClosedForm) {
-  expectCapOccluded<Strategy::AoUniform>();
+  expectCapOccluded<aoBy(HemisphereWarp::Uniform)>();
 }
 
 }  // namespace

@@ -1,7 +1,8 @@
 // Direct illumination from all emitters onto diffuse surfaces:
 //   Lr(x) = albedo/pi * [ sum over delta lights of E_i  +  integral of Le(x, w) cos(theta) dw ].
 // Point and directional lights are evaluated deterministically. The area-light integral uses the
-// strategy chosen at compile time (one instantiation per measure, so no per-sample branching):
+// strategy chosen at compile time (one instantiation per combination of the axes, so no per-sample
+// branching):
 //   hemisphere (uniform or cosine warp): trace the sampled direction, add Le of an emitter it hits;
 //   area: a uniform point on each light sphere, pdf converted to solid angle (far side adds 0);
 //   solid angle: a uniform direction in the cone each light sphere subtends;
@@ -9,7 +10,7 @@
 //   estimate Le Ω⊥ has no variance where the light is unoccluded.
 // The three light measures sample every light per shading sample (light selection `all`), or one
 // light chosen per shading sample (uniform, by power, by the light BVH), its probability divided out.
-// `simple` is the same integrator with delta lights only.
+// `simple` renders the delta lights alone.
 #pragma once
 
 #include <cmath>
@@ -24,44 +25,47 @@
 
 namespace penumbra {
 
-// kStrategy: Simple (delta lights only) or one of the Direct* strategies.
-template <Strategy kStrategy>
-struct DirectIntegrator {
-  static_assert(kStrategy == Strategy::Simple || kStrategy == Strategy::DirectUniformHemisphere ||
-                kStrategy == Strategy::DirectCosineHemisphere || samplesLightArea(kStrategy) ||
-                samplesLightSolidAngle(kStrategy) || samplesLightProjectedSolidAngle(kStrategy));
-  static constexpr LightSelection kSelection = lightSelectionOf(kStrategy);
+// Delta lights only (`simple`).
+struct SimpleIntegrator {
+  Color3 Li(const Scene& scene, const Ray& ray, Sampler&) const {
+    return directRadiance<false>(scene, ray, [](const ShadingPoint&) { return Color3(0.f); });
+  }
+};
+
+// The area-light integral by hemisphere directions of warp kWarp, traced to the lights they hit.
+template <HemisphereWarp kWarp>
+struct HemisphereDirectIntegrator {
   int samples = 1;
 
   Color3 Li(const Scene& scene, const Ray& ray, Sampler& sampler) const {
-    constexpr bool kSamplesHemisphere =
-        kStrategy == Strategy::DirectUniformHemisphere || kStrategy == Strategy::DirectCosineHemisphere;
-    return directRadiance<kSamplesHemisphere>(scene, ray, [&](const ShadingPoint& sp) {
-      if constexpr (kSamplesHemisphere) {
-        constexpr HemisphereWarp kWarp =
-            kStrategy == Strategy::DirectCosineHemisphere ? HemisphereWarp::Cosine : HemisphereWarp::Uniform;
-        if (!scene.hasAreaLights()) return Color3(0.f);
-        return hemisphereIrradiance<kWarp>(scene, sp, sampler, samples, UnitWeight{});
-      } else if constexpr (kSelection == LightSelection::Uniform) {
+    return directRadiance<true>(scene, ray, [&](const ShadingPoint& sp) {
+      if (!scene.hasAreaLights()) return Color3(0.f);
+      return hemisphereIrradiance<kWarp>(scene, sp, sampler, samples, UnitWeight{});
+    });
+  }
+};
+
+// The area-light integral by light sampling of measure kMeasure: every light per shading sample
+// (kSelection All) or one light chosen per shading sample.
+template <LightMeasure kLightMeasure, LightSelection kSelection>
+struct LightDirectIntegrator {
+  int samples = 1;
+
+  Color3 Li(const Scene& scene, const Ray& ray, Sampler& sampler) const {
+    return directRadiance<false>(scene, ray, [&](const ShadingPoint& sp) {
+      if constexpr (kSelection == LightSelection::Uniform) {
         return selectedLightIrradiance(scene, scene.uniformSelection, sp, sampler);
       } else if constexpr (kSelection == LightSelection::Power) {
         return selectedLightIrradiance(scene, scene.powerSelection, sp, sampler);
       } else if constexpr (kSelection == LightSelection::Bvh) {
         return selectedLightIrradiance(scene, scene.lightBvh, sp, sampler);
-      } else if constexpr (kStrategy != Strategy::Simple) {
-        return everyLightIrradiance<kLightMeasure>(scene, sp, sampler, samples, UnitWeight{});
       } else {
-        return Color3(0.f);  // delta lights only
+        return everyLightIrradiance<kLightMeasure>(scene, sp, sampler, samples, UnitWeight{});
       }
     });
   }
 
  private:
-  static constexpr LightMeasure kLightMeasure = samplesLightArea(kStrategy) ? LightMeasure::Area
-                                                : samplesLightSolidAngle(kStrategy)
-                                                    ? LightMeasure::SolidAngle
-                                                    : LightMeasure::ProjectedSolidAngle;
-
   // One light per shading sample, chosen by `selection` with probability pick.pmf, then sampled by
   // this strategy's measure: Le cos / (pdf · pmf) is unbiased for the sum over all lights.
   template <class Selection>

@@ -13,21 +13,21 @@ namespace {
 
 using namespace test;  // the hand-built scenes
 
-template <Strategy S>
+template <IntegratorDesc S>
 Color3 once(const Scene& scene, const Ray& ray, uint64_t seed = 1) {
   Sampler sampler(SamplerKind::Independent, 1, seed);
   sampler.startPixelSample(IVec2(0), 0);
-  return DirectIntegrator<S>{1}.Li(scene, ray, sampler);
+  return test::integratorOf<S>(1).Li(scene, ray, sampler);
 }
 
 // Mean and standard error of the red channel over n independent samples.
-template <Strategy S>
+template <IntegratorDesc S>
 std::pair<double, double> estimate(const Scene& scene, const Ray& ray, int n) {
   Sampler sampler(SamplerKind::Independent, 1, 7);
   double sum = 0, sumSq = 0;
   for (int i = 0; i < n; ++i) {
     sampler.startPixelSample(IVec2(3, 5), uint32_t(i));
-    double v = DirectIntegrator<S>{1}.Li(scene, ray, sampler).x;
+    double v = test::integratorOf<S>(1).Li(scene, ray, sampler).x;
     sum += v;
     sumSq += v * v;
   }
@@ -41,10 +41,13 @@ TEST(DirectIntegrator, PointLightGivesAlbedoOverPiTimesIntensityCosOverDistanceS
   finish(*scene);
   // d² = 5, cos θ = 2/√5.
   const double truth = 0.5 / kPiD * 8.0 / 5.0 * 2.0 / std::sqrt(5.0);
-  EXPECT_NEAR(once<Strategy::Simple>(*scene, rayDownOnto(0, 0)).x, truth, 1e-6 * truth);
+  EXPECT_NEAR(once<integratorOfType(IntegratorType::Simple)>(*scene, rayDownOnto(0, 0)).x, truth,
+              1e-6 * truth);
   // Without area lights every strategy is the delta-light sum.
-  EXPECT_NEAR(once<Strategy::DirectSolidAngle>(*scene, rayDownOnto(0, 0)).x, truth, 1e-6 * truth);
-  EXPECT_NEAR(once<Strategy::DirectCosineHemisphere>(*scene, rayDownOnto(0, 0)).x, truth, 1e-6 * truth);
+  EXPECT_NEAR(once<directByLight(LightMeasure::SolidAngle)>(*scene, rayDownOnto(0, 0)).x, truth,
+              1e-6 * truth);
+  EXPECT_NEAR(once<directByHemisphere(HemisphereWarp::Cosine)>(*scene, rayDownOnto(0, 0)).x, truth,
+              1e-6 * truth);
 }
 
 TEST(DirectIntegrator, DirectionalLightGivesAlbedoOverPiTimesIrradianceCos) {
@@ -52,7 +55,8 @@ TEST(DirectIntegrator, DirectionalLightGivesAlbedoOverPiTimesIrradianceCos) {
   scene->directionalLights.push_back(DirectionalLight::make(Vec3(0, 1, 1), Color3(2)));
   finish(*scene);
   const double truth = 2.0 * std::sqrt(0.5) / kPiD;
-  EXPECT_NEAR(once<Strategy::Simple>(*scene, rayDownOnto(0.3f, -0.2f)).x, truth, 1e-6 * truth);
+  EXPECT_NEAR(once<integratorOfType(IntegratorType::Simple)>(*scene, rayDownOnto(0.3f, -0.2f)).x, truth,
+              1e-6 * truth);
 }
 
 TEST(DirectIntegrator, OccludedOrBelowTheHorizonDeltaLightsGiveExactlyZero) {
@@ -60,13 +64,13 @@ TEST(DirectIntegrator, OccludedOrBelowTheHorizonDeltaLightsGiveExactlyZero) {
   blocked->pointLights.push_back(PointLight{Vec3(1, 0, 2), Color3(8)});
   addSphere(*blocked, Vec3(0.5f, 0, 1), 0.2f);  // on the segment from the origin to the light
   finish(*blocked);
-  EXPECT_EQ(once<Strategy::Simple>(*blocked, rayDownOnto(0, 0)), Color3(0.f));
+  EXPECT_EQ(once<integratorOfType(IntegratorType::Simple)>(*blocked, rayDownOnto(0, 0)), Color3(0.f));
 
   auto below = planeScene();
   below->pointLights.push_back(PointLight{Vec3(0, 0, -2), Color3(8)});
   below->directionalLights.push_back(DirectionalLight::make(Vec3(0, 1, -1), Color3(2)));
   finish(*below);
-  EXPECT_EQ(once<Strategy::Simple>(*below, rayDownOnto(0, 0)), Color3(0.f));
+  EXPECT_EQ(once<integratorOfType(IntegratorType::Simple)>(*below, rayDownOnto(0, 0)), Color3(0.f));
 }
 
 TEST(DirectIntegrator, ACameraRayOnTheLightSeesItsRadiance) {
@@ -76,8 +80,8 @@ TEST(DirectIntegrator, ACameraRayOnTheLightSeesItsRadiance) {
   Ray ray;
   ray.o = Vec3(0, 0, 6);
   ray.d = Vec3(0, 0, -1);
-  EXPECT_EQ(once<Strategy::DirectSolidAngle>(*scene, ray), Color3(5));
-  EXPECT_EQ(once<Strategy::DirectArea>(*scene, ray), Color3(5));
+  EXPECT_EQ(once<directByLight(LightMeasure::SolidAngle)>(*scene, ray), Color3(5));
+  EXPECT_EQ(once<directByLight(LightMeasure::Area)>(*scene, ray), Color3(5));
 }
 
 // A sphere light of radius 1 at height 3 straight above, fully visible: E = π Le sin²α cos θ with
@@ -91,19 +95,19 @@ TEST(DirectIntegrator, EveryStrategyAgreesOnAFullyVisibleSphereLight) {
   const Ray ray = rayDownOnto(0, 0);
   constexpr int kN = 200000;
   for (auto [name, e] :
-       {std::pair{"solid-angle", estimate<Strategy::DirectSolidAngle>(*scene, ray, kN)},
-        std::pair{"area", estimate<Strategy::DirectArea>(*scene, ray, kN)},
-        std::pair{"cosine", estimate<Strategy::DirectCosineHemisphere>(*scene, ray, kN)},
-        std::pair{"uniform", estimate<Strategy::DirectUniformHemisphere>(*scene, ray, kN)}}) {
+       {std::pair{"solid-angle", estimate<directByLight(LightMeasure::SolidAngle)>(*scene, ray, kN)},
+        std::pair{"area", estimate<directByLight(LightMeasure::Area)>(*scene, ray, kN)},
+        std::pair{"cosine", estimate<directByHemisphere(HemisphereWarp::Cosine)>(*scene, ray, kN)},
+        std::pair{"uniform", estimate<directByHemisphere(HemisphereWarp::Uniform)>(*scene, ray, kN)}}) {
     auto [mean, se] = e;
     EXPECT_GT(se, 0.0) << name;
     EXPECT_NEAR(mean, truth, 4 * se) << name;
     EXPECT_GT(std::fabs(mean - 1.1 * truth), 4 * se) << name << ": the bound would not catch a 10 % bias";
   }
   // Projected solid angle has no variance here: one sample is the closed form up to float rounding.
-  EXPECT_NEAR(once<Strategy::DirectProjectedSolidAngle>(*scene, ray).x, truth, 1e-6 * truth);
+  EXPECT_NEAR(once<directByLight(LightMeasure::ProjectedSolidAngle)>(*scene, ray).x, truth, 1e-6 * truth);
   // Delta-only ignores area lights.
-  EXPECT_EQ(once<Strategy::Simple>(*scene, ray), Color3(0.f));
+  EXPECT_EQ(once<integratorOfType(IntegratorType::Simple)>(*scene, ray), Color3(0.f));
 }
 
 // A light relative to the shading point x on the plane z = 0 (coordinates in units of `scale`).
@@ -143,7 +147,7 @@ TEST(DirectIntegrator, ProjectedSolidAngleHasZeroVarianceWhereUnoccluded) {
         ASSERT_TRUE(scene->geometry.intersect(ray, hit));
         const double truth = test::closedFormRadiance(hit.p, c, r, lc.Le);
         ASSERT_GT(truth, 0.0) << lc.name;
-        DirectIntegrator<Strategy::DirectProjectedSolidAngle> psa{1};
+        const auto psa = test::integratorOf<directByLight(LightMeasure::ProjectedSolidAngle)>(1);
         const Estimate e = estimateAlong(*scene, psa, ray, 4000, 3, kind);
         if (std::getenv("PENUMBRA_VERBOSE"))
           std::printf("%-20s scale %g %-11s truth %.9g  samples in [%.9g, %.9g]  SE %.3g\n", lc.name, scale,
@@ -162,8 +166,8 @@ TEST(DirectIntegrator, ProjectedSolidAngleIsUnbiasedInAPenumbra) {
   auto scene =
       test::planeScene({{x + Vec3(0.4f, 0.f, 2.f), 0.5f, 10.f}, {x + Vec3(0.12f, 0.f, 0.6f), 0.1f, 0.f}});
   const Ray ray = test::shallowRayOnto(x);
-  DirectIntegrator<Strategy::DirectProjectedSolidAngle> psa{1};
-  DirectIntegrator<Strategy::DirectSolidAngle> solid{1};
+  const auto psa = test::integratorOf<directByLight(LightMeasure::ProjectedSolidAngle)>(1);
+  const auto solid = test::integratorOf<directByLight(LightMeasure::SolidAngle)>(1);
   const Estimate a = estimateAlong(*scene, psa, ray, 200000, 5);
   const Estimate b = estimateAlong(*scene, solid, ray, 200000, 6);
   const double unoccluded = test::closedFormRadiance(x, x + Vec3(0.4f, 0.f, 2.f), 0.5f, 10.f);

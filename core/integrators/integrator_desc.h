@@ -1,90 +1,119 @@
-// Which estimator renders the image, with its settings. Plain data: the viewer edits it live and the
-// row renderer resolves it to one concrete integrator type per render (no per-sample dispatch).
+// Which estimator renders the image: an integrator type and one value per sampling axis. Plain
+// data: the viewer edits each axis live and the row renderer resolves the description to one
+// concrete integrator type per render (no per-sample dispatch). Each axis's spellings, labels and
+// help live in its own table (core/render/strategy_axes.h).
 #pragma once
 
 #include <cstdint>
 
 namespace penumbra {
 
-// Every way of rendering an image: an integrator with its sampling strategy. Names, XML spellings,
-// when each applies and how it is instantiated: one row each in core/render/strategy_table.h.
-enum class Strategy : uint8_t {
-  DirectUniformHemisphere,    // direct light by uniform hemisphere directions
-  DirectCosineHemisphere,     // direct light by cosine-weighted hemisphere directions
-  DirectArea,                 // direct light by uniform points on each light sphere
-  DirectAreaUniform,          // ... on one light per sample, chosen uniformly
-  DirectAreaPower,            // ... on one light per sample, chosen by emitted power
-  DirectAreaBvh,              // ... on one light per sample, chosen by the light BVH
-  DirectSolidAngle,           // direct light by uniform directions in each light's cone
-  DirectSolidAngleUniform,    // ... of one light per sample, chosen uniformly
-  DirectSolidAnglePower,      // ... of one light per sample, chosen by emitted power
-  DirectSolidAngleBvh,        // ... of one light per sample, chosen by the light BVH
-  DirectProjectedSolidAngle,  // direct light by directions in each light's cone with density ∝ cos θ
-  DirectProjectedSolidAngleUniform,  // ... of one light per sample, chosen uniformly
-  DirectProjectedSolidAnglePower,    // ... of one light per sample, chosen by emitted power
-  DirectProjectedSolidAngleBvh,      // ... of one light per sample, chosen by the light BVH
-  DirectMisSolidAnglePower,  // MIS of solid-angle light sampling and cosine directions, power heuristic
-  DirectMisSolidAngleBalance,
-  DirectMisAreaPower,  // MIS of area light sampling and cosine directions
-  DirectMisAreaBalance,
-  DirectMisProjectedPower,  // MIS of projected-solid-angle light sampling and cosine directions
-  DirectMisProjectedBalance,
-  AoUniform,  // ambient occlusion by uniform hemisphere directions
-  AoCosine,   // ambient occlusion by cosine-weighted directions
-  Simple,     // point and directional lights only
-  Normals,    // the shading normal as a colour
+enum class IntegratorType : uint8_t {
+  Direct,   // direct illumination from every emitter
+  Ao,       // ambient occlusion
+  Simple,   // point and directional lights only
+  Normals,  // the shading normal as a colour
 };
-inline constexpr int kStrategyCount = 24;
 
-// How a light-sampling strategy of `direct` chooses the sphere lights it samples: every light for
-// every shading sample (All), or one per shading sample (core/lights/light_selection.h). The mis rows
-// always sample every light (core/integrators/mis_integrator.h says why).
+// How `direct` estimates the area-light integral ∫ Le cos θ dω.
+enum class Estimator : uint8_t {
+  Hemisphere,  // hemisphere directions (by `warp`), traced to the lights they hit
+  Light,       // directions towards the lights, by `lightMeasure`, one or all lights per sample
+  Mis,         // multiple importance sampling of `lightMeasure` and cosine-hemisphere directions
+};
+
+// The distribution of hemisphere directions (`ao`, and `direct` by Hemisphere).
+enum class HemisphereWarp : uint8_t { Uniform, Cosine };
+
+// How light sampling measures its directions: uniform on the light's area, uniform in the solid
+// angle it subtends, or in proportion to cos θ over that solid angle (projected solid angle).
+enum class LightMeasure : uint8_t { Area, SolidAngle, ProjectedSolidAngle };
+
+// Which lights one light-sampling draw samples: every light (All), or one light chosen per shading
+// sample (core/lights/light_selection.h). MIS always samples every light
+// (core/integrators/mis_integrator.h says why).
 enum class LightSelection : uint8_t { All, Uniform, Power, Bvh };
 
-constexpr LightSelection lightSelectionOf(Strategy s) {
-  switch (s) {
-    case Strategy::DirectAreaUniform:
-    case Strategy::DirectSolidAngleUniform:
-    case Strategy::DirectProjectedSolidAngleUniform:
-      return LightSelection::Uniform;
-    case Strategy::DirectAreaPower:
-    case Strategy::DirectSolidAnglePower:
-    case Strategy::DirectProjectedSolidAnglePower:
-      return LightSelection::Power;
-    case Strategy::DirectAreaBvh:
-    case Strategy::DirectSolidAngleBvh:
-    case Strategy::DirectProjectedSolidAngleBvh:
-      return LightSelection::Bvh;
-    default:
-      return LightSelection::All;
-  }
-}
-// Whether s samples points uniformly on the light spheres (any light selection; not the mis rows).
-constexpr bool samplesLightArea(Strategy s) {
-  return s == Strategy::DirectArea || s == Strategy::DirectAreaUniform || s == Strategy::DirectAreaPower ||
-         s == Strategy::DirectAreaBvh;
-}
-// Whether s samples directions uniformly in the lights' cones (any light selection; not the mis rows).
-constexpr bool samplesLightSolidAngle(Strategy s) {
-  return s == Strategy::DirectSolidAngle || s == Strategy::DirectSolidAngleUniform ||
-         s == Strategy::DirectSolidAnglePower || s == Strategy::DirectSolidAngleBvh;
-}
-// Whether s samples directions in the lights' cones in proportion to cos θ (any light selection; not
-// the mis rows).
-constexpr bool samplesLightProjectedSolidAngle(Strategy s) {
-  return s == Strategy::DirectProjectedSolidAngle || s == Strategy::DirectProjectedSolidAngleUniform ||
-         s == Strategy::DirectProjectedSolidAnglePower || s == Strategy::DirectProjectedSolidAngleBvh;
-}
+// The MIS weight of the two techniques (core/integrators/mis_weight.h).
+enum class MisHeuristic : uint8_t { Balance, Power };
 
 struct IntegratorDesc {
-  Strategy strategy = Strategy::DirectSolidAngle;
+  IntegratorType type = IntegratorType::Direct;
+  Estimator estimator = Estimator::Light;                // direct
+  HemisphereWarp warp = HemisphereWarp::Cosine;          // ao; direct by Hemisphere
+  LightMeasure lightMeasure = LightMeasure::SolidAngle;  // direct by Light or Mis
+  LightSelection lightSelection = LightSelection::All;   // direct by Light
+  MisHeuristic heuristic = MisHeuristic::Power;          // direct by Mis
   int samples = 1;  // shading samples per camera sample (ao: shadingSamples, direct: nSamples)
-  // The MIS strategies' counts per camera sample: light-sampling directions per sphere light, and
-  // cosine-hemisphere directions shared by all lights (0 turns MIS into the other technique alone).
+  // MIS counts per camera sample: light-sampling directions per sphere light, and cosine-hemisphere
+  // directions shared by all lights (0 turns MIS into the other technique alone).
   int lightSamples = 1;
   int bsdfSamples = 1;
 
-  bool operator==(const IntegratorDesc&) const = default;
+  // Which axes this description reads: an axis that does not apply keeps its value (the viewer
+  // returns to it) but neither renders nor compares.
+  constexpr bool usesEstimator() const { return type == IntegratorType::Direct; }
+  constexpr bool usesWarp() const {
+    return type == IntegratorType::Ao || (usesEstimator() && estimator == Estimator::Hemisphere);
+  }
+  constexpr bool usesLightMeasure() const { return usesEstimator() && estimator != Estimator::Hemisphere; }
+  constexpr bool usesLightSelection() const { return usesEstimator() && estimator == Estimator::Light; }
+  constexpr bool usesMisAxes() const { return usesEstimator() && estimator == Estimator::Mis; }
+  constexpr bool usesSamples() const { return type == IntegratorType::Direct || type == IntegratorType::Ao; }
+
+  // Equal when they render the same estimator: the axes that apply, and the counts.
+  constexpr bool operator==(const IntegratorDesc& o) const {
+    return type == o.type && (!usesEstimator() || estimator == o.estimator) &&
+           (!usesWarp() || warp == o.warp) && (!usesLightMeasure() || lightMeasure == o.lightMeasure) &&
+           (!usesLightSelection() || lightSelection == o.lightSelection) &&
+           (!usesMisAxes() ||
+            (heuristic == o.heuristic && lightSamples == o.lightSamples && bsdfSamples == o.bsdfSamples)) &&
+           (!usesSamples() || samples == o.samples);
+  }
 };
+
+// Descriptions by their axes, with counts 1 (tests, the stiff-case catalogue, bench).
+constexpr IntegratorDesc directByHemisphere(HemisphereWarp warp) {
+  IntegratorDesc d;
+  d.estimator = Estimator::Hemisphere;
+  d.warp = warp;
+  return d;
+}
+constexpr IntegratorDesc directByLight(LightMeasure measure, LightSelection selection = LightSelection::All) {
+  IntegratorDesc d;
+  d.lightMeasure = measure;
+  d.lightSelection = selection;
+  return d;
+}
+constexpr IntegratorDesc directByMis(LightMeasure measure, MisHeuristic heuristic) {
+  IntegratorDesc d;
+  d.estimator = Estimator::Mis;
+  d.lightMeasure = measure;
+  d.heuristic = heuristic;
+  return d;
+}
+constexpr IntegratorDesc aoBy(HemisphereWarp warp) {
+  IntegratorDesc d;
+  d.type = IntegratorType::Ao;
+  d.warp = warp;
+  return d;
+}
+constexpr IntegratorDesc integratorOfType(IntegratorType type) {
+  IntegratorDesc d;
+  d.type = type;
+  return d;
+}
+// `axes` with `samples` shading samples per camera sample.
+constexpr IntegratorDesc withSamples(IntegratorDesc axes, int samples) {
+  axes.samples = samples;
+  return axes;
+}
+// The type and axes of `axes` with the counts of `counts`.
+constexpr IntegratorDesc withCountsOf(IntegratorDesc axes, const IntegratorDesc& counts) {
+  axes.samples = counts.samples;
+  axes.lightSamples = counts.lightSamples;
+  axes.bsdfSamples = counts.bsdfSamples;
+  return axes;
+}
 
 }  // namespace penumbra

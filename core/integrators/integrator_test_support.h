@@ -10,6 +10,11 @@
 
 #include "core/geometry/procedural_mesh.h"
 #include "core/geometry/ray.h"
+#include "core/integrators/ao_integrator.h"
+#include "core/integrators/direct_integrator.h"
+#include "core/integrators/integrator_desc.h"
+#include "core/integrators/mis_integrator.h"
+#include "core/integrators/normals_integrator.h"
 #include "core/lights/sphere_cap.h"
 #include "core/math/vec.h"
 #include "core/sampling/sampler.h"
@@ -17,6 +22,24 @@
 #include "core/world/scene.h"
 
 namespace penumbra::test {
+
+// The concrete integrator of a strategy known at compile time, with `samples` shading samples (MIS:
+// as both counts), for tests that call Li directly.
+template <IntegratorDesc D>
+auto integratorOf(int samples) {
+  if constexpr (D.type == IntegratorType::Ao)
+    return AoIntegrator<D.warp>{samples};
+  else if constexpr (D.type == IntegratorType::Simple)
+    return SimpleIntegrator{};
+  else if constexpr (D.type == IntegratorType::Normals)
+    return NormalsIntegrator{};
+  else if constexpr (D.estimator == Estimator::Hemisphere)
+    return HemisphereDirectIntegrator<D.warp>{samples};
+  else if constexpr (D.estimator == Estimator::Light)
+    return LightDirectIntegrator<D.lightMeasure, D.lightSelection>{samples};
+  else
+    return MisIntegrator<D.lightMeasure, D.heuristic>{samples, samples};
+}
 
 // Every sampler of the sampler table, in table order: the integrators' tests run with each.
 inline std::vector<SamplerKind> everySampler() {

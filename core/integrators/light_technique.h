@@ -6,15 +6,12 @@
 
 #include <cstdint>
 
+#include "core/integrators/integrator_desc.h"
 #include "core/integrators/shading_point.h"
 #include "core/lights/projected_cap.h"
 #include "core/lights/sphere_light.h"
 
 namespace penumbra {
-
-// How light sampling measures its directions: uniform on the light's area, uniform in the solid
-// angle it subtends, or in proportion to cos θ over that solid angle (projected solid angle).
-enum class LightMeasure : uint8_t { Area, SolidAngle, ProjectedSolidAngle };
 
 template <LightMeasure kMeasure>
 class LightTechnique;

@@ -50,14 +50,14 @@ void expectSameSamples(const Scene& scene, const A& a, const B& b, const char* w
   EXPECT_GT(nonZero, 40) << what;  // cosine sampling reaches these lights in 3-5 % of its samples
 }
 
-template <LightMeasure kMeasure, Strategy kPlain, MisHeuristic kHeuristic>
+template <LightMeasure kMeasure, IntegratorDesc kPlain, MisHeuristic kHeuristic>
 void expectReductions(const Scene& scene, SamplerKind kind) {
   for (int count : {1, 3}) {
-    expectSameSamples(scene, MisIntegrator<kMeasure, kHeuristic>{count, 0}, DirectIntegrator<kPlain>{count},
+    expectSameSamples(scene, MisIntegrator<kMeasure, kHeuristic>{count, 0}, test::integratorOf<kPlain>(count),
                       "no hemisphere samples: light sampling", kind);
     expectSameSamples(scene, MisIntegrator<kMeasure, kHeuristic>{0, count},
-                      DirectIntegrator<Strategy::DirectCosineHemisphere>{count}, "no light samples: cosine",
-                      kind);
+                      test::integratorOf<directByHemisphere(HemisphereWarp::Cosine)>(count),
+                      "no light samples: cosine", kind);
   }
 }
 
@@ -65,12 +65,13 @@ TEST(MisIntegrator, AZeroCountReducesExactlyToTheOtherTechnique) {
   for (int i = 0; i < kSceneCount; ++i) {
     auto scene = sceneNamed(i);
     for (SamplerKind kind : test::everySampler()) {
-      expectReductions<LightMeasure::Area, Strategy::DirectArea, MisHeuristic::Balance>(*scene, kind);
-      expectReductions<LightMeasure::SolidAngle, Strategy::DirectSolidAngle, MisHeuristic::Power>(*scene,
-                                                                                                  kind);
-      expectReductions<LightMeasure::ProjectedSolidAngle, Strategy::DirectProjectedSolidAngle,
+      expectReductions<LightMeasure::Area, directByLight(LightMeasure::Area), MisHeuristic::Balance>(*scene,
+                                                                                                     kind);
+      expectReductions<LightMeasure::SolidAngle, directByLight(LightMeasure::SolidAngle),
+                       MisHeuristic::Power>(*scene, kind);
+      expectReductions<LightMeasure::ProjectedSolidAngle, directByLight(LightMeasure::ProjectedSolidAngle),
                        MisHeuristic::Balance>(*scene, kind);
-      expectReductions<LightMeasure::ProjectedSolidAngle, Strategy::DirectProjectedSolidAngle,
+      expectReductions<LightMeasure::ProjectedSolidAngle, directByLight(LightMeasure::ProjectedSolidAngle),
                        MisHeuristic::Power>(*scene, kind);
     }
   }

@@ -1,11 +1,9 @@
 // Multiple-importance-sampling weights (Veach's thesis, ch. 9, the multi-sample model).
 #pragma once
 
-#include <cstdint>
+#include "core/integrators/integrator_desc.h"
 
 namespace penumbra {
-
-enum class MisHeuristic : uint8_t { Balance, Power };
 
 // Weight of technique A for a sample that A (nA samples of density pA) and B (nB samples of density
 // pB) could both have produced, from a = nA·pA and b = nB·pB: balance a / (a + b), power (β = 2)

@@ -67,8 +67,6 @@ Color3 everyLightIrradiance(const Scene& scene, const ShadingPoint& sp, Sampler&
   return E * (1.f / float(samples));  // the reciprocal is off the critical path
 }
 
-enum class HemisphereWarp : uint8_t { Uniform, Cosine };
-
 // The sphere light that the ray from sp along w meets first, with the point met; null when the ray
 // meets nothing or a surface that is not a light.
 inline const SphereLight* lightAlong(const Scene& scene, const ShadingPoint& sp, const Vec3& w,

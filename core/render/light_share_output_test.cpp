@@ -40,7 +40,7 @@ std::shared_ptr<const Scene> twoLightScene() {
   return scene;
 }
 
-std::shared_ptr<RenderJob> job(Strategy strategy, RenderOutput output) {
+std::shared_ptr<RenderJob> job(const IntegratorDesc& strategy, RenderOutput output) {
   RenderSettings s;
   CameraDesc& cam = s.camera;
   const Vec3 origin(4, 4, 1.5f), dir = glm::normalize(Vec3(0.f, 0.f, -0.5f) - origin);
@@ -50,7 +50,8 @@ std::shared_ptr<RenderJob> job(Strategy strategy, RenderOutput output) {
   cam.width = 40;
   cam.height = 30;
   s.seed = 7;
-  s.integrator = IntegratorDesc{strategy, 1, 2, 1};
+  s.integrator = strategy;
+  s.integrator.lightSamples = 2;
   return std::make_shared<RenderJob>(twoLightScene(), s, RenderLimits{}, output);
 }
 
@@ -64,12 +65,12 @@ Image render(const std::shared_ptr<RenderJob>& j, uint32_t spp, uint64_t& bad) {
   return engine.film().mean(spp);
 }
 
-TEST(LightShareOutput, OfferedByTheMisRowsOnly) {
+TEST(LightShareOutput, OfferedByMisOnly) {
   int offered = 0;
-  for (const StrategyRow& row : strategyTable()) {
-    const bool mis = row.select[0].value.canonical() == "mis";
-    EXPECT_EQ(offersLightShare(row.strategy), mis) << row.label;
-    offered += offersLightShare(row.strategy);
+  for (const IntegratorDesc& d : everyStrategy()) {
+    EXPECT_EQ(offersLightShare(d), d.type == IntegratorType::Direct && d.estimator == Estimator::Mis)
+        << strategyLabel(d);
+    offered += offersLightShare(d);
   }
   EXPECT_EQ(offered, 6);
 }
@@ -79,9 +80,11 @@ TEST(LightShareOutput, OfferedByTheMisRowsOnly) {
 // (light sampling gives > 90 % of some pixels; with the balance heuristic, cosine directions > 20 % of
 // others: the power heuristic leaves them that much only right under the large light).
 TEST(LightShareOutput, ChannelsAddUpToTheLuminanceOfTheImage) {
-  for (Strategy s : {Strategy::DirectMisSolidAngleBalance, Strategy::DirectMisAreaPower,
-                     Strategy::DirectMisProjectedBalance, Strategy::DirectMisProjectedPower}) {
-    SCOPED_TRACE(strategyRow(s).label);
+  for (const IntegratorDesc& s : {directByMis(LightMeasure::SolidAngle, MisHeuristic::Balance),
+                                  directByMis(LightMeasure::Area, MisHeuristic::Power),
+                                  directByMis(LightMeasure::ProjectedSolidAngle, MisHeuristic::Balance),
+                                  directByMis(LightMeasure::ProjectedSolidAngle, MisHeuristic::Power)}) {
+    SCOPED_TRACE(strategyLabel(s));
     uint64_t badA = 0, badB = 0;
     const Image image = render(job(s, RenderOutput::Radiance), 6, badA);
     const Image split = render(job(s, RenderOutput::MisLightShare), 6, badB);
@@ -104,18 +107,18 @@ TEST(LightShareOutput, ChannelsAddUpToTheLuminanceOfTheImage) {
       }
     EXPECT_EQ(differing, 0u);
     EXPECT_GT(mostlyLight, 50u);
-    if (strategyRow(s).select[2].value.canonical() == "balance") {
+    if (s.heuristic == MisHeuristic::Balance) {
       EXPECT_GT(cosineMatters, 10u);
     }
     EXPECT_GT(noShare, 0u);  // the sky
   }
 }
 
-// A light-share job of a row without that output renders its ordinary image.
-TEST(LightShareOutput, OtherRowsRenderRadiance) {
+// A light-share job of a strategy without that output renders its ordinary image.
+TEST(LightShareOutput, OtherStrategiesRenderRadiance) {
   uint64_t bad = 0;
-  const Image a = render(job(Strategy::DirectSolidAngle, RenderOutput::Radiance), 2, bad);
-  const Image b = render(job(Strategy::DirectSolidAngle, RenderOutput::MisLightShare), 2, bad);
+  const Image a = render(job(directByLight(LightMeasure::SolidAngle), RenderOutput::Radiance), 2, bad);
+  const Image b = render(job(directByLight(LightMeasure::SolidAngle), RenderOutput::MisLightShare), 2, bad);
   EXPECT_EQ(a.rgb, b.rgb);
 }
 

@@ -1,6 +1,6 @@
 // An integrator's estimate along one ray: n camera samples of one sampler, their mean and standard
-// error. The strategy table instantiates it per strategy (StrategyRow::estimateRay)
-// for the closed-form tests and the stiff-case catalogue.
+// error. estimateRayOf (core/render/strategy_dispatch.h) instantiates it per strategy for the
+// closed-form tests and the stiff-case catalogue.
 #pragma once
 
 #include <algorithm>
@@ -9,7 +9,7 @@
 
 #include "core/geometry/ray.h"
 #include "core/math/float_util.h"
-#include "core/render/strategy_table.h"
+#include "core/render/strategy_dispatch.h"
 #include "core/sampling/sampler.h"
 #include "core/world/scene.h"
 

@@ -56,7 +56,7 @@ TEST(RenderJob, KeepsTheRestOfTheSettingsAndTheOutput) {
   RenderSettings s = withSampler(SamplerKind::Stratified, 4);
   s.seed = 99;
   s.camera.width = 17;
-  s.integrator.strategy = Strategy::DirectArea;
+  s.integrator = withCountsOf(directByLight(LightMeasure::Area), s.integrator);
   RenderJob job(nullptr, s, RenderLimits{9, 0.0}, RenderOutput::MisLightShare);
   s.sampleCount = 9;
   EXPECT_EQ(job.settings.seed, s.seed);

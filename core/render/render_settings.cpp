@@ -4,7 +4,7 @@ namespace penumbra {
 
 std::vector<std::pair<std::string, std::string>> describeSettings(const RenderSettings& s) {
   std::vector<std::pair<std::string, std::string>> d;
-  d.emplace_back("integrator", strategyRow(s.integrator.strategy).xmlType);
+  d.emplace_back("integrator", nameOf(s.integrator.type));
   for (const CanonicalProperty& p : canonicalProperties(s.integrator)) d.emplace_back(p.name, p.value);
   d.emplace_back("sampler", samplerKindName(s.samplerKind));
   d.emplace_back("sampleCount", std::to_string(s.sampleCount));

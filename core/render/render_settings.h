@@ -7,7 +7,7 @@
 #include "core/integrators/integrator_desc.h"
 #include "core/render/camera.h"
 #include "core/render/filter.h"
-#include "core/render/strategy_table.h"
+#include "core/render/strategy_axes.h"
 #include "core/sampling/sampler_table.h"
 
 namespace penumbra {
@@ -30,7 +30,7 @@ struct RenderSettings {
 namespace penumbra {
 
 // Key/value description of the settings, for image metadata and logs: the integrator and its
-// properties as the scene file spells them (canonical spellings of the strategy table), sampler,
+// properties as the scene file spells them (canonical spellings of the strategy axes), sampler,
 // sampleCount, seed, filter, resolution.
 std::vector<std::pair<std::string, std::string>> describeSettings(const RenderSettings& s);
 

@@ -16,24 +16,25 @@ std::map<std::string, std::string> described(const IntegratorDesc& d) {
 
 // Image metadata spells the integrator as a scene file would, in the canonical spelling.
 TEST(DescribeSettings, WritesTheCanonicalSpellingOfTheStrategy) {
-  auto ao = described({Strategy::AoUniform, 4});
+  auto ao = described(withSamples(aoBy(HemisphereWarp::Uniform), 4));
   EXPECT_EQ(ao["integrator"], "ao");
   EXPECT_EQ(ao["shadingSamples"], "4");
   EXPECT_EQ(ao["warp-type"], "uniform-hemisphere");
   EXPECT_EQ(ao.count("sampling"), 0u);
-  auto hemi = described({Strategy::DirectCosineHemisphere, 2});
+  auto hemi = described(withSamples(directByHemisphere(HemisphereWarp::Cosine), 2));
   EXPECT_EQ(hemi["integrator"], "direct");
   EXPECT_EQ(hemi["nSamples"], "2");
   EXPECT_EQ(hemi["measure"], "hemisphere");
   EXPECT_EQ(hemi["warp-type"], "cosine-hemisphere");
-  auto area = described({Strategy::DirectArea, 1});
+  auto area = described(withSamples(directByLight(LightMeasure::Area), 1));
   EXPECT_EQ(area["measure"], "area");
   EXPECT_EQ(area.count("warp-type"), 0u);
-  auto psaBvh = described({Strategy::DirectProjectedSolidAngleBvh, 3});
+  auto psaBvh =
+      described(withSamples(directByLight(LightMeasure::ProjectedSolidAngle, LightSelection::Bvh), 3));
   EXPECT_EQ(psaBvh["measure"], "projected-solid-angle");
   EXPECT_EQ(psaBvh["lightSelection"], "bvh");
   EXPECT_EQ(psaBvh["nSamples"], "3");
-  IntegratorDesc misArea{Strategy::DirectMisAreaBalance, 1};
+  IntegratorDesc misArea = withSamples(directByMis(LightMeasure::Area, MisHeuristic::Balance), 1);
   misArea.lightSamples = 3;
   misArea.bsdfSamples = 2;
   auto mis = described(misArea);
@@ -43,7 +44,7 @@ TEST(DescribeSettings, WritesTheCanonicalSpellingOfTheStrategy) {
   EXPECT_EQ(mis["lightSamples"], "3");
   EXPECT_EQ(mis["bsdfSamples"], "2");
   EXPECT_EQ(mis.count("lightSelection"), 0u);  // MIS samples every light
-  auto normals = described({Strategy::Normals, 1});
+  auto normals = described(withSamples(integratorOfType(IntegratorType::Normals), 1));
   EXPECT_EQ(normals["integrator"], "normals");
   EXPECT_EQ(normals.count("nSamples") + normals.count("shadingSamples"), 0u);
   EXPECT_EQ(normals["sampler"], "independent");

@@ -1,6 +1,6 @@
 #include "core/scene/light_selection_default.h"
 
-#include "core/render/light_selection_rows.h"
+#include "core/render/strategy_axes.h"
 
 namespace penumbra {
 
@@ -17,16 +17,16 @@ std::string sphereLightsText(size_t count) {
 
 bool sceneNamesLightSelection(const SceneNode& scene) {
   const SceneNode* integrator = scene.child("integrator");
-  return integrator && integrator->props.find(lightSelectionProperty().list()) != nullptr;
+  return integrator && integrator->props.find(kLightSelectionProperty.list()) != nullptr;
 }
 
-std::string lightSelectionSummary(const SceneNode& scene, Strategy strategy) {
-  if (!takesLightSelection(strategy)) return "";
-  std::string out = "light selection " + std::string(lightSelectionName(lightSelectionOf(strategy)));
+std::string lightSelectionSummary(const SceneNode& scene, const IntegratorDesc& strategy) {
+  if (!strategy.usesLightSelection()) return "";
+  std::string out = "light selection " + std::string(nameOf(strategy.lightSelection));
   if (sceneNamesLightSelection(scene)) return out + " (named by the scene or --set)";
   return out + " (the default for " + sphereLightsText(countSphereLights(scene)) + ": " +
-         std::string(lightSelectionName(LightSelection::All)) + " up to " + std::to_string(kAllLightsUpTo) +
-         ", " + std::string(lightSelectionName(kManyLightsSelection)) + " above)";
+         std::string(nameOf(LightSelection::All)) + " up to " + std::to_string(kAllLightsUpTo) + ", " +
+         std::string(nameOf(kManyLightsSelection)) + " above)";
 }
 
 }  // namespace penumbra

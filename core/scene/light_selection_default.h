@@ -29,9 +29,8 @@ std::string sphereLightsText(size_t count);
 bool sceneNamesLightSelection(const SceneNode& scene);
 
 // What `render` prints (and writes into the image metadata) about the light selection of `strategy`
-// in `scene`: "" when the
-// strategy takes none, else e.g. "light selection bvh (the default for 300 sphere lights: all up to
-// 256, bvh above)" or "light selection power (named by the scene or --set)".
-std::string lightSelectionSummary(const SceneNode& scene, Strategy strategy);
+// in `scene`: "" when the strategy takes none, else e.g. "light selection bvh (the default for 300 sphere
+// lights: all up to 256, bvh above)" or "light selection power (named by the scene or --set)".
+std::string lightSelectionSummary(const SceneNode& scene, const IntegratorDesc& strategy);
 
 }  // namespace penumbra

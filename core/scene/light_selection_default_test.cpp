@@ -7,8 +7,7 @@
 
 #include <string>
 
-#include "core/render/light_selection_rows.h"
-#include "core/render/strategy_table.h"
+#include "core/render/strategy_axes.h"
 #include "core/scene/scaling_scene.h"
 #include "core/scene/scene_builder.h"
 #include "core/scene/xml_parser.h"
@@ -36,29 +35,35 @@ TEST(LightSelectionDefault, FollowsTheMeasuredCrossover) {
 TEST(LightSelectionDefault, AbsentResolvesByTheSceneLightCount) {
   const int at = int(kAllLightsUpTo), above = int(kAllLightsUpTo) + 1;
   // The scaling scene names measure solid-angle and no lightSelection.
-  EXPECT_EQ(settingsFor(1, {}).integrator.strategy, Strategy::DirectSolidAngle);
-  EXPECT_EQ(settingsFor(at, {}).integrator.strategy, Strategy::DirectSolidAngle);
-  EXPECT_EQ(settingsFor(above, {}).integrator.strategy, Strategy::DirectSolidAngleBvh);
-  EXPECT_EQ(settingsFor(64, {}).integrator.strategy, Strategy::DirectSolidAngle);
+  EXPECT_EQ(strategyLabel(settingsFor(1, {}).integrator),
+            strategyLabel(directByLight(LightMeasure::SolidAngle)));
+  EXPECT_EQ(strategyLabel(settingsFor(at, {}).integrator),
+            strategyLabel(directByLight(LightMeasure::SolidAngle)));
+  EXPECT_EQ(strategyLabel(settingsFor(above, {}).integrator),
+            strategyLabel(directByLight(LightMeasure::SolidAngle, LightSelection::Bvh)));
+  EXPECT_EQ(strategyLabel(settingsFor(64, {}).integrator),
+            strategyLabel(directByLight(LightMeasure::SolidAngle)));
   // Area sampling resolves the same way; the hemisphere measures take no light selection.
-  EXPECT_EQ(settingsFor(at, {{"integrator.measure", "area"}}).integrator.strategy, Strategy::DirectArea);
-  EXPECT_EQ(settingsFor(above, {{"integrator.measure", "area"}}).integrator.strategy,
-            Strategy::DirectAreaBvh);
-  EXPECT_EQ(settingsFor(at, {{"integrator.measure", "projected-solid-angle"}}).integrator.strategy,
-            Strategy::DirectProjectedSolidAngle);
-  EXPECT_EQ(settingsFor(above, {{"integrator.measure", "projected-solid-angle"}}).integrator.strategy,
-            Strategy::DirectProjectedSolidAngleBvh);
-  EXPECT_EQ(settingsFor(above, {{"integrator.measure", "hemisphere"}}).integrator.strategy,
-            Strategy::DirectCosineHemisphere);
+  EXPECT_EQ(strategyLabel(settingsFor(at, {{"integrator.measure", "area"}}).integrator),
+            strategyLabel(directByLight(LightMeasure::Area)));
+  EXPECT_EQ(strategyLabel(settingsFor(above, {{"integrator.measure", "area"}}).integrator),
+            strategyLabel(directByLight(LightMeasure::Area, LightSelection::Bvh)));
+  EXPECT_EQ(strategyLabel(settingsFor(at, {{"integrator.measure", "projected-solid-angle"}}).integrator),
+            strategyLabel(directByLight(LightMeasure::ProjectedSolidAngle)));
+  EXPECT_EQ(strategyLabel(settingsFor(above, {{"integrator.measure", "projected-solid-angle"}}).integrator),
+            strategyLabel(directByLight(LightMeasure::ProjectedSolidAngle, LightSelection::Bvh)));
+  EXPECT_EQ(strategyLabel(settingsFor(above, {{"integrator.measure", "hemisphere"}}).integrator),
+            strategyLabel(directByHemisphere(HemisphereWarp::Cosine)));
   // mis samples every light whatever the count: no light selection to resolve.
-  EXPECT_EQ(settingsFor(above, {{"integrator.measure", "mis"}}).integrator.strategy,
-            settingsFor(1, {{"integrator.measure", "mis"}}).integrator.strategy);
-  EXPECT_FALSE(takesLightSelection(settingsFor(above, {{"integrator.measure", "mis"}}).integrator.strategy));
+  EXPECT_EQ(strategyLabel(settingsFor(above, {{"integrator.measure", "mis"}}).integrator),
+            strategyLabel(settingsFor(1, {{"integrator.measure", "mis"}}).integrator));
+  EXPECT_FALSE(settingsFor(above, {{"integrator.measure", "mis"}}).integrator.usesLightSelection());
   // No <integrator> at all: the default strategy, resolved likewise.
   SceneNode bare = parseSceneString(scalingSceneXml(above, 16, 1), "scaling.xml", ".");
   std::erase_if(bare.children, [](const SceneNode& c) { return c.tag == "integrator"; });
   std::vector<std::string> warnings;
-  EXPECT_EQ(buildSettings(bare, &warnings).integrator.strategy, Strategy::DirectSolidAngleBvh);
+  EXPECT_EQ(strategyLabel(buildSettings(bare, &warnings).integrator),
+            strategyLabel(directByLight(LightMeasure::SolidAngle, LightSelection::Bvh)));
   ASSERT_EQ(warnings.size(), 1u);
   EXPECT_NE(warnings[0].find("direct/solid-angle-bvh"), std::string::npos) << warnings[0];
 }
@@ -69,25 +74,23 @@ TEST(LightSelectionDefault, ANamedSelectionAlwaysWins) {
       for (const char* name : {"all", "uniform", "power", "bvh"}) {
         RenderSettings s =
             settingsFor(n, {{"integrator.measure", measure}, {"integrator.lightSelection", name}});
-        EXPECT_EQ(lightSelectionName(lightSelectionOf(s.integrator.strategy)), name) << n << " " << measure;
-        EXPECT_EQ(samplesLightArea(s.integrator.strategy), std::string(measure) == "area");
-        EXPECT_EQ(samplesLightProjectedSolidAngle(s.integrator.strategy),
-                  std::string(measure) == "projected-solid-angle");
+        EXPECT_EQ(nameOf(s.integrator.lightSelection), name) << n << " " << measure;
+        EXPECT_EQ(measureName(s.integrator), measure);
       }
 }
 
 // What `render` prints and writes into the image metadata.
 TEST(LightSelectionDefault, SummarySaysWhetherTheSceneOrTheDefaultChose) {
   SceneNode many = parseSceneString(scalingSceneXml(300, 16, 1), "scaling.xml", ".");
-  EXPECT_EQ(lightSelectionSummary(many, buildSettings(many).integrator.strategy),
+  EXPECT_EQ(lightSelectionSummary(many, buildSettings(many).integrator),
             "light selection bvh (the default for 300 sphere lights: all up to 256, bvh above)");
   SceneNode one = parseSceneString(scalingSceneXml(1, 16, 1), "scaling.xml", ".");
-  EXPECT_EQ(lightSelectionSummary(one, buildSettings(one).integrator.strategy),
+  EXPECT_EQ(lightSelectionSummary(one, buildSettings(one).integrator),
             "light selection all (the default for 1 sphere light: all up to 256, bvh above)");
   applyOverride(many, "integrator.lightSelection", "power");
-  EXPECT_EQ(lightSelectionSummary(many, buildSettings(many).integrator.strategy),
+  EXPECT_EQ(lightSelectionSummary(many, buildSettings(many).integrator),
             "light selection power (named by the scene or --set)");
-  EXPECT_EQ(lightSelectionSummary(many, Strategy::DirectCosineHemisphere), "");
+  EXPECT_EQ(lightSelectionSummary(many, directByHemisphere(HemisphereWarp::Cosine)), "");
 }
 
 }  // namespace

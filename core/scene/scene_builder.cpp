@@ -7,8 +7,7 @@
 #include "core/geometry/procedural_mesh.h"
 #include "core/math/error.h"
 #include "core/math/float_util.h"
-#include "core/render/light_selection_rows.h"
-#include "core/render/strategy_table.h"
+#include "core/render/strategy_axes.h"
 #include "core/sampling/sampler_table.h"
 #include "core/scene/light_selection_default.h"
 #include "core/scene/obj_loader.h"
@@ -116,43 +115,55 @@ void buildSampler(const SceneNode& node, RenderSettings& s) {
   s.seed = uint64_t(node.props.getInteger({"seed"}, 0));
 }
 
-// The strategy table decides: the rows of the node's type, narrowed by each selecting property in
-// turn (an absent property takes the value its default row names; an absent lightSelection, the
-// one defaultLightSelection picks for the scene's sphere lights).
+// A string property of the integrator: its value in `table` (named by `lookup`), the default when absent.
+template <class Value>
+Value getAxis(const SceneNode& node, const Spellings& property, Value def, std::string_view defName,
+              std::optional<Value> (*lookup)(std::string_view), const std::string& accepted) {
+  const std::string value = node.props.getString(property.list(), std::string(defName));
+  if (std::optional<Value> v = lookup(value)) return *v;
+  fail(node, property.list(),
+       "unknown " + std::string(property.canonical()) + " \"" + value + "\" of <integrator type=\"" +
+           node.type + "\"> (expected one of: " + accepted + ")");
+}
+
+// Each axis the integrator's type (and its measure) reads, from its own table; an absent property
+// takes IntegratorDesc's default, an absent lightSelection the one defaultLightSelection picks for
+// the scene's sphere lights. A property of an axis that does not apply is left unread (the parser
+// warns that it is not used).
 void buildIntegrator(const SceneNode& node, size_t sphereLights, RenderSettings& s) {
-  std::vector<Strategy> candidates = strategiesOfType(node.type);
-  if (candidates.empty()) unknownType(node, acceptedIntegratorTypes().c_str());
+  const std::optional<IntegratorType> type = integratorTypeNamed(node.type);
+  if (!type) unknownType(node, acceptedIntegratorTypes().c_str());
   IntegratorDesc& d = s.integrator;
-  const Spellings& samples = strategyRow(candidates.front()).samplesProperty;
+  const IntegratorDesc defaults;
+  d = defaults;
+  d.type = *type;
+  d.lightSelection = defaultLightSelection(sphereLights);
+  const Spellings& samples = rowOf(d.type).samplesProperty;
   d.samples =
       samples.empty() ? 1 : int(getCount(node, samples.list(), 1, kMaxShadingSamples, samples.canonical()));
-  for (size_t level = 0; level < kMaxSelectors; ++level) {
-    const Spellings& name = strategyRow(candidates.front()).select[level].name;
-    if (name.empty()) break;
-    std::string def;
-    std::vector<std::string_view> accepted;
-    for (Strategy c : candidates) {
-      const StrategyProperty& p = strategyRow(c).select[level];
-      if (p.isDefault) def = p.value.canonical();
-      for (std::string_view v : p.value.list())
-        if (std::find(accepted.begin(), accepted.end(), v) == accepted.end()) accepted.push_back(v);
-    }
-    std::string value = node.props.getString(name.list(), def);
-    std::erase_if(candidates, [&](Strategy c) { return !strategyRow(c).select[level].value.accepts(value); });
-    if (candidates.empty()) {
-      std::string list;
-      for (std::string_view v : accepted) (list += list.empty() ? "" : ", ") += v;
-      fail(node, name.list(),
-           "unknown " + std::string(name.canonical()) + " \"" + value + "\" of <integrator type=\"" +
-               node.type + "\"> (expected one of: " + list + ")");
-    }
+  if (d.usesEstimator()) {
+    const std::string measure =
+        node.props.getString(kMeasureProperty.list(), std::string(measureName(defaults)));
+    if (!applyMeasure(measure, d))
+      fail(node, kMeasureProperty.list(),
+           "unknown measure \"" + measure + "\" of <integrator type=\"" + node.type +
+               "\"> (expected one of: " + acceptedMeasures() + ")");
   }
-  d.strategy = candidates.front();
-  if (!node.props.find(lightSelectionProperty().list()))
-    d.strategy = withLightSelection(d.strategy, defaultLightSelection(sphereLights)).value_or(d.strategy);
-  for (const CountProperty& c : strategyRow(d.strategy).counts)
-    if (!c.name.empty())
-      d.*c.field = int(getCount(node, c.name.list(), 1, kMaxShadingSamples, c.name.canonical()));
+  if (d.usesWarp())
+    d.warp = getAxis(node, kWarpProperty, defaults.warp, nameOf(defaults.warp), warpNamed, acceptedWarps());
+  if (d.usesLightSelection() && node.props.find(kLightSelectionProperty.list()))
+    d.lightSelection = getAxis(node, kLightSelectionProperty, d.lightSelection, nameOf(d.lightSelection),
+                               lightSelectionNamed, acceptedLightSelections());
+  if (d.usesMisAxes()) {
+    d.lightMeasure = getAxis(node, kLightMeasureProperty, defaults.lightMeasure,
+                             nameOf(defaults.lightMeasure), lightMeasureNamed, acceptedLightMeasures());
+    d.heuristic = getAxis(node, kHeuristicProperty, defaults.heuristic, nameOf(defaults.heuristic),
+                          heuristicNamed, acceptedHeuristics());
+    d.lightSamples = int(getCount(node, kLightSamplesProperty.list(), 1, kMaxShadingSamples,
+                                  kLightSamplesProperty.canonical()));
+    d.bsdfSamples = int(
+        getCount(node, kBsdfSamplesProperty.list(), 1, kMaxShadingSamples, kBsdfSamplesProperty.canonical()));
+  }
 }
 
 // ---- geometry and lights ------------------------------------------------------------------------
@@ -271,9 +282,7 @@ RenderSettings buildSettings(const SceneNode& desc, std::vector<std::string>* wa
   if (const SceneNode* integ = desc.child("integrator"))
     buildIntegrator(*integ, countSphereLights(desc), s);
   else {
-    s.integrator.strategy =
-        withLightSelection(s.integrator.strategy, defaultLightSelection(countSphereLights(desc)))
-            .value_or(s.integrator.strategy);
+    s.integrator.lightSelection = defaultLightSelection(countSphereLights(desc));
     if (warnings)
       warnings->push_back(desc.file + ": warning: no <integrator>; using " + strategyLabel(s.integrator));
   }

@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "core/math/error.h"
-#include "core/render/strategy_table.h"
+#include "core/render/strategy_axes.h"
 
 namespace penumbra {
 namespace {
@@ -27,71 +27,116 @@ void expectError(const std::string& body, int line, const std::string& needle) {
 TEST(SceneBuilder, SeedSpellingsOfTheIntegrators) {
   auto ao = fromXml(R"(<integrator type="ao"><integer name="shadingSamples" value="4"/>
                        <string name="sampler" value="uniform"/></integrator>)");
-  EXPECT_EQ(ao.settings.integrator.strategy, Strategy::AoUniform);
+  EXPECT_EQ(strategyLabel(ao.settings.integrator), strategyLabel(aoBy(HemisphereWarp::Uniform)));
   EXPECT_EQ(ao.settings.integrator.samples, 4);
   auto ao2 = fromXml(R"(<integrator type="ao"><integer name="nSamples" value="2"/>
                         <string name="warp-type" value="cosine-hemisphere"/></integrator>)");
   EXPECT_EQ(ao2.settings.integrator.samples, 2);
-  EXPECT_EQ(ao2.settings.integrator.strategy, Strategy::AoCosine);
+  EXPECT_EQ(strategyLabel(ao2.settings.integrator), strategyLabel(aoBy(HemisphereWarp::Cosine)));
   auto d = fromXml(R"(<integrator type="direct"><integer name="nSamples" value="3"/>
                       <string name="measure" value="solidAngle"/></integrator>)");
-  EXPECT_EQ(d.settings.integrator.strategy, Strategy::DirectSolidAngle);
+  EXPECT_EQ(strategyLabel(d.settings.integrator), strategyLabel(directByLight(LightMeasure::SolidAngle)));
   auto h = fromXml(R"(<integrator type="direct"><string name="measure" value="hemisphere"/>
                       <string name="warp-type" value="uniform-hemisphere"/></integrator>)");
-  EXPECT_EQ(h.settings.integrator.strategy, Strategy::DirectUniformHemisphere);
+  EXPECT_EQ(strategyLabel(h.settings.integrator), strategyLabel(directByHemisphere(HemisphereWarp::Uniform)));
 }
 
 // <integrator type="T"> with the given string properties and, if samplesName is set, 3 samples.
-std::string integratorXml(const StrategyRow& row,
+std::string integratorXml(const IntegratorDesc& d,
                           const std::vector<std::pair<std::string_view, std::string_view>>& props,
                           std::string_view samplesName) {
-  std::string xml = "<integrator type=\"" + std::string(row.xmlType) + "\">";
+  std::string xml = "<integrator type=\"" + std::string(nameOf(d.type)) + "\">";
   if (!samplesName.empty()) xml += "<integer name=\"" + std::string(samplesName) + "\" value=\"3\"/>";
   for (auto [name, value] : props)
     xml += "<string name=\"" + std::string(name) + "\" value=\"" + std::string(value) + "\"/>";
   return xml + "</integrator>";
 }
 
-// Every spelling the strategy table accepts loads its row: each alias of each selecting property's
-// name and value (the others canonical), each alias of the samples property, and a default value
-// left out.
-TEST(SceneBuilder, EverySpellingOfEveryStrategyLoadsItsRow) {
-  for (const StrategyRow& row : strategyTable()) {
+// The spellings of a selecting property named `canonical`, and of its value `value`.
+const Spellings& propertySpellings(std::string_view canonical) {
+  for (const Spellings* p : {&kMeasureProperty, &kWarpProperty, &kLightSelectionProperty,
+                             &kLightMeasureProperty, &kHeuristicProperty})
+    if (p->canonical() == canonical) return *p;
+  throw Error("no property " + std::string(canonical));
+}
+template <class Row, size_t N>
+const Spellings* spellingsIn(const std::array<Row, N>& table, Spellings Row::*field, std::string_view value) {
+  for (const Row& r : table)
+    if ((r.*field).accepts(value)) return &(r.*field);
+  return nullptr;
+}
+Spellings valueSpellings(std::string_view property, std::string_view value) {
+  const Spellings* found = nullptr;
+  if (property == kMeasureProperty.canonical()) {
+    for (const EstimatorRow& e : kEstimators)
+      if (e.measure.accepts(value)) found = &e.measure;
+    if (!found) found = spellingsIn(kLightMeasures, &LightMeasureRow::spellings, value);
+  } else if (property == kWarpProperty.canonical()) {
+    found = spellingsIn(kWarps, &WarpRow::spellings, value);
+  } else if (property == kLightSelectionProperty.canonical()) {
+    found = spellingsIn(kLightSelections, &LightSelectionRow::spellings, value);
+  } else if (property == kLightMeasureProperty.canonical()) {
+    found = spellingsIn(kLightMeasures, &LightMeasureRow::spellings, value);
+  } else {
+    found = spellingsIn(kHeuristics, &HeuristicRow::spellings, value);
+  }
+  if (!found) throw Error("no value " + std::string(value) + " of " + std::string(property));
+  return *found;
+}
+
+// Every spelling the axis tables accept loads its strategy: each alias of each selecting property's
+// name and value (the others canonical), each alias of the samples property, and each property left
+// out whose value is the one assumed when absent.
+TEST(SceneBuilder, EverySpellingOfEveryStrategyLoadsIt) {
+  const IntegratorDesc defaults;
+  for (const IntegratorDesc& d : everyStrategy()) {
     std::vector<std::pair<std::string_view, std::string_view>> canonical;
-    for (const StrategyProperty& p : row.select)
-      if (!p.name.empty()) canonical.emplace_back(p.name.canonical(), p.value.canonical());
-    auto expectRow = [&](const std::string& xml, bool samples) {
+    std::vector<std::string> values;  // canonicalProperties' strings, kept alive for the views
+    for (const CanonicalProperty& p : canonicalProperties(d))
+      if (!p.isInteger) values.push_back(p.value);
+    size_t v = 0;
+    for (const CanonicalProperty& p : canonicalProperties(d))
+      if (!p.isInteger) canonical.emplace_back(p.name, values[v++]);
+    auto expectStrategy = [&](const std::string& xml, bool samples) {
       LoadedScene s = fromXml(xml);
-      EXPECT_EQ(s.settings.integrator.strategy, row.strategy) << xml;
+      EXPECT_EQ(strategyLabel(s.settings.integrator), strategyLabel(d)) << xml;
       EXPECT_EQ(s.settings.integrator.samples, samples ? 3 : 1) << xml;
       EXPECT_TRUE(s.warnings.empty()) << xml << ": " << (s.warnings.empty() ? "" : s.warnings[0]);
     };
-    expectRow(integratorXml(row, canonical, row.samplesProperty.canonical()), !row.samplesProperty.empty());
-    for (std::string_view samples : row.samplesProperty.list())
-      expectRow(integratorXml(row, canonical, samples), true);
+    const Spellings& samples = rowOf(d.type).samplesProperty;
+    expectStrategy(integratorXml(d, canonical, samples.canonical()), !samples.empty());
+    for (std::string_view name : samples.list()) expectStrategy(integratorXml(d, canonical, name), true);
     for (size_t i = 0; i < canonical.size(); ++i) {
-      const StrategyProperty& p = row.select[i];
-      for (std::string_view name : p.name.list())
-        for (std::string_view value : p.value.list()) {
+      const Spellings& property = propertySpellings(canonical[i].first);
+      for (std::string_view name : property.list())
+        for (std::string_view value : valueSpellings(canonical[i].first, canonical[i].second).list()) {
           auto props = canonical;
           props[i] = {name, value};
-          expectRow(integratorXml(row, props, {}), false);
+          expectStrategy(integratorXml(d, props, {}), false);
         }
-      if (p.isDefault) {
-        auto props = canonical;
-        props.erase(props.begin() + long(i), props.end());  // a refining property makes no sense without it
-        if (i + 1 == canonical.size()) expectRow(integratorXml(row, props, {}), false);
-      }
+      // Left out: IntegratorDesc's defaults are the values assumed.
+      const std::pair<std::string_view, std::string_view> assumed[] = {
+          {kMeasureProperty.canonical(), measureName(defaults)},
+          {kWarpProperty.canonical(), nameOf(defaults.warp)},
+          {kLightSelectionProperty.canonical(), nameOf(defaults.lightSelection)},
+          {kLightMeasureProperty.canonical(), nameOf(defaults.lightMeasure)},
+          {kHeuristicProperty.canonical(), nameOf(defaults.heuristic)}};
+      for (const auto& [name, value] : assumed)
+        if (canonical[i].first == name && canonical[i].second == value) {
+          auto props = canonical;
+          props.erase(props.begin() + long(i));
+          expectStrategy(integratorXml(d, props, {}), false);
+        }
     }
   }
 }
 
 // What the viewer writes (canonical spellings) loads back to the same strategy and counts.
 TEST(SceneBuilder, CanonicalSpellingsRoundTrip) {
-  for (const StrategyRow& row : strategyTable()) {
-    IntegratorDesc d{row.strategy, row.samplesProperty.empty() ? 1 : 5};
-    if (!row.counts[0].name.empty()) d.lightSamples = 3, d.bsdfSamples = 2;  // the MIS counts
-    std::string xml = "<integrator type=\"" + std::string(row.xmlType) + "\">";
+  for (IntegratorDesc d : everyStrategy()) {
+    if (d.usesSamples()) d.samples = 5;
+    if (d.usesMisAxes()) d.lightSamples = 3, d.bsdfSamples = 2;
+    std::string xml = "<integrator type=\"" + std::string(nameOf(d.type)) + "\">";
     for (const CanonicalProperty& p : canonicalProperties(d))
       xml += std::string(p.isInteger ? "<integer" : "<string") + " name=\"" + std::string(p.name) +
              "\" value=\"" + p.value + "\"/>";
@@ -104,7 +149,7 @@ TEST(SceneBuilder, MisCountsDefaultToOneAndMustBePositive) {
   const IntegratorDesc d =
       fromXml("<integrator type=\"direct\"><string name=\"measure\" value=\"mis\"/></integrator>")
           .settings.integrator;
-  EXPECT_EQ(d.strategy, Strategy::DirectMisSolidAnglePower);
+  EXPECT_EQ(strategyLabel(d), strategyLabel(directByMis(LightMeasure::SolidAngle, MisHeuristic::Power)));
   EXPECT_EQ(d.lightSamples, 1);
   EXPECT_EQ(d.bsdfSamples, 1);
   expectError(
@@ -182,7 +227,7 @@ TEST(SceneBuilder, SmallScenesPayForNoBvh) {
 TEST(SceneBuilder, OverridesReachTheSettings) {
   LoadedScene s = loadSceneFromString(defaultSceneXml(), "default", ".",
                                       {{"integrator.measure", "area"}, {"sampler.sampleCount", "7"}});
-  EXPECT_EQ(s.settings.integrator.strategy, Strategy::DirectArea);
+  EXPECT_EQ(strategyLabel(s.settings.integrator), strategyLabel(directByLight(LightMeasure::Area)));
   EXPECT_EQ(s.settings.sampleCount, 7u);
 }
 

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "core/math/error.h"
-#include "core/render/strategy_table.h"
+#include "core/render/strategy_axes.h"
 #include "core/scene/scene_builder.h"
 #include "core/scene/xml_parser.h"
 
@@ -123,28 +123,16 @@ void writeSampler(SceneNode& root, const RenderSettings& s) {
                      makeProp("seed", PropertyType::Integer, std::to_string(s.seed))});
 }
 
-// Whether building `strategy` reads a property spelled `name` (its shading samples, selecting
-// properties and counts).
-bool readsProperty(Strategy strategy, const std::string& name) {
-  const StrategyRow& row = strategyRow(strategy);
-  if (row.samplesProperty.accepts(name)) return true;
-  for (const StrategyProperty& p : row.select)
-    if (p.name.accepts(name)) return true;
-  for (const CountProperty& c : row.counts)
-    if (c.name.accepts(name)) return true;
-  return false;
-}
-
 // The strategy's canonical properties. A property of the description's integrator that its own
 // strategy did not read (`used` as the description built) and the written one does not read either
 // stays as it was, so the file reads back as it did (with the same "not used" warning).
 void writeIntegrator(SceneNode& root, const RenderSettings& s, bool describedBuilt) {
-  const std::string type(strategyRow(s.integrator.strategy).xmlType);
+  const std::string type(nameOf(s.integrator.type));
   SceneNode& integ = childOrNew(root, "integrator", type);
   std::vector<Property> unread;
   if (describedBuilt)
     for (const Property& p : integ.props.properties())
-      if (!p.used && !readsProperty(s.integrator.strategy, p.name)) unread.push_back(p);
+      if (!p.used && !integratorReads(s.integrator, p.name)) unread.push_back(p);
   integ.type = type;
   integ.props = PropertyList();
   integ.props.setContext(integ.file, integ.tag, integ.type);

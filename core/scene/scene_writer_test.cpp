@@ -15,7 +15,7 @@
 
 #include "core/math/error.h"
 #include "core/math/temp_dir_test_support.h"
-#include "core/render/strategy_table.h"
+#include "core/render/strategy_axes.h"
 #include "core/scene/scene_builder.h"
 #include "core/scene/xml_parser.h"
 
@@ -129,8 +129,7 @@ void expectSameSettings(const RenderSettings& a, const RenderSettings& b) {
   EXPECT_EQ(a.samplerKind, b.samplerKind);
   EXPECT_EQ(a.sampleCount, b.sampleCount);
   EXPECT_EQ(a.seed, b.seed);
-  EXPECT_EQ(a.integrator.strategy, b.integrator.strategy)
-      << strategyRow(a.integrator.strategy).label << " vs " << strategyRow(b.integrator.strategy).label;
+  EXPECT_EQ(strategyLabel(a.integrator), strategyLabel(b.integrator));
   EXPECT_TRUE(a.integrator == b.integrator);
 }
 
@@ -235,14 +234,13 @@ RenderSettings readBack(const std::string& xml) {
 
 TEST(SceneWriterSettings, EveryStrategyAndSamplerReadsBackAsWritten) {
   const LoadedScene s = builtIn();
-  for (const StrategyRow& row : strategyTable())
+  for (const IntegratorDesc& strategy : everyStrategy())
     for (const SamplerRow& sampler : samplerTable()) {
-      SCOPED_TRACE(std::string(row.label) + " " + samplerKindName(sampler.kind));
+      SCOPED_TRACE(strategyLabel(strategy) + " " + samplerKindName(sampler.kind));
       RenderSettings edited = s.settings;
-      edited.integrator.strategy = row.strategy;
-      edited.integrator.samples = row.samplesProperty.empty() ? 1 : 3;
-      for (const CountProperty& c : row.counts)
-        if (!c.name.empty()) edited.integrator.*c.field = 2;
+      edited.integrator = strategy;
+      edited.integrator.samples = strategy.usesSamples() ? 3 : 1;
+      if (strategy.usesMisAxes()) edited.integrator.lightSamples = edited.integrator.bsdfSamples = 2;
       edited.samplerKind = sampler.kind;
       edited.sampleCount = 49;
       edited.seed = 12345678901ull;
@@ -284,7 +282,7 @@ TEST(SceneWriterSettings, IntegratorPropertiesNothingReadsStay) {
       "<string name=\"warp\" value=\"cosine\"/><string name=\"note\" value=\"mine\"/></integrator>"
       "<shape type=\"sphere\"><emitter type=\"area\"/></shape></scene>",
       "unread.xml", ".");
-  ASSERT_EQ(s.settings.integrator.strategy, Strategy::DirectArea);
+  ASSERT_EQ(strategyLabel(s.settings.integrator), strategyLabel(directByLight(LightMeasure::Area)));
   const SceneNode same = sceneWithSettings(s.desc, s.settings);
   const SceneNode& integ = *same.child("integrator");
   ASSERT_NE(integ.props.find({"warp"}), nullptr);
@@ -294,7 +292,7 @@ TEST(SceneWriterSettings, IntegratorPropertiesNothingReadsStay) {
   expectSameSettings(s.settings, buildSettings(same));
 
   RenderSettings hemisphere = s.settings;
-  hemisphere.integrator.strategy = Strategy::DirectUniformHemisphere;
+  hemisphere.integrator = withCountsOf(directByHemisphere(HemisphereWarp::Uniform), hemisphere.integrator);
   const std::string xml = writeScene(s.desc, hemisphere);
   EXPECT_EQ(xml.find("name=\"warp\""), std::string::npos) << xml;
   EXPECT_NE(xml.find("name=\"note\""), std::string::npos) << xml;

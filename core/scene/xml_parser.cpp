@@ -435,7 +435,7 @@ void applyOverride(SceneNode& root, std::string_view key, std::string_view value
     SceneNode created;
     created.tag = tag;
     const RenderSettings defaults;
-    created.type = tag == "integrator" ? std::string(strategyRow(defaults.integrator.strategy).xmlType)
+    created.type = tag == "integrator" ? std::string(nameOf(defaults.integrator.type))
                    : tag == "sampler"  ? std::string(samplerKindName(defaults.samplerKind))
                                        : "perspective";
     created.file = root.file;

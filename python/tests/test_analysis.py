@@ -27,6 +27,19 @@ def test_converge_returns_the_csv_columns():
     assert runs["solid-angle"]["mse_nolight"][-1] < runs["area"]["mse_nolight"][-1]
 
 
+def test_converge_crosses_the_axes():
+    scene = penumbra.load_scene(str(SPHERE_SCENE), overrides={"camera.width": 12, "camera.height": 8})
+    ref = np.zeros((8, 12, 3))
+    runs = penumbra.converge(scene, strategies="area,mis", light_selection=["all", "bvh"],
+                             heuristic="power,balance", spp=1, reference=ref)
+    assert list(runs) == ["area", "area-bvh", "mis-solid-angle-power", "mis-solid-angle-balance"]
+    with pytest.warns(DeprecationWarning, match="--strategies area --light-selection bvh"):
+        old = penumbra.converge(scene, strategies="area-bvh", spp=1, reference=ref)
+    assert list(old) == ["area-bvh"]
+    with pytest.raises(ValueError, match="light-selection"):
+        penumbra.converge(scene, strategies="area", light_selection="nope", spp=1, reference=ref)
+
+
 def test_converge_with_samplers():
     scene = penumbra.load_scene(str(SPHERE_SCENE), overrides={"camera.width": 24, "camera.height": 16})
     ref = scene.render(spp=64, seed=99).mean

@@ -111,7 +111,7 @@ def specs(tmp: pathlib.Path):
                        ["", ".", "a.", ".b", "nope.x", "camera.\x00", "camera.width.x", "shape.radius"], False),
             "value": Arg(SMALL_SET_VALUES, [NAN, INF, -1, 0, 10**30, "", "\x00", None, [], "x" * 1000, 2**31],
                          False)}),
-        "Scene.properties": (lambda scene: (scene.settings, scene.strategy, scene.sampler, scene.sample_count,
+        "Scene.properties": (lambda scene: (scene.settings, scene.strategy, scene.axes, scene.sampler, scene.sample_count,
                                             scene.seed, scene.width, scene.height, scene.path, scene.warnings,
                                             scene.to_xml(), repr(scene)), {"scene": scene}),
         "Scene.render": (lambda scene, **kw: scene.render(**kw), {
@@ -126,7 +126,7 @@ def specs(tmp: pathlib.Path):
             "scene": scene, "path": Arg(paths, bad_paths, False), "image": Arg(IMAGES)}),
         "RenderResult.properties": (lambda scene: _result_fields(scene.render(spp=1)), {"scene": scene}),
         "warp_names": (lambda **kw: penumbra.warp_names(**kw), {"junk": Arg([], [1])}),
-        "strategies": (lambda **kw: penumbra.strategies(**kw), {"junk": Arg([], [1])}),
+        "axes": (lambda **kw: penumbra.axes(**kw), {"junk": Arg([], [1])}),
         "samplers": (lambda **kw: penumbra.samplers(**kw), {"junk": Arg([], [1])}),
         "random_points": (penumbra.random_points, {
             "n": Arg([0, 1, 16, 1000], [-1, 2**40 + 1, 2**40, 2**64, 1.5, NAN], False),
@@ -160,6 +160,9 @@ def specs(tmp: pathlib.Path):
             "scene": Arg([Fresh(scene_factory)], [None, 3, "scene"], optional=False),
             "strategies": Arg(["all", "area", ["area", "solid-angle"]], [[], "", "nope", [3], (), ",", "area\x00"]),
             "samplers": Arg([None, "all", "independent", ["sobol", "stratified"]], [[], "", "nope", ["x"], 3]),
+            "light_selection": Arg([None, "bvh", ["all", "power"]], [[], "", "nope", [3], "bvh\x00"]),
+            "light_measure": Arg([None, "area"], [[], "nope", 3]),
+            "heuristic": Arg([None, "balance", ["power", "balance"]], ["", "nope", [None]]),
             "time": Arg([None, 0.02], [NAN, INF, 0.0, -1.0, "1"]),
             "spp": Arg([1, 2], [0, 2**24 + 1, -1, 2**64]),
             "reference": Arg([tiny_ref], [None, "closed-form", "/nonexistent.exr", "", 3.0,

@@ -64,6 +64,11 @@ def test_settings_read_and_set():
     with pytest.raises(penumbra.SceneError):
         scene.set("integrator.measure", "nonsense")
     assert scene.strategy == "direct/solid-angle"  # unchanged after the error
+    scene.set("integrator.lightSelection", "bvh")
+    assert scene.axes == {"integrator": "direct", "measure": "solid-angle", "light_selection": "bvh"}
+    scene.set("integrator.measure", "mis")
+    assert scene.axes == {"integrator": "direct", "measure": "mis", "light_measure": "solid-angle",
+                          "heuristic": "power"}
     with pytest.raises(TypeError, match="value"):
         scene.set("sampler.sampleCount", [1])
 
@@ -176,8 +181,15 @@ def test_no_leak_over_1000_renders():
 
 
 def test_tables_are_listed():
-    labels = [s["label"] for s in penumbra.strategies()]
-    assert "direct/solid-angle" in labels and len(labels) == len(set(labels))
+    axes = penumbra.axes()
+    assert set(axes) == {"integrator", "measure", "warp", "light_selection", "light_measure", "heuristic"}
+    measures = [row["name"] for row in axes["measure"]]
+    assert measures == ["hemisphere", "area", "solid-angle", "projected-solid-angle", "mis"]
+    assert [row["name"] for row in axes["light_selection"]] == ["all", "uniform", "power", "bvh"]
+    assert "solidAngle" in axes["light_measure"][1]["aliases"]
+    for rows in axes.values():
+        names = [row["name"] for row in rows]
+        assert len(names) == len(set(names)) and all(row["description"] for row in rows)
     names = [s["name"] for s in penumbra.samplers()]
     assert names[0] == "independent" and "stratified" in names
 
