@@ -105,7 +105,7 @@ std::string nameOf(const IntegratorDesc& s) {
 
 // Direct lighting of the receiver point by each strategy in `strategies`: light sampling first, then
 // hemisphere sampling (which needs no area light) with hemisphereFactor times the samples, then the
-// mis rows with misSamples (0: n); the i-th strategy of that order uses seed + i.
+// mis strategies with misSamples (0: n); the i-th strategy of that order uses seed + i.
 CaseResult directCase(const CaseOptions& o, const std::string& file, unsigned strategies, int n,
                       const Vec3& x, float slope, int hemisphereFactor, int misSamples) {
   LoadedScene s = load(o, file);

@@ -66,7 +66,7 @@ inline constexpr unsigned kSolid = 1u << 0, kArea = 1u << 1, kProjected = 1u << 
 
 // Direct lighting of the receiver point by each strategy in `strategies`: light sampling first, then
 // hemisphere sampling (which needs no area light) with hemisphereFactor times the samples, then the
-// mis rows with misSamples (0: n); the i-th strategy of that order uses seed + i.
+// mis strategies with misSamples (0: n); the i-th strategy of that order uses seed + i.
 CaseResult directCase(const CaseOptions& o, const std::string& file, unsigned strategies, int n,
                       const Vec3& x = kReceiver, float slope = 1e-4f, int hemisphereFactor = 4,
                       int misSamples = 0);

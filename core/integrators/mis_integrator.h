@@ -10,7 +10,7 @@
 // (bit for bit: its weights are then exactly 1). Point and directional lights are deterministic.
 //
 // Several sphere lights: every light is sampled (the loop of `lightSelection` `all`), none is chosen
-// by a light selection, so the mis rows take no `lightSelection`. The weight of a cosine direction
+// by a light selection, so MIS takes no `lightSelection`. The weight of a cosine direction
 // that reaches light L needs the density with which light sampling would have produced it: L's
 // selection probability times the technique's pdf. With the loop that probability is 1, the weights
 // are per light (a hemisphere direction reaches one light, the nearest) and no selection pmf has to

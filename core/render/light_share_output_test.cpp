@@ -1,4 +1,4 @@
-// RenderOutput::MisLightShare through the engine: the mis rows' split film against their ordinary
+// RenderOutput::MisLightShare through the engine: MIS's split film against their ordinary
 // image, pixel by pixel, for the same seed.
 #include <gtest/gtest.h>
 

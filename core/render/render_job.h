@@ -11,7 +11,7 @@
 
 namespace penumbra {
 
-// What the film accumulates per camera sample: the radiance estimate, or (mis rows only) its parts by
+// What the film accumulates per camera sample: the radiance estimate, or (MIS only) its parts by
 // technique, for the viewer's light-share view (core/integrators/mis_light_share.h).
 enum class RenderOutput : uint8_t { Radiance, MisLightShare };
 

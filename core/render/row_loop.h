@@ -1,4 +1,4 @@
-// The row loop, instantiated once per integrator by the strategy table (core/render/strategy_table.cpp):
+// The row loop, instantiated once per integrator by the dispatch over the strategy axes (row_renderer.cpp):
 // per pixel, restart the sample stream, importance-sample the pixel filter, trace the camera ray
 // through the integrator and accumulate.
 #pragma once

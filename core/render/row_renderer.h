@@ -1,7 +1,7 @@
 // One image row of one pass: per pixel, restart the sample stream, importance-sample the pixel
 // filter, trace the camera ray through the integrator and accumulate. The integrator and its
 // strategy are template parameters (core/render/row_loop.h), chosen once per render through the
-// strategy table (no per-sample dispatch).
+// strategy axes (row_renderer.cpp: no per-sample dispatch).
 #pragma once
 
 #include <atomic>

@@ -37,7 +37,7 @@ struct SceneWriteOptions {
 //   camera     toWorld (see SceneWriteOptions::cameraLookAt), fov, width, height; nearClip and farClip
 //              and the <rfilter> only where they differ from what the description gives;
 //   sampler    its canonical type name, sampleCount and seed (its other properties stay);
-//   integrator the strategy's XML type and canonical properties (strategy table): the saved file
+//   integrator the strategy's XML type and canonical properties (strategy axes): the saved file
 //              names the light selection and counts it renders with. Of the description's own
 //              properties only those stay that neither its strategy nor the written one reads.
 // A missing camera, sampler or integrator is added. Nothing is validated beyond what the description
