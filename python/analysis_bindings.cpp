@@ -122,9 +122,19 @@ py::dict converge(const PyScene& s, const py::object& strategies, const py::obje
   const int threadCount = checkedThreads(threads);
   const LoadedScene scene = s.loaded;  // what the GIL-released runs read
   StrategyLists lists{joinNames(strategies, "strategies"), "", "", ""};
-  if (!lightSelection.is_none()) lists.lightSelections = joinNames(lightSelection, "light_selection");
-  if (!lightMeasure.is_none()) lists.lightMeasures = joinNames(lightMeasure, "light_measure");
-  if (!heuristic.is_none()) lists.heuristics = joinNames(heuristic, "heuristic");
+  parsedArgument("strategies", [&] {
+    return parseStrategyLists(scene.settings.integrator, {lists.strategies, "", "", ""});
+  });
+  // Each axis's list alone first, so an error names its own argument.
+  const auto axis = [&](const py::object& names, const char* argument, std::string StrategyLists::*field) {
+    if (names.is_none()) return;
+    StrategyLists one{"all", "", "", ""};
+    one.*field = lists.*field = joinNames(names, argument);
+    parsedArgument(argument, [&] { return parseStrategyLists(scene.settings.integrator, one); });
+  };
+  axis(lightSelection, "light_selection", &StrategyLists::lightSelections);
+  axis(lightMeasure, "light_measure", &StrategyLists::lightMeasures);
+  axis(heuristic, "heuristic", &StrategyLists::heuristics);
   std::vector<IntegratorDesc> list = parsedArgument("strategies", [&] {
     ParsedStrategies parsed = parseStrategyLists(scene.settings.integrator, lists);
     for (const std::string& notice : parsed.notices)

@@ -45,18 +45,17 @@ std::vector<std::string_view> warpNames() {
 // One axis's list: each name's value, or the default when the list is empty.
 template <class Value>
 std::vector<Value> axisList(const std::string& list, Value def,
-                            std::optional<Value> (*lookup)(std::string_view), const char* flag,
+                            std::optional<Value> (*lookup)(std::string_view), const char* axis,
                             const std::string& accepted) {
   if (list.empty()) return {def};
   std::vector<Value> out;
   for (const std::string& name : split(list)) {
     std::optional<Value> v = lookup(name);
     if (!v)
-      throw Error(std::string("converge: unknown ") + flag + " \"" + name +
-                  "\" (expected some of: " + accepted + ")");
+      throw Error(std::string("unknown ") + axis + " \"" + name + "\" (expected some of: " + accepted + ")");
     if (std::find(out.begin(), out.end(), *v) == out.end()) out.push_back(*v);
   }
-  if (out.empty()) throw Error(std::string("converge: ") + flag + " names nothing");
+  if (out.empty()) throw Error(std::string("the ") + axis + " list names nothing");
   return out;
 }
 
@@ -114,13 +113,13 @@ ParsedStrategies parseStrategyLists(const IntegratorDesc& base, const StrategyLi
                 " integrator has no sampling strategies to compare (use direct or ao)");
   const IntegratorDesc defaults;
   const std::vector<LightSelection> selections =
-      axisList(lists.lightSelections, base.lightSelection, lightSelectionNamed, "--light-selection",
+      axisList(lists.lightSelections, base.lightSelection, lightSelectionNamed, "light selection",
                acceptedLightSelections());
   const std::vector<LightMeasure> misMeasures =
       axisList(lists.lightMeasures, base.usesMisAxes() ? base.lightMeasure : defaults.lightMeasure,
-               lightMeasureNamed, "--light-measure", acceptedLightMeasures());
+               lightMeasureNamed, "light measure", acceptedLightMeasures());
   const std::vector<MisHeuristic> heuristics =
-      axisList(lists.heuristics, base.heuristic, heuristicNamed, "--heuristic", acceptedHeuristics());
+      axisList(lists.heuristics, base.heuristic, heuristicNamed, "heuristic", acceptedHeuristics());
 
   const bool ao = base.type == IntegratorType::Ao;
   std::vector<std::string> names = split(lists.strategies);

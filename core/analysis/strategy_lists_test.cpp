@@ -83,7 +83,7 @@ TEST(StrategyLists, UnknownNamesFailWithWhatIsAccepted) {
     FAIL() << "no error";
   } catch (const Error& e) {
     EXPECT_EQ(std::string(e.what()),
-              "converge: unknown --light-selection \"nearest\" (expected some of: all, uniform, power, bvh)");
+              "unknown light selection \"nearest\" (expected some of: all, uniform, power, bvh)");
   }
   EXPECT_THROW(parseStrategyLists(kDirect, {"mis", "", "", "greedy"}), Error);
   EXPECT_THROW(parseStrategyLists(kDirect, {"mis", "", "hemisphere", ""}), Error);

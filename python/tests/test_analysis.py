@@ -36,7 +36,7 @@ def test_converge_crosses_the_axes():
     with pytest.warns(DeprecationWarning, match="--strategies area --light-selection bvh"):
         old = penumbra.converge(scene, strategies="area-bvh", spp=1, reference=ref)
     assert list(old) == ["area-bvh"]
-    with pytest.raises(ValueError, match="light-selection"):
+    with pytest.raises(ValueError, match="light_selection: unknown light selection"):
         penumbra.converge(scene, strategies="area", light_selection="nope", spp=1, reference=ref)
 
 
