@@ -85,12 +85,7 @@ struct LightDirectIntegrator {
       LightSample s;
       float cosTheta;
       if (!unoccludedLightSample(scene, light, lightScaleOf(light), technique, sp, u, s, cosTheta)) continue;
-      // Divided in double: pmfs of many lights are tiny. Projected solid angle keeps its closed-form
-      // cos θ / pdf = Ω⊥ (no variance from the division).
-      if constexpr (kLightMeasure == LightMeasure::ProjectedSolidAngle)
-        E += s.Le * static_cast<float>(double(technique.cosOverPdf(s, cosTheta)) / pick.pmf);
-      else
-        E += s.Le * static_cast<float>(double(cosTheta) / (double(s.pdf) * pick.pmf));
+      E += s.Le * static_cast<float>(technique.cosOverSelectedPdf(s, cosTheta, pick.pmf));
     }
     return E * (1.f / float(samples));
   }

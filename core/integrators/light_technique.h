@@ -1,7 +1,8 @@
 // The light-sampling techniques of `direct`, one per measure, for one sphere light seen from one
 // shading point: how a direction towards the light is sampled, the factor cos θ / pdf its estimate
-// carries, and the solid-angle density with which the technique produces a given direction that
-// reaches the light (MIS weighs directions the other technique sampled with it).
+// carries (cosOverPdf; cosOverSelectedPdf when the light was chosen with probability pmf), and the
+// solid-angle density with which the technique produces a given direction that reaches the light
+// (MIS weighs directions the other technique sampled with it).
 #pragma once
 
 #include <cstdint>
@@ -24,6 +25,10 @@ class LightTechnique<LightMeasure::Area> {
   bool canSample() const { return true; }
   LightSample sample(Vec2 u) const { return light_.sampleArea(x_, u); }
   float cosOverPdf(const LightSample& s, float cosTheta) const { return cosTheta / s.pdf; }
+  // Divided in double: the pmfs of many lights are tiny.
+  double cosOverSelectedPdf(const LightSample& s, float cosTheta, double pmf) const {
+    return double(cosTheta) / (double(s.pdf) * pmf);
+  }
   // The density of reaching the light at p (normal n), the first point a direction from x meets.
   float pdf(const Vec3& /*w*/, const Vec3& p, const Vec3& n) const {
     return light_.pdfAreaAsSolidAngle(x_, p, n);
@@ -42,6 +47,9 @@ class LightTechnique<LightMeasure::SolidAngle> {
   bool canSample() const { return true; }
   LightSample sample(Vec2 u) const { return light_.sampleSolidAngle(x_, u); }
   float cosOverPdf(const LightSample& s, float cosTheta) const { return cosTheta / s.pdf; }
+  double cosOverSelectedPdf(const LightSample& s, float cosTheta, double pmf) const {
+    return double(cosTheta) / (double(s.pdf) * pmf);
+  }
   float pdf(const Vec3& w, const Vec3& /*p*/, const Vec3& /*n*/) const { return light_.pdfSolidAngle(x_, w); }
 
  private:
@@ -61,6 +69,10 @@ class LightTechnique<LightMeasure::ProjectedSolidAngle> {
   bool canSample() const { return valid_; }
   LightSample sample(Vec2 u) const { return cap_.sample(u); }
   float cosOverPdf(const LightSample& /*s*/, float /*cosTheta*/) const { return projectedSolidAngle_; }
+  // The closed form kept: no variance from a division by the sample's pdf.
+  double cosOverSelectedPdf(const LightSample& /*s*/, float /*cosTheta*/, double pmf) const {
+    return double(projectedSolidAngle_) / pmf;
+  }
   float pdf(const Vec3& w, const Vec3& /*p*/, const Vec3& /*n*/) const { return valid_ ? cap_.pdf(w) : 0.f; }
 
  private:

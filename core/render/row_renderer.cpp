@@ -45,6 +45,11 @@ decltype(auto) withHeuristic(MisHeuristic v, F&& f) {
   return withValueOf<kHeuristics, &HeuristicRow::heuristic>(v, std::forward<F>(f));
 }
 
+template <LightMeasure kMeasure, MisHeuristic kHeuristic>
+MisLightShareIntegrator<kMeasure, kHeuristic> lightShareOf(const MisIntegrator<kMeasure, kHeuristic>& mis) {
+  return {mis};
+}
+
 // f(the MIS integrator of d's light measure and heuristic, with d's counts).
 template <class F>
 decltype(auto) withMisIntegrator(const IntegratorDesc& d, F&& f) {
@@ -90,7 +95,7 @@ RowRenderer makeRowRenderer(const RenderJob& job) {
   const IntegratorDesc& d = job.settings.integrator;
   // A light-share job of a strategy without that output renders radiance (callers check offersLightShare).
   if (job.output == RenderOutput::MisLightShare && offersLightShare(d))
-    return withMisIntegrator(d, [&](auto mis) { return rowsFor(job, MisLightShareIntegrator{mis}); });
+    return withMisIntegrator(d, [&](auto mis) { return rowsFor(job, lightShareOf(mis)); });
   return withIntegrator(d, [&](auto integrator) { return rowsFor(job, integrator); });
 }
 
