@@ -65,7 +65,7 @@ const Spellings* spellingsIn(const std::array<Row, N>& table, Spellings Row::*fi
     if ((r.*field).accepts(value)) return &(r.*field);
   return nullptr;
 }
-Spellings valueSpellings(std::string_view property, std::string_view value) {
+const Spellings& valueSpellings(std::string_view property, std::string_view value) {
   const Spellings* found = nullptr;
   if (property == kMeasureProperty.canonical()) {
     for (const EstimatorRow& e : kEstimators)
