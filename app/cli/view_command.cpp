@@ -172,7 +172,8 @@ void addViewCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("--threads", opts->threads, "Worker threads (default: all cores)")
       ->check(CLI::Range(1, 1024));
   cmd->add_option("--compare", opts->compare,
-                  "Start in compare mode: this measure (e.g. solid-angle, mis) or strategy (area-bvh) right of the divider, "
+                  "Start in compare mode: this measure (e.g. solid-angle, mis) or strategy (area-bvh) right "
+                  "of the divider, "
                   "the scene's on the left, each with half of the threads");
   cmd->add_option("--window", opts->window, "Window / offscreen buffer size, e.g. 1280x800");
   cmd->add_option("--view", opts->view,
