@@ -129,7 +129,8 @@ std::string strategyNote(const ViewerController& c, const IntegratorDesc& s) {
   return c.strategyUnavailableReason(s);
 }
 
-// The counts, one row each: MIS's two, or the shading samples; two rows whatever the strategy.
+// The counts, one row each: MIS's two, or the shading samples; two rows and a note's line whatever
+// the strategy.
 void countsBlock(IntegratorDesc& d) {
   const float top = ImGui::GetCursorPosY();
   const auto count = [&](const Spellings& property, int& value) {
@@ -145,7 +146,7 @@ void countsBlock(IntegratorDesc& d) {
     ImGui::AlignTextToFramePadding();
     ImGui::TextDisabled("(no shading samples)");
   }
-  padBlockTo(top, 2.f * frameRowHeight());
+  padBlockTo(top, 2.f * frameRowHeight() + textBlockHeight(" "));  // and a clamped field's note
 }
 
 void compareSection(ViewerController& c) {
