@@ -10,11 +10,12 @@
 namespace penumbra::ui {
 
 namespace fields {
-const NumberField kSampleCount{"sampleCount", 1, double(kMaxSampleCount)};
-const NumberField kSeed{"seed", 0, 9007199254740992.0};  // 2^53: every seed up to it is exact here
-const NumberField kTargetSpp{"target spp", 0, double(1 << 30)};
+const NumberField kSampleCount{"sampleCount", 1, double(kMaxSampleCount), true, "", 0};
+const NumberField kSeed{"seed", 0,  9007199254740992.0,
+                        true,   "", 0};  // 2^53: every seed up to it is exact here
+const NumberField kTargetSpp{"target spp", 0, double(1 << 30), true, "", 0};
 const NumberField kSeconds{"time budget", 0.1, 604800, false, " s", 1};
-const NumberField kShadingSamples{"shading samples", 1, double(kMaxShadingSamples)};
+const NumberField kShadingSamples{"shading samples", 1, double(kMaxShadingSamples), true, "", 0};
 const NumberField kFov{"fov", 1, 179, false, " deg", 1};
 const NumberField kExposure{"exposure", -20, 20, false, " stops", 2};
 const NumberField kZoomStops{"zoom", -4, 4, false, " stops", 2};

@@ -121,7 +121,6 @@ ParsedStrategies parseStrategyLists(const IntegratorDesc& base, const StrategyLi
   const std::vector<MisHeuristic> heuristics =
       axisList(lists.heuristics, base.heuristic, heuristicNamed, "heuristic", acceptedHeuristics());
 
-  const bool ao = base.type == IntegratorType::Ao;
   std::vector<std::string> names = split(lists.strategies);
   if (names.empty() || (names.size() == 1 && names[0] == "all")) {
     names.clear();
