@@ -64,15 +64,17 @@ std::vector<Value> axisList(const std::string& list, Value def,
 bool measureStrategies(const IntegratorDesc& base, const std::string& name,
                        std::vector<IntegratorDesc>& out) {
   IntegratorDesc d = base;
-  if (base.type == IntegratorType::Ao) {
-    const std::string_view word = name.rfind("ao-", 0) == 0 ? std::string_view(name).substr(3) : name;
-    if (std::optional<HemisphereWarp> w = warpNamed(word)) return d.warp = *w, out.push_back(d), true;
-    return false;
+  // ao's warps may carry its short name's prefix ("ao-cosine"); direct takes a warp for the
+  // hemisphere measure with that warp.
+  const bool ao = base.type == IntegratorType::Ao;
+  const std::string_view word = ao && name.rfind("ao-", 0) == 0 ? std::string_view(name).substr(3) : name;
+  if (std::optional<HemisphereWarp> w = warpNamed(word)) {
+    if (!ao) d.estimator = Estimator::Hemisphere;
+    d.warp = *w;
+    out.push_back(d);
+    return true;
   }
-  if (std::optional<HemisphereWarp> w = warpNamed(name)) {
-    d.estimator = Estimator::Hemisphere, d.warp = *w;
-    return out.push_back(d), true;
-  }
+  if (ao) return false;
   if (!applyMeasure(name, d)) return false;
   if (d.estimator == Estimator::Hemisphere)
     for (const WarpRow& w : kWarps) d.warp = w.warp, out.push_back(d);

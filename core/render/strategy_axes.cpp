@@ -36,15 +36,6 @@ std::string_view warpWord(HemisphereWarp warp) {
   return rowOf(warp).spellings.names[1];
 }
 
-IntegratorDesc withAxes(IntegratorDesc desc, Estimator estimator, HemisphereWarp warp, LightMeasure measure,
-                        LightSelection selection) {
-  desc.estimator = estimator;
-  desc.warp = warp;
-  desc.lightMeasure = measure;
-  desc.lightSelection = selection;
-  return desc;
-}
-
 }  // namespace
 
 const IntegratorTypeRow& rowOf(IntegratorType type) {
@@ -185,17 +176,6 @@ std::string strategyShortName(const IntegratorDesc& desc) {
   return "mis-" + std::string(nameOf(desc.lightMeasure)) + "-" + std::string(nameOf(desc.heuristic));
 }
 
-std::string strategyDescription(const IntegratorDesc& desc) {
-  std::string out(rowOf(desc.type).description);
-  const auto add = [&](std::string_view line) { (out += " ") += line; };
-  if (desc.usesEstimator()) add(rowOf(desc.estimator).description);
-  if (desc.usesWarp()) add(rowOf(desc.warp).description);
-  if (desc.usesLightMeasure()) add(rowOf(desc.lightMeasure).description);
-  if (desc.usesLightSelection()) add(rowOf(desc.lightSelection).description);
-  if (desc.usesMisAxes()) add(rowOf(desc.heuristic).description);
-  return out;
-}
-
 bool offersLightShare(const IntegratorDesc& desc) {
   return desc.usesMisAxes();
 }
@@ -217,17 +197,16 @@ IntegratorDesc applicableStrategy(const IntegratorDesc& desc, bool sceneHasAreaL
 }
 
 IntegratorDesc referenceStrategy(const IntegratorDesc& desc) {
-  if (desc.type == IntegratorType::Direct)
-    return withAxes(desc, Estimator::Light, desc.warp, LightMeasure::SolidAngle, LightSelection::All);
-  if (desc.type == IntegratorType::Ao)
-    return withAxes(desc, desc.estimator, HemisphereWarp::Cosine, desc.lightMeasure, desc.lightSelection);
+  if (desc.type == IntegratorType::Direct) return withCountsOf(directByLight(LightMeasure::SolidAngle), desc);
+  if (desc.type == IntegratorType::Ao) return withCountsOf(aoBy(HemisphereWarp::Cosine), desc);
   return desc;
 }
 
 IntegratorDesc baselineStrategy(const IntegratorDesc& desc) {
-  if (desc.type != IntegratorType::Direct && desc.type != IntegratorType::Ao) return desc;
-  return withAxes(desc, Estimator::Hemisphere, HemisphereWarp::Uniform, desc.lightMeasure,
-                  desc.lightSelection);
+  if (desc.type == IntegratorType::Direct)
+    return withCountsOf(directByHemisphere(HemisphereWarp::Uniform), desc);
+  if (desc.type == IntegratorType::Ao) return withCountsOf(aoBy(HemisphereWarp::Uniform), desc);
+  return desc;
 }
 
 bool isBaseline(const IntegratorDesc& desc) {
@@ -237,8 +216,7 @@ bool isBaseline(const IntegratorDesc& desc) {
 std::vector<IntegratorDesc> everyStrategyOfType(const IntegratorDesc& desc) {
   std::vector<IntegratorDesc> out;
   if (desc.type == IntegratorType::Ao) {
-    for (const WarpRow& w : kWarps)
-      out.push_back(withAxes(desc, desc.estimator, w.warp, desc.lightMeasure, desc.lightSelection));
+    for (const WarpRow& w : kWarps) out.push_back(withCountsOf(aoBy(w.warp), desc));
     return out;
   }
   if (desc.type != IntegratorType::Direct) return {desc};

@@ -184,8 +184,6 @@ bool applyMeasure(std::string_view name, IntegratorDesc& desc);
 std::string strategyLabel(const IntegratorDesc& desc);
 // A filesystem- and CSV-friendly name, e.g. "solid-angle-bvh", "mis-area-power", "ao-cosine".
 std::string strategyShortName(const IntegratorDesc& desc);
-// One line of help: the rows of the axes that apply, joined.
-std::string strategyDescription(const IntegratorDesc& desc);
 
 // Whether the strategy can render RenderOutput::MisLightShare (MIS).
 bool offersLightShare(const IntegratorDesc& desc);

@@ -115,11 +115,12 @@ void buildSampler(const SceneNode& node, RenderSettings& s) {
   s.seed = uint64_t(node.props.getInteger({"seed"}, 0));
 }
 
-// A string property of the integrator: its value in `table` (named by `lookup`), the default when absent.
+// A string property of the integrator naming a value of one axis (found by `lookup` in its table);
+// `def` when absent.
 template <class Value>
-Value getAxis(const SceneNode& node, const Spellings& property, Value def, std::string_view defName,
+Value getAxis(const SceneNode& node, const Spellings& property, Value def,
               std::optional<Value> (*lookup)(std::string_view), const std::string& accepted) {
-  const std::string value = node.props.getString(property.list(), std::string(defName));
+  const std::string value = node.props.getString(property.list(), std::string(nameOf(def)));
   if (std::optional<Value> v = lookup(value)) return *v;
   fail(node, property.list(),
        "unknown " + std::string(property.canonical()) + " \"" + value + "\" of <integrator type=\"" +
@@ -149,16 +150,14 @@ void buildIntegrator(const SceneNode& node, size_t sphereLights, RenderSettings&
            "unknown measure \"" + measure + "\" of <integrator type=\"" + node.type +
                "\"> (expected one of: " + acceptedMeasures() + ")");
   }
-  if (d.usesWarp())
-    d.warp = getAxis(node, kWarpProperty, defaults.warp, nameOf(defaults.warp), warpNamed, acceptedWarps());
-  if (d.usesLightSelection() && node.props.find(kLightSelectionProperty.list()))
-    d.lightSelection = getAxis(node, kLightSelectionProperty, d.lightSelection, nameOf(d.lightSelection),
-                               lightSelectionNamed, acceptedLightSelections());
+  if (d.usesWarp()) d.warp = getAxis(node, kWarpProperty, defaults.warp, warpNamed, acceptedWarps());
+  if (d.usesLightSelection())
+    d.lightSelection = getAxis(node, kLightSelectionProperty, d.lightSelection, lightSelectionNamed,
+                               acceptedLightSelections());
   if (d.usesMisAxes()) {
-    d.lightMeasure = getAxis(node, kLightMeasureProperty, defaults.lightMeasure,
-                             nameOf(defaults.lightMeasure), lightMeasureNamed, acceptedLightMeasures());
-    d.heuristic = getAxis(node, kHeuristicProperty, defaults.heuristic, nameOf(defaults.heuristic),
-                          heuristicNamed, acceptedHeuristics());
+    d.lightMeasure = getAxis(node, kLightMeasureProperty, defaults.lightMeasure, lightMeasureNamed,
+                             acceptedLightMeasures());
+    d.heuristic = getAxis(node, kHeuristicProperty, defaults.heuristic, heuristicNamed, acceptedHeuristics());
     d.lightSamples = int(getCount(node, kLightSamplesProperty.list(), 1, kMaxShadingSamples,
                                   kLightSamplesProperty.canonical()));
     d.bsdfSamples = int(
