@@ -272,17 +272,40 @@ TEST(ViewerOffscreen, SectionsBelowTheIntegratorStayPutWhateverTheStrategy) {
 // A small window keeps most of its width for the image, and no panel text is cut off at the
 // column's edge (it wraps), at every size the docs show.
 TEST(ViewerOffscreen, PanelsShrinkWithTheWindowAndNothingIsCutOff) {
-  for (const char* window : {"640x480", "1280x800", "1920x1080"}) {
-    RunResult r = run(std::string(PENUMBRA_OFFSCREEN_BINARY) + " view " + defaultSceneFile() + " " + kSets +
-                      " --frames 3 --no-wait --window " + window + " --print-layout --screenshot " +
-                      tempDir() + "/fit.png");
-    ASSERT_EQ(r.exitCode, 0) << r.out;
-    const Layout l = parseLayout(r.out);
-    const int width = std::atoi(window);
-    EXPECT_LE(l.sidebar, width * 2 / 5) << window << ": the panels take most of the window";
-    EXPECT_GE(l.x, float(l.sidebar)) << window;
-    EXPECT_LE(l.panelOverflow, 0.5f) << window << ": an item passes the column's edge (cut off)";
-  }
+  // The built-in scene (no reference); a scene with a closed-form reference (the convergence plot,
+  // its legend and its buttons); an unreadable reference (a long error message).
+  const std::string analytic = std::string(PENUMBRA_SOURCE_DIR) + "/scenes/analytic/plane-sphere-light.xml";
+  const std::string badReference = tempDir() + "/no-such-directory/a-reference-whose-name-is-long.exr";
+  const std::vector<std::string> cases = {
+      defaultSceneFile() + " " + kSets,
+      analytic + " --set sampler.sampleCount=8",
+      analytic + " --set sampler.sampleCount=8 --reference " + badReference,
+  };
+  for (const std::string& scene : cases)
+    for (const char* window : {"640x480", "1280x800", "1920x1080"}) {
+      RunResult r = run(std::string(PENUMBRA_OFFSCREEN_BINARY) + " view " + scene + " --frames 8 --window " +
+                        window + " --print-layout --screenshot " + tempDir() + "/fit.png");
+      ASSERT_EQ(r.exitCode, 0) << r.out;
+      const Layout l = parseLayout(r.out);
+      const int width = std::atoi(window);
+      EXPECT_LE(l.sidebar, width * 2 / 5) << window << ": the panels take most of the window";
+      EXPECT_GE(l.x, float(l.sidebar)) << window;
+      EXPECT_LE(l.panelOverflow, 0.5f)
+          << window << " " << scene << ": an item passes the column's edge (cut off)";
+    }
+}
+
+// A reference given with --reference that cannot be read is shown in the Convergence panel; the
+// viewer runs on.
+TEST(ViewerOffscreen, AnUnreadableReferenceIsShownAndTheViewerRunsOn) {
+  const std::string analytic = std::string(PENUMBRA_SOURCE_DIR) + "/scenes/analytic/plane-sphere-light.xml";
+  RunResult r = run(std::string(PENUMBRA_OFFSCREEN_BINARY) + " view " + analytic +
+                    " --set sampler.sampleCount=4 --frames 4 --window 640x480 --print-layout --reference " +
+                    tempDir() + "/missing.exr --screenshot " + tempDir() + "/missing-reference.png");
+  EXPECT_EQ(r.exitCode, 0) << r.out;
+  EXPECT_NE(r.out.find("reference-error " + tempDir() + "/missing.exr: cannot open"), std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("wrote "), std::string::npos) << r.out;
 }
 
 // The compare divider is a light line between dark outlines: visible over a white floor.

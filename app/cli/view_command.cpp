@@ -39,6 +39,7 @@ struct ViewOptions {
   std::string compare;
   std::string window;  // WxH
   std::string view;    // colour | mis-light-share
+  std::string reference;
   DisplayServerOption display;
   // Robustness harness (docs/viewer.md, "Robustness"); hidden options.
   std::int64_t monkeySeed = -1;  // >= 0: run the monkey with this seed
@@ -84,6 +85,7 @@ std::vector<std::string> offscreenArgs(const ViewOptions& o) {
   if (!o.window.empty()) args.insert(args.end(), {"--window", o.window});
   if (!o.compare.empty()) args.insert(args.end(), {"--compare", o.compare});
   if (!o.view.empty()) args.insert(args.end(), {"--view", o.view});
+  if (!o.reference.empty()) args.insert(args.end(), {"--reference", o.reference});
   if (!o.display.spec.empty()) args.insert(args.end(), {"--display-server", o.display.spec});
   if (o.monkeySeed >= 0) args.insert(args.end(), {"--monkey", std::to_string(o.monkeySeed)});
   if (!o.monkeyLog.empty()) args.insert(args.end(), {"--monkey-log", o.monkeyLog});
@@ -125,6 +127,7 @@ int runView(ViewOptions o) {
   vo.openWarpInspector = o.openWarpInspector;
   vo.compare = o.compare;
   vo.lightShareView = o.view == "mis-light-share";
+  vo.reference = o.reference;
   vo.screenshot = o.screenshot;
   if (offscreenBuild && vo.screenshot.empty() && !o.bench) vo.screenshot = kFallbackScreenshot;
   vo.frames = o.frames >= 0 ? o.frames : (offscreenBuild ? 3 : 0);
@@ -180,6 +183,9 @@ void addViewCommand(CLI::App& app, int& exitCode) {
                   "Start in this view: colour (default) or mis-light-share (a mis strategy: the light "
                   "technique's share of each pixel, false colour)")
       ->check(CLI::IsMember({"colour", "mis-light-share"}));
+  cmd->add_option("--reference", opts->reference,
+                  "Load this EXR/PFM as the Convergence panel's reference (its size must be the image's); "
+                  "a file that cannot be used is shown there, the viewer runs on");
   opts->display.addTo(*cmd);
   cmd->add_flag("--print-layout", opts->printLayout, "Print where the image is drawn (for tests)")->group("");
   cmd->add_flag("--open-warp-inspector", opts->openWarpInspector,

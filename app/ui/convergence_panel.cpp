@@ -48,7 +48,10 @@ void drawPlot(const ConvergenceTracker& t, bool noLight) {
     float x = X(std::pow(10.0, k));
     dl->AddLine(ImVec2(x, a.y), ImVec2(x, b.y), IM_COL32(70, 70, 75, 255));
     std::snprintf(buf, sizeof buf, "1e%d s", k);
-    dl->AddText(ImVec2(x - 14, b.y + 2), IM_COL32(170, 170, 170, 255), buf);
+    // Centred under its line, but kept within the plot's width (the last label would pass its edge).
+    const float labelX =
+        std::min(x - 0.5f * ImGui::CalcTextSize(buf).x, p0.x + w - ImGui::CalcTextSize(buf).x);
+    dl->AddText(ImVec2(labelX, b.y + 2), IM_COL32(170, 170, 170, 255), buf);
   }
   for (int k = int(ly0); k <= int(ly1); ++k) {
     float y = Y(std::pow(10.0, k));
@@ -91,9 +94,9 @@ void drawPlot(const ConvergenceTracker& t, bool noLight) {
   for (std::size_t ci = 0; ci < curves.size(); ++ci) {
     const ConvergenceCurve& c = curves[ci];
     if (c.seconds.empty()) continue;
-    ImGui::TextColored(ImGui::ColorConvertU32ToFloat4(kCurveColours[ci % 6]), "%s%s: %.3g at %.2f s, %u spp",
-                       c.label.c_str(), ci + 1 == curves.size() ? "*" : "",
-                       noLight ? c.rmseNoLight.back() : c.rmse.back(), c.seconds.back(), c.spp.back());
+    colouredWrappedText(ImGui::ColorConvertU32ToFloat4(kCurveColours[ci % 6]), "%s%s: %.3g at %.2f s, %u spp",
+                        c.label.c_str(), ci + 1 == curves.size() ? "*" : "",
+                        noLight ? c.rmseNoLight.back() : c.rmse.back(), c.seconds.back(), c.spp.back());
   }
 }
 
@@ -112,7 +115,7 @@ void drawConvergencePanel(ViewerController& c, PanelState& st) {
   } else {
     ImGui::TextWrapped("reference: %s", t.reference().source.c_str());
     ImGui::Checkbox("only pixels that see no light", &st.convergenceNoLight);
-    ImGui::SameLine();
+    sameLineIfFits(buttonWidth("Clear curves"));
     if (ImGui::Button("Clear curves")) t.clearCurves();
     drawPlot(t, st.convergenceNoLight);
     hintText("RMSE; *: current; grey: slope -1/2. Switch the strategy to add a curve.");
@@ -121,7 +124,7 @@ void drawConvergencePanel(ViewerController& c, PanelState& st) {
   ImGui::SameLine();
   ImGui::SetNextItemWidth(-1);
   ImGui::InputTextWithHint("##reference", "reference .exr / .pfm", st.referencePath, sizeof st.referencePath);
-  if (!t.error().empty()) ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", t.error().c_str());
+  if (!t.error().empty()) colouredWrappedText(ImVec4(1, 0.4f, 0.4f, 1), "%s", t.error().c_str());
 }
 
 }  // namespace penumbra::ui

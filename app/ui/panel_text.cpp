@@ -6,15 +6,39 @@
 
 namespace penumbra::ui {
 
-void hintText(const char* fmt, ...) {
-  ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+namespace {
+
+void wrappedTextV(const ImVec4& colour, const char* fmt, va_list args) {
+  ImGui::PushStyleColor(ImGuiCol_Text, colour);
   ImGui::PushTextWrapPos(0.f);
-  va_list args;
-  va_start(args, fmt);
   ImGui::TextV(fmt, args);
-  va_end(args);
   ImGui::PopTextWrapPos();
   ImGui::PopStyleColor();
+}
+
+}  // namespace
+
+void hintText(const char* fmt, ...) {
+  va_list args;
+  va_start(args, fmt);
+  wrappedTextV(ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled), fmt, args);
+  va_end(args);
+}
+
+void colouredWrappedText(const ImVec4& colour, const char* fmt, ...) {
+  va_list args;
+  va_start(args, fmt);
+  wrappedTextV(colour, fmt, args);
+  va_end(args);
+}
+
+float buttonWidth(const char* label) {
+  return ImGui::CalcTextSize(label, nullptr, true).x + 2.f * ImGui::GetStyle().FramePadding.x;
+}
+
+void sameLineIfFits(float width) {
+  const float right = ImGui::GetItemRectMax().x + ImGui::GetStyle().ItemSpacing.x + width;
+  if (right <= ImGui::GetWindowPos().x + ImGui::GetWindowContentRegionMax().x) ImGui::SameLine();
 }
 
 float textBlockHeight(const char* text) {

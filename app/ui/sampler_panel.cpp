@@ -38,7 +38,8 @@ void drawSamplerPanel(ViewerController& c, PanelState&) {
   const StopRule rule = c.stopRule();
   if (ImGui::RadioButton("target spp##stop-rule", rule == StopRule::TargetSpp))
     c.setStopRule(StopRule::TargetSpp);
-  ImGui::SameLine();
+  sameLineIfFits(ImGui::GetFrameHeight() + ImGui::GetStyle().ItemInnerSpacing.x +
+                 ImGui::CalcTextSize("time budget##stop-rule", nullptr, true).x);
   if (ImGui::RadioButton("time budget##stop-rule", rule == StopRule::TimeBudget))
     c.setStopRule(StopRule::TimeBudget);
   if (c.stopRule() == StopRule::TargetSpp) {
@@ -53,7 +54,7 @@ void drawSamplerPanel(ViewerController& c, PanelState&) {
   hintText("%s", c.stopText().c_str());
 
   if (ImGui::Button(c.paused() ? "Resume (space)" : "Pause (space)")) c.setPaused(!c.paused());
-  ImGui::SameLine();
+  sameLineIfFits(buttonWidth("Restart (R)"));
   if (ImGui::Button("Restart (R)")) c.restart();  // resumes when paused
 }
 

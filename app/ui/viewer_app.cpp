@@ -21,6 +21,7 @@
 #include "app/ui/key_bindings.h"
 #include "app/ui/number_input.h"
 #include "app/ui/panel_layout.h"
+#include "app/ui/panel_text.h"
 #include "app/ui/panels.h"
 #include "app/ui/readouts.h"
 #include "app/ui/run_queue_wait.h"
@@ -303,6 +304,13 @@ class ViewerApp : public BenchViewer, public DrivenViewer {
   const std::vector<std::pair<std::string, float>>& sectionTops() const { return sectionTops_; }
   float panelOverflow() const { return panelOverflow_; }
   void openWarpInspector() { showWarpInspector_ = true; }
+  const std::string& referenceError() const { return st_.convergence.error(); }
+  // As typed into the Convergence panel's reference field and loaded (a failure shows there).
+  void loadReference(const std::string& path) {
+    std::snprintf(st_.referencePath, sizeof st_.referencePath, "%s", path.c_str());
+    st_.convergence.update(c_);  // keys the tracker to this scene first, which would drop the reference
+    st_.convergence.loadReference(c_, path);
+  }
   const ImageDisplay& display() const { return display_; }
 
   // BenchViewer.
@@ -553,7 +561,7 @@ class ViewerApp : public BenchViewer, public DrivenViewer {
     ImGui::PopItemWidth();
     ImGui::Separator();
     if (ImGui::Button("Help (H)")) st_.showHelp = !st_.showHelp;
-    ImGui::SameLine();
+    sameLineIfFits(buttonWidth("Warp inspector"));
     if (ImGui::Button("Warp inspector")) showWarpInspector_ = !showWarpInspector_;
     // How far the widest item reaches past the column's content region (text cut off at its edge).
     panelOverflow_ = ImGui::GetCurrentWindow()->DC.CursorMaxPos.x -
@@ -636,6 +644,7 @@ int runViewer(LoadedScene scene, ViewerController::Overrides overrides, const Vi
     std::unique_ptr<platform::Platform> p = platform::createPlatform(wo);
     ViewerApp app(*p, controller);
     if (o.openWarpInspector) app.openWarpInspector();
+    if (!o.reference.empty()) app.loadReference(o.reference);
     if (!o.compare.empty()) {
       controller.setCompareIntegrator(controller.parseCompareStrategy(o.compare));
       controller.setCompare(true);  // starts both sides
@@ -662,6 +671,7 @@ int runViewer(LoadedScene scene, ViewerController::Overrides overrides, const Vi
         RenderProgress pr = controller.progress();
         std::printf("spp %u restarts %llu\n", pr.spp, (unsigned long long)controller.restartCount());
         std::printf("tone mapping: %s\n", tonemapperName(app.display().tonemapper()));
+        if (!app.referenceError().empty()) std::printf("reference-error %s\n", app.referenceError().c_str());
       }
       if (!o.screenshot.empty()) {
         writeScreenshot(*p, o.screenshot);

@@ -22,8 +22,9 @@ struct ViewerOptions {
   int threads = 0;
   std::string compare;             // non-empty: start in compare mode with this strategy on the right
   bool openWarpInspector = false;  // start with the warp inspector window open (screenshots)
-  bool printLayout = false;        // print "image-rect X Y W H ZOOM", "sidebar W", "section NAME Y" (tests)
-  bool lightShareView = false;     // start in the "MIS light share" view (a mis strategy, no compare)
+  bool printLayout = false;     // print "image-rect X Y W H ZOOM", "sidebar W", "section NAME Y", ... (tests)
+  bool lightShareView = false;  // start in the "MIS light share" view (a mis strategy, no compare)
+  std::string reference;        // non-empty: load this EXR/PFM as the Convergence panel's reference
   // After every snapshot poll (last = false) and once when the viewer closes (last = true).
   std::function<void(const ViewerController&, bool last)> onSnapshot;
   // Runs the viewer under this driver's input and checks instead of a person's (--monkey, --audit-ids).
