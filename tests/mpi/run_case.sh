@@ -17,8 +17,9 @@
 #   disagreement ranks given different image sizes, scene content (--set, an OBJ file), spp, block,
 #                seed, sampler or integrator: exit 2 naming each rank's first differing setting, nothing
 #                rendered or written; the same scene under another path agrees
-#   argument_error  bad arguments on rank 0 only, rank 1 only, every rank, --help on one rank only:
-#                every rank ends with exit 2, the message printed once
+#   argument_error  bad arguments on rank 0 only, rank 1 only, every rank, --help on one rank only, a
+#                seed beyond 64 bits: every rank ends with exit 2, the message printed once; the largest
+#                64-bit seed renders with that seed
 #   start_failure  an MPMD job whose second program is missing, fails, or exits 0 without starting
 #                MPI; Ctrl-C while a rank has not started: the job ends, the existing output is untouched
 # The fault cases print how long each job took to end ("... in S s").
@@ -354,7 +355,16 @@ argument_error)
   fault_run "bad argument on every rank" -np 2 "$PMPI" render "$SCENE" "${LONG[@]}" --block 3
   expect_refusal "bad argument on every rank" "error (ranks 0-1 of 2): --block must be a power of two, not 3"
   fault_run "--help on rank 1 only" -np 1 "$PMPI" render "$SCENE" "${LONG[@]}" : -np 1 "$PMPI" render --help
-  expect_refusal "--help on rank 1 only" "error (rank 1 of 2): --help given, but not to every rank" ;;
+  expect_refusal "--help on rank 1 only" "error (rank 1 of 2): --help given, but not to every rank"
+  # Seeds: any 64-bit unsigned integer is taken as given, one beyond is refused as the CLI refuses it.
+  fault_run "seed beyond 64 bits" -np 2 "$PMPI" render "$SCENE" "${LONG[@]}" --seed 18446744073709551616
+  expect_refusal "seed beyond 64 bits" \
+    "error (ranks 0-1 of 2): --seed: '18446744073709551616' is out of range (at most 18446744073709551615)"
+  mpi 2 render "$SCENE" "${SMALL[@]}" --spp 4 --threads 1 --seed 18446744073709551615 -o "$T/s.exr" >/dev/null ||
+    fail "--seed 18446744073709551615: mpirun"
+  [ "$(meta "$T/s.exr" seed)" = 18446744073709551615 ] ||
+    fail "--seed 18446744073709551615: metadata say seed=$(meta "$T/s.exr" seed)"
+  echo "--seed 18446744073709551615: rendered with seed=$(meta "$T/s.exr" seed)" ;;
 start_failure)
   old_output
   fault_run "missing program" -np 1 "$PMPI" render "$SCENE" "${LONG[@]}" : -np 1 "$T/no-such-program"
