@@ -112,13 +112,12 @@ py::dict runToDict(const ConvergenceRun& r) {
 py::dict converge(const PyScene& s, const py::object& strategies, const py::object& samplers,
                   const py::object& lightSelection, const py::object& lightMeasure,
                   const py::object& heuristic, std::optional<double> time, std::optional<int64_t> spp,
-                  const py::object& reference, int64_t seed, std::optional<int64_t> threads) {
+                  const py::object& reference, Seed seed, std::optional<int64_t> threads) {
   if (!time && !spp)
     throw py::value_error("time or spp: give one (seconds, or samples per pixel per strategy)");
   if (time) checkedSeconds(*time, "time");
   if (spp) checkedCount(*spp, 1, kMaxConvergeSpp, "spp");
-  const uint64_t seedValue = checkedSeed(seed);
-  if (seedValue == kReferenceSeed) throw py::value_error("seed: must differ from the reference's seed");
+  if (seed.value == kReferenceSeed) throw py::value_error("seed: must differ from the reference's seed");
   const int threadCount = checkedThreads(threads);
   const LoadedScene scene = s.loaded;  // what the GIL-released runs read
   StrategyLists lists{joinNames(strategies, "strategies"), "", "", ""};
@@ -162,7 +161,7 @@ py::dict converge(const PyScene& s, const py::object& strategies, const py::obje
   co.seconds = time.value_or(0.0);
   co.spp = spp ? uint32_t(*spp) : 0u;
   co.threads = threadCount;
-  co.seed = seedValue;
+  co.seed = seed.value;
 
   py::dict out;
   auto runAll = [&](const LoadedScene& withSampler, const char* sampler) {
@@ -246,7 +245,7 @@ void bindAnalysis(py::module_& m) {
         py::arg("samplers") = py::none(), py::arg("light_selection") = py::none(),
         py::arg("light_measure") = py::none(), py::arg("heuristic") = py::none(),
         py::arg("time") = py::none(), py::arg("spp") = py::none(), py::arg("reference") = py::none(),
-        py::arg("seed") = 0, py::arg("threads") = py::none(),
+        py::arg("seed") = Seed{0}, py::arg("threads") = py::none(),
         "Error against time (time=seconds per strategy) or samples (spp=N) from a cold start, as "
         "`penumbra converge` measures it.\n\n"
         "strategies: 'all' or measures (a str 'area,solid-angle,mis' or a list; see axes()) of the "
