@@ -48,6 +48,8 @@ BAD_CALLS = [
     ("set fov inf", lambda: SCENE.set("camera.fov", INF), penumbra.SceneError, "fov"),
     ("set empty key", lambda: SCENE.set("", 1), penumbra.SceneError, "object.property"),
     ("set key without a dot", lambda: SCENE.set("sampler", 1), penumbra.SceneError, "object.property"),
+    ("set seed negative", lambda: SCENE.set("sampler.seed", -1), penumbra.SceneError,
+     "seed must be an integer >= 0, got -1"),
     ("set value list", lambda: SCENE.set("camera.fov", [1]), TypeError, "value"),
     ("set value None", lambda: SCENE.set("camera.fov", None), TypeError, "value"),
     ("load missing file", lambda: penumbra.load_scene("/nonexistent/scene.xml"), penumbra.SceneError,
