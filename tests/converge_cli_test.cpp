@@ -184,7 +184,8 @@ TEST(ConvergeCli, RenderReferenceWritesMeanAndStandardError) {
 }
 
 // A reference with one infinite or NaN value is refused before anything renders (exit 2), naming the
-// count and the first value; nothing is written.
+// count and the first value; nothing is written, and the output directories it would have made (two
+// levels here) are not left behind.
 TEST(ConvergeCli, NonFiniteReferenceIsRefusedBeforeRendering) {
   const fs::path dir =
       fs::temp_directory_path() / ("penumbra-converge-nonfinite-" + std::to_string(::getpid()));
@@ -193,7 +194,7 @@ TEST(ConvergeCli, NonFiniteReferenceIsRefusedBeforeRendering) {
     Image ref(40, 32);
     for (float& v : ref.rgb) v = 0.5f;
     ref.rgb[ref.index(3, 2) + 1] = bad;
-    const std::string path = (dir / "ref.pfm").string(), out = (dir / "report").string();
+    const std::string path = (dir / "ref.pfm").string(), out = (dir / "new" / "report").string();
     writeImage(path, ref);
     test::CommandResult r = penumbraCli("converge '" + analyticScene() +
                                         "' --set camera.width=40 --set camera.height=32 --spp 4 " +
@@ -206,7 +207,7 @@ TEST(ConvergeCli, NonFiniteReferenceIsRefusedBeforeRendering) {
               std::string::npos)
         << r.out;
     EXPECT_EQ(r.out.find("RMSE"), std::string::npos) << r.out;  // no run
-    EXPECT_FALSE(fs::exists(fs::path(out) / "summary.md"));
+    EXPECT_FALSE(fs::exists(dir / "new")) << "an empty output directory was left";
   }
   fs::remove_all(dir);
 }
