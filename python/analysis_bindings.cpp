@@ -13,6 +13,7 @@
 #include "core/math/argument_checks.h"
 #include "core/math/error.h"
 #include "core/render/memory_estimate.h"
+#include "core/render/strategy_axes.h"
 #include "core/sampling/sampler_table.h"
 #include "python/arguments.h"
 #include "python/bindings.h"
@@ -24,8 +25,9 @@ namespace penumbra::python {
 namespace {
 
 // A str of comma-separated names or an iterable of str, as one comma-separated str; ValueError for
-// no names at all (an empty str or list would otherwise mean "the default").
-std::string joinNames(const py::object& names, const char* argument) {
+// no names at all (an empty str or list would otherwise mean "the default"), saying what `argument`
+// expects instead.
+std::string joinNames(const py::object& names, const char* argument, const std::string& expected) {
   std::string out;
   if (py::isinstance<py::str>(names)) {
     out = textArgument(names, argument);
@@ -39,7 +41,7 @@ std::string joinNames(const py::object& names, const char* argument) {
     }
   }
   if (out.find_first_not_of(", ") == std::string::npos)
-    throw py::value_error(std::string(argument) + ": expected 'all' or at least one name, got none");
+    throw py::value_error(std::string(argument) + ": expected " + expected + ", got none");
   return out;
 }
 
@@ -112,29 +114,30 @@ py::dict runToDict(const ConvergenceRun& r) {
 py::dict converge(const PyScene& s, const py::object& strategies, const py::object& samplers,
                   const py::object& lightSelection, const py::object& lightMeasure,
                   const py::object& heuristic, std::optional<double> time, std::optional<int64_t> spp,
-                  const py::object& reference, int64_t seed, std::optional<int64_t> threads) {
+                  const py::object& reference, Seed seed, std::optional<int64_t> threads) {
   if (!time && !spp)
     throw py::value_error("time or spp: give one (seconds, or samples per pixel per strategy)");
   if (time) checkedSeconds(*time, "time");
   if (spp) checkedCount(*spp, 1, kMaxConvergeSpp, "spp");
-  const uint64_t seedValue = checkedSeed(seed);
-  if (seedValue == kReferenceSeed) throw py::value_error("seed: must differ from the reference's seed");
+  if (seed.value == kReferenceSeed) throw py::value_error("seed: must differ from the reference's seed");
   const int threadCount = checkedThreads(threads);
   const LoadedScene scene = s.loaded;  // what the GIL-released runs read
-  StrategyLists lists{joinNames(strategies, "strategies"), "", "", ""};
+  StrategyLists lists{joinNames(strategies, "strategies", "'all' or at least one name"), "", "", ""};
   parsedArgument("strategies", [&] {
     return parseStrategyLists(scene.settings.integrator, {lists.strategies, "", "", ""});
   });
-  // Each axis's list alone first, so an error names its own argument.
-  const auto axis = [&](const py::object& names, const char* argument, std::string StrategyLists::*field) {
+  // Each axis's list alone first, so an error names its own argument. 'all' is no axis's "every
+  // value" (light_selection's all is one selection), so an empty list asks for names.
+  const auto axis = [&](const py::object& names, const char* argument, std::string StrategyLists::*field,
+                        const std::string& accepted) {
     if (names.is_none()) return;
     StrategyLists one{"all", "", "", ""};
-    one.*field = lists.*field = joinNames(names, argument);
+    one.*field = lists.*field = joinNames(names, argument, "at least one of " + accepted);
     parsedArgument(argument, [&] { return parseStrategyLists(scene.settings.integrator, one); });
   };
-  axis(lightSelection, "light_selection", &StrategyLists::lightSelections);
-  axis(lightMeasure, "light_measure", &StrategyLists::lightMeasures);
-  axis(heuristic, "heuristic", &StrategyLists::heuristics);
+  axis(lightSelection, "light_selection", &StrategyLists::lightSelections, acceptedLightSelections(false));
+  axis(lightMeasure, "light_measure", &StrategyLists::lightMeasures, acceptedLightMeasures(false));
+  axis(heuristic, "heuristic", &StrategyLists::heuristics, acceptedHeuristics(false));
   std::vector<IntegratorDesc> list = parsedArgument("strategies", [&] {
     ParsedStrategies parsed = parseStrategyLists(scene.settings.integrator, lists);
     for (const std::string& notice : parsed.notices)
@@ -144,7 +147,8 @@ py::dict converge(const PyScene& s, const py::object& strategies, const py::obje
   std::vector<SamplerKind> kinds;
   if (!samplers.is_none())
     kinds = parsedArgument("samplers", [&] {
-      return parseSamplers(scene.settings.samplerKind, joinNames(samplers, "samplers"));
+      return parseSamplers(scene.settings.samplerKind,
+                           joinNames(samplers, "samplers", "'all' or at least one name"));
     });
   const CameraDesc& camera = scene.settings.camera;
   checkRenderFitsInMemory(camera.width, camera.height, scene.path.empty() ? "converge" : scene.path);
@@ -162,7 +166,7 @@ py::dict converge(const PyScene& s, const py::object& strategies, const py::obje
   co.seconds = time.value_or(0.0);
   co.spp = spp ? uint32_t(*spp) : 0u;
   co.threads = threadCount;
-  co.seed = seedValue;
+  co.seed = seed.value;
 
   py::dict out;
   auto runAll = [&](const LoadedScene& withSampler, const char* sampler) {
@@ -246,7 +250,7 @@ void bindAnalysis(py::module_& m) {
         py::arg("samplers") = py::none(), py::arg("light_selection") = py::none(),
         py::arg("light_measure") = py::none(), py::arg("heuristic") = py::none(),
         py::arg("time") = py::none(), py::arg("spp") = py::none(), py::arg("reference") = py::none(),
-        py::arg("seed") = 0, py::arg("threads") = py::none(),
+        py::arg("seed") = Seed{0}, py::arg("threads") = py::none(),
         "Error against time (time=seconds per strategy) or samples (spp=N) from a cold start, as "
         "`penumbra converge` measures it.\n\n"
         "strategies: 'all' or measures (a str 'area,solid-angle,mis' or a list; see axes()) of the "

@@ -31,8 +31,13 @@ int64_t checkedCount(int64_t value, int64_t lo, int64_t hi, const char* argument
   return value;
 }
 
-uint64_t checkedSeed(int64_t seed) {
-  if (seed < 0) throw py::value_error("seed: expected an integer >= 0, got " + std::to_string(seed));
+uint64_t checkedSeed(py::handle integer) {
+  const unsigned long long seed = PyLong_AsUnsignedLongLong(integer.ptr());
+  if (seed == static_cast<unsigned long long>(-1) && PyErr_Occurred()) {
+    PyErr_Clear();  // negative or beyond 64 bits
+    throw py::value_error("seed: expected an integer in [0, " + std::to_string(UINT64_MAX) + "], got " +
+                          std::string(py::str(integer)));
+  }
   return uint64_t(seed);
 }
 

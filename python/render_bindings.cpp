@@ -38,11 +38,10 @@ void drawBar(uint32_t spp, double seconds, uint32_t target, double limitSeconds)
   std::fflush(stderr);
 }
 
-RenderResult render(const PyScene& s, std::optional<int64_t> spp, std::optional<double> time, int64_t seed,
+RenderResult render(const PyScene& s, std::optional<int64_t> spp, std::optional<double> time, Seed seed,
                     std::optional<int64_t> threads, const py::object& progress) {
   if (spp) checkedCount(*spp, 1, kMaxRenderSpp, "spp");
   if (time) checkedSeconds(*time, "time");
-  const uint64_t seedValue = checkedSeed(seed);
   const int threadCount = checkedThreads(threads);
   bool bar = py::isinstance<py::bool_>(progress) && progress.cast<bool>();
   bool callback = !bar && !progress.is_none() && !py::isinstance<py::bool_>(progress);
@@ -53,7 +52,7 @@ RenderResult render(const PyScene& s, std::optional<int64_t> spp, std::optional<
   const CameraDesc& camera = s.loaded.settings.camera;
   checkRenderFitsInMemory(camera.width, camera.height, scenePath.empty() ? "render" : scenePath);
   RenderSettings settings = s.loaded.settings;
-  settings.seed = seedValue;
+  settings.seed = seed.value;
   RenderLimits limits;
   limits.seconds = time.value_or(0.0);
   limits.targetSpp = spp ? uint32_t(*spp) : (time ? 0u : settings.sampleCount);
@@ -163,8 +162,8 @@ void bindRender(py::module_& m) {
       });
 
   auto scene = py::reinterpret_borrow<py::class_<PyScene>>(m.attr("Scene"));
-  scene.def("render", &render, py::arg("spp") = py::none(), py::arg("time") = py::none(), py::arg("seed") = 0,
-            py::arg("threads") = py::none(), py::arg("progress") = py::none(),
+  scene.def("render", &render, py::arg("spp") = py::none(), py::arg("time") = py::none(),
+            py::arg("seed") = Seed{0}, py::arg("threads") = py::none(), py::arg("progress") = py::none(),
             "Render progressively and return a RenderResult.\n\n"
             "spp: samples per pixel (default: the scene's sampleCount unless time is given); time: seconds "
             "(whole passes); both: whichever comes first. The stratified and zsobol samplers take spp as "

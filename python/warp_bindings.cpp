@@ -186,17 +186,16 @@ struct Chi2Report {
   py::array_t<double> observed, expected;
 };
 
-Chi2Report chi2(const std::string& name, int64_t samples, int64_t seed, int64_t res,
-                std::optional<double> param, int64_t testCount) {
+Chi2Report chi2(const std::string& name, int64_t samples, Seed seed, int64_t res, std::optional<double> param,
+                int64_t testCount) {
   WarpChoice w = choose(name, param);
   checkedCount(samples, kMinChi2Samples, kMaxChi2Samples, "samples");
   checkedCount(res, kMinChi2Resolution, kMaxChi2Resolution, "res");
-  const uint64_t seedValue = checkedSeed(seed);
   checkedCount(testCount, 1, std::numeric_limits<int>::max(), "test_count");
   Chi2Options opt;
   opt.sampleCount = uint64_t(samples);
   opt.resolution = int(res);
-  opt.seed = seedValue;
+  opt.seed = seed.value;
   opt.testCount = int(testCount);
   Chi2Result r = runInterruptibly([&](CancelFlag cancel) {
     Chi2Options o = opt;
@@ -222,7 +221,7 @@ Chi2Report chi2(const std::string& name, int64_t samples, int64_t seed, int64_t 
 }
 
 py::array_t<float> samplePoints(const std::string& samplerName, int64_t n, std::pair<int64_t, int64_t> pixel,
-                                std::pair<int64_t, int64_t> dims, int64_t seed,
+                                std::pair<int64_t, int64_t> dims, Seed seed,
                                 std::optional<int64_t> sampleCount) {
   checkNoNul(samplerName, "sampler");
   SamplerKind kind;
@@ -237,11 +236,10 @@ py::array_t<float> samplePoints(const std::string& samplerName, int64_t n, std::
   if (pixel.first < 0 || pixel.second < 0 || pixel.first > std::numeric_limits<int>::max() ||
       pixel.second > std::numeric_limits<int>::max())
     throw py::value_error("pixel: expected (x, y) with 0 <= x, y <= 2^31 - 1");
-  const uint64_t seedValue = checkedSeed(seed);
   const int64_t count = checkedCount(sampleCount.value_or(n), 1, int64_t(1) << 30, "sample_count");
   py::array_t<float> out = outputArray(py::none(), {py::ssize_t(n), py::ssize_t(2)}, "sample_points");
   float* dst = out.mutable_data();
-  Sampler sampler(kind, uint32_t(count), seedValue);
+  Sampler sampler(kind, uint32_t(count), seed.value);
   const int skip = int(dims.first / 2);
   const IVec2 p(int(pixel.first), int(pixel.second));
   forEachChunk(n, std::max<int64_t>(1, kPointsPerChunk / (skip + 1)), [&](int64_t begin, int64_t end) {
@@ -257,12 +255,11 @@ py::array_t<float> samplePoints(const std::string& samplerName, int64_t n, std::
 }
 
 // The uniform stream `penumbra warp --dump` and the chi-square test draw: PCG32(mix64(seed), seed).
-py::array_t<float> randomPoints(int64_t n, int64_t seed, const py::object& out) {
+py::array_t<float> randomPoints(int64_t n, Seed seed, const py::object& out) {
   checkedCount(n, 0, int64_t(1) << 40, "n");
-  const uint64_t seedValue = checkedSeed(seed);
   py::array_t<float> result = outputArray(out, {py::ssize_t(n), py::ssize_t(2)}, "random_points");
   float* dst = result.mutable_data();
-  Rng rng(mix64(seedValue), seedValue);
+  Rng rng(mix64(seed.value), seed.value);
   forEachChunk(n, kPointsPerChunk, [&](int64_t begin, int64_t end) {
     for (int64_t i = 2 * begin; i < 2 * end; ++i) dst[i] = rng.nextFloat();
   });
@@ -280,7 +277,7 @@ void bindWarp(py::module_& m) {
         return names;
       },
       "The warp names warp(), pdf() and chi2_test() accept.");
-  m.def("random_points", &randomPoints, py::arg("n"), py::arg("seed") = 1, py::arg("out") = py::none(),
+  m.def("random_points", &randomPoints, py::arg("n"), py::arg("seed") = Seed{1}, py::arg("out") = py::none(),
         "n uniform points in [0, 1)^2, float32 (n, 2): the PCG32 stream `penumbra warp --dump N --seed "
         "SEED` and chi2_test() draw, so warp(name, random_points(n, seed)) equals the CLI's dump. out: "
         "as for warp().");
@@ -322,7 +319,7 @@ void bindWarp(py::module_& m) {
         return "<penumbra.Chi2Result " + r.warp + " chi2 " + std::to_string(r.chi2) + " dof " +
                std::to_string(r.dof) + " p " + std::to_string(r.pValue) + " " + r.verdict + ">";
       });
-  m.def("chi2_test", &chi2, py::arg("name"), py::arg("samples") = 1'000'000, py::arg("seed") = 1,
+  m.def("chi2_test", &chi2, py::arg("name"), py::arg("samples") = 1'000'000, py::arg("seed") = Seed{1},
         py::arg("res") = 51, py::arg("param") = py::none(), py::arg("test_count") = 1,
         "Pearson chi-square test of warp `name` against its pdf, exactly as `penumbra warp NAME "
         "--samples --seed --res` runs it (PCG32 samples, adaptive quadrature, low-expectation cells "
@@ -332,7 +329,7 @@ void bindWarp(py::module_& m) {
 
   m.def("sample_points", &samplePoints, py::arg("sampler"), py::arg("n"),
         py::arg("pixel") = std::pair<int64_t, int64_t>(0, 0),
-        py::arg("dims") = std::pair<int64_t, int64_t>(0, 1), py::arg("seed") = 0,
+        py::arg("dims") = std::pair<int64_t, int64_t>(0, 1), py::arg("seed") = Seed{0},
         py::arg("sample_count") = py::none(),
         "The 2-D points a render sampler (see samplers()) gives one pixel over sample indices 0..n-1: "
         "dims (2k, 2k+1) is its k-th 2-D draw (k = 0: the pixel filter's). sample_count: the scene's "

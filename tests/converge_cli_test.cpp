@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <map>
 #include <set>
 #include <sstream>
 #include <string>
@@ -184,7 +185,8 @@ TEST(ConvergeCli, RenderReferenceWritesMeanAndStandardError) {
 }
 
 // A reference with one infinite or NaN value is refused before anything renders (exit 2), naming the
-// count and the first value; nothing is written.
+// count and the first value; nothing is written, and the output directories it would have made (two
+// levels here) are not left behind.
 TEST(ConvergeCli, NonFiniteReferenceIsRefusedBeforeRendering) {
   const fs::path dir =
       fs::temp_directory_path() / ("penumbra-converge-nonfinite-" + std::to_string(::getpid()));
@@ -193,7 +195,7 @@ TEST(ConvergeCli, NonFiniteReferenceIsRefusedBeforeRendering) {
     Image ref(40, 32);
     for (float& v : ref.rgb) v = 0.5f;
     ref.rgb[ref.index(3, 2) + 1] = bad;
-    const std::string path = (dir / "ref.pfm").string(), out = (dir / "report").string();
+    const std::string path = (dir / "ref.pfm").string(), out = (dir / "new" / "report").string();
     writeImage(path, ref);
     test::CommandResult r = penumbraCli("converge '" + analyticScene() +
                                         "' --set camera.width=40 --set camera.height=32 --spp 4 " +
@@ -206,7 +208,7 @@ TEST(ConvergeCli, NonFiniteReferenceIsRefusedBeforeRendering) {
               std::string::npos)
         << r.out;
     EXPECT_EQ(r.out.find("RMSE"), std::string::npos) << r.out;  // no run
-    EXPECT_FALSE(fs::exists(fs::path(out) / "summary.md"));
+    EXPECT_FALSE(fs::exists(dir / "new")) << "an empty output directory was left";
   }
   fs::remove_all(dir);
 }
@@ -265,6 +267,49 @@ TEST(ConvergeCli, ReportLeavesNoTemporaries) {
   for (const char* f : {"convergence.csv", "convergence.png", "equal-time.png", "summary.md"})
     EXPECT_TRUE(fs::exists(dir / f)) << f;
   fs::remove_all(dir);
+}
+
+// Every file in `dir` by name, with its bytes.
+std::map<std::string, std::string> filesIn(const fs::path& dir) {
+  std::map<std::string, std::string> files;
+  for (const auto& e : fs::directory_iterator(dir)) {
+    std::ifstream in(e.path(), std::ios::binary);
+    files[e.path().filename().string()] =
+        std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  }
+  return files;
+}
+
+// Ctrl-C (SIGINT) while a strategy runs: converge writes its report only after the last run, so a
+// previous report in the output directory stays byte-identical and no temporary is left.
+TEST(ConvergeCli, InterruptedRunLeavesThePreviousReportAsItWas) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("penumbra-converge-interrupt-" + std::to_string(::getpid()));
+  const std::string log = dir.string() + ".log";
+  fs::remove_all(dir);
+  const std::string run = "converge '" + analyticScene() +
+                          "' --set camera.width=24 --set camera.height=16 --strategies area -o '" +
+                          dir.string() + "'";
+  test::CommandResult first = penumbraCli(run + " --spp 2");
+  ASSERT_EQ(first.exitCode, 0) << first.out;
+  const std::map<std::string, std::string> before = filesIn(dir);
+  ASSERT_EQ(before.size(), 4u);
+  // A 60 s run, interrupted half a second after its reference line (the run has begun). A background
+  // job of a shell without job control starts with SIGINT ignored; env restores the terminal's default.
+  const test::CommandResult r =
+      test::runCommand("env --default-signal=INT '" PENUMBRA_BINARY "' " + run + " --time 60 >'" + log +
+                       "' 2>&1 & pid=$!; for i in $(seq 600); do grep -q '^reference: ' '" + log +
+                       "' && break; sleep 0.1; done; sleep 0.5; kill -INT $pid; "
+                       "( sleep 60; kill -KILL $pid ) >/dev/null 2>&1 & guard=$!; wait $pid; rc=$?; "
+                       "kill $guard 2>/dev/null; cat '" +
+                       log + "'; echo rc=$rc");
+  EXPECT_NE(r.out.find("reference: closed form"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("rc=130"), std::string::npos) << r.out;  // ended by the signal
+  EXPECT_EQ(r.out.find("wrote "), std::string::npos) << r.out;
+  EXPECT_TRUE(filesIn(dir) == before) << "the previous report changed";
+  EXPECT_EQ(temporariesIn(dir), std::vector<std::string>());
+  fs::remove_all(dir);
+  fs::remove(log);
 }
 
 }  // namespace

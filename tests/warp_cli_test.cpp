@@ -42,6 +42,18 @@ TEST(WarpCli, RejectsMismatchedPairs) {
   EXPECT_EQ(penumbra("warp uniform-sphere --pdf-scale 2 --samples 200000").exitCode, 1);
 }
 
+// Too few samples for the grid (every cell pooled into one): nothing to test, so the verdict is
+// inconclusive, not REJECT, and the exit code 1 of any test that does not accept.
+TEST(WarpCli, TooFewSamplesAreInconclusiveWithExitCodeOne) {
+  CliRun r = penumbra("warp cosine-hemisphere --samples 100");
+  EXPECT_EQ(r.exitCode, 1) << r.out;
+  EXPECT_NE(r.out.find("verdict   inconclusive"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("REJECT"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("dof       0"), std::string::npos) << r.out;
+  CliRun help = penumbra("warp --help");
+  EXPECT_NE(help.out.find("1 REJECT, or inconclusive"), std::string::npos) << help.out;
+}
+
 TEST(WarpCli, BadArgumentsExitWithTwo) {
   CliRun r = penumbra("warp no-such-warp");
   EXPECT_EQ(r.exitCode, 2) << r.out;

@@ -2,6 +2,8 @@
 // samplers named by --samplers.
 #include <cstdio>
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include "app/cli/commands.h"
 #include "app/cli/convergence_report.h"
@@ -38,6 +40,31 @@ void logLine(const std::string& s) {
   std::fprintf(stderr, "%s\n", s.c_str());
 }
 
+// The directories of `dir` that do not exist yet (deepest first), which prepareOutputDirectory will
+// make; removed again, while still empty, unless kept: a converge that fails before its report leaves
+// no empty output directory behind.
+class NewDirectories {
+ public:
+  explicit NewDirectories(const std::string& dir) {
+    std::error_code ec;
+    std::filesystem::path p = std::filesystem::path(dir).lexically_normal();
+    if (p.filename().empty()) p = p.parent_path();  // "out/"
+    for (; !p.empty() && !std::filesystem::exists(p, ec); p = p.parent_path()) missing_.push_back(p);
+  }
+  ~NewDirectories() {
+    std::error_code ec;
+    if (!kept_)
+      for (const std::filesystem::path& p : missing_) std::filesystem::remove(p, ec);  // only if empty
+  }
+  NewDirectories(const NewDirectories&) = delete;
+  NewDirectories& operator=(const NewDirectories&) = delete;
+  void keep() { kept_ = true; }
+
+ private:
+  std::vector<std::filesystem::path> missing_;
+  bool kept_ = false;
+};
+
 // Creates `dir` if missing and checks that each of `files` can be written in it (checkOutputPath).
 void prepareOutputDirectory(const std::string& dir, const std::vector<std::string>& files) {
   std::error_code ec;
@@ -60,6 +87,7 @@ int runConverge(const ConvergeOptions& o) {
   // The report's files can be written (the directory is made if missing): found now, not after the runs.
   const std::vector<std::string> reportFiles = {"convergence.csv", "convergence.png", "equal-time.png",
                                                 "summary.md"};
+  NewDirectories made(o.outDir);
   prepareOutputDirectory(o.outDir, reportFiles);
   std::unique_ptr<net::TevStreamer> tev = openStream(displayServer);  // each strategy's final image
   ReferenceRequest rq;
@@ -100,6 +128,7 @@ int runConverge(const ConvergeOptions& o) {
   info.height = ref.mean.height;
   info.pixels = ref.mean.pixelCount();
   info.noLightPixels = runs.empty() ? 0 : runs.front().points.back().error.noLight.pixels;
+  made.keep();
   std::string dir = o.outDir + "/";
   writeConvergenceCsv(dir + "convergence.csv", runs);
   plotConvergence(dir + "convergence.png", runs, info);

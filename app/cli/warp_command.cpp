@@ -196,6 +196,9 @@ void addWarpCommand(CLI::App& app, int& exitCode, WarpGuiRunner gui) {
   auto args = std::make_shared<WarpArgs>();
   CLI::App* cmd = app.add_subcommand(
       "warp", "Chi-square test a sample warp against its pdf; dump samples; evaluate pdfs");
+  cmd->footer(
+      "Exit code of a test: 0 accept; 1 REJECT, or inconclusive (too few samples for the grid: pooling "
+      "leaves fewer than two cells); 2 bad arguments.");
   cmd->add_option("type", args->type, "Warp: " + warpTypeList());
   cmd->add_option("--param", args->param,
                   "uniform-cone: cos(theta_max) in [-1, 1) (default 0.5); beckmann: alpha > 0 (default 0.2)");

@@ -58,11 +58,11 @@ Loaded prepare(const Options& o, int rank) {
   Loaded l;
   l.scene = o.scene.load();
   RenderSettings settings = l.scene.settings;
-  if (o.seed >= 0) settings.seed = uint64_t(o.seed);
+  if (o.seed) settings.seed = *o.seed;
   l.output = o.output;
   if (o.reference) {
     settings.integrator = referenceEstimator(settings.integrator);
-    if (o.seed < 0) settings.seed = kReferenceSeed;
+    if (!o.seed) settings.seed = kReferenceSeed;
     if (l.output.empty()) l.output = referenceCachePath(l.scene);
   }
   if (l.output.empty()) throw Error("render: -o/--output is required (optional only with --reference)");
@@ -351,8 +351,7 @@ CLI::App* addDistributedRenderCommand(CLI::App& app, Options& options) {
       ->check(CLI::Range(1u, 1u << 30));
   cmd->add_option("--time", opts->seconds, "Render for this many seconds (whole blocks on every rank)")
       ->check(cli::finitePositiveNumber());
-  cmd->add_option("--seed", opts->seed, "Random seed (default: the scene's, else 0)")
-      ->check(CLI::NonNegativeNumber);
+  cli::addSeedOption(*cmd, opts->seed, "Random seed (default: the scene's, else 0)");
   cmd->add_option("--threads", opts->threads,
                   "Worker threads per rank (default: the cores over the ranks on a node)")
       ->check(CLI::Range(1, 1024));

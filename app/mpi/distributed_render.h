@@ -7,6 +7,9 @@
 
 #include <CLI/CLI.hpp>
 
+#include <cstdint>
+#include <optional>
+
 #include "app/cli/scene_options.h"
 #include "app/mpi/mpi_session.h"
 
@@ -23,7 +26,7 @@ struct DistributedRenderOptions {
   std::string output;
   uint32_t spp = 0;
   double seconds = 0;
-  int64_t seed = -1;
+  std::optional<uint64_t> seed;  // default: the scene's (or the reference seed)
   int threads = 0;
   uint32_t block = 16;
   bool reference = false;

@@ -154,6 +154,21 @@ void TevStreamer::fail(const std::string& why, bool continuing) {
 }
 
 void TevStreamer::run() {
+  std::string what;
+  try {
+    stream();
+    return;
+  } catch (const std::exception& e) {
+    what = e.what();
+  } catch (...) {
+    what = "an unknown exception";
+  }
+  std::lock_guard lk(mutex_);
+  busy_ = false;
+  if (!failed_) fail("cannot send (" + what + ")", true);
+}
+
+void TevStreamer::stream() {
   std::string why;
   const bool connected = connection_.connect(server_, options_.connectSeconds, why);
   std::unique_lock lk(mutex_);

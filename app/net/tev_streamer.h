@@ -89,7 +89,10 @@ class TevStreamer {
  private:
   using Clock = std::chrono::steady_clock;
 
+  // The sending thread: stream(), and any exception it throws (an allocation failing while a frame
+  // is encoded, say) ends the stream with its one warning, as a socket fault does.
   void run();
+  void stream();
   // Sends one frame; creates the image in tev first when its name, size or layers changed.
   bool transmit(const TevFrame& frame);
   void fail(const std::string& why, bool continuing);

@@ -74,6 +74,32 @@ TEST(TevStreamer, RefusedConnectionIsOneWarning) {
       << warnings[0];
 }
 
+// An exception on the sending thread ends the stream like a socket fault: one warning naming it, the
+// waiting caller released, later frames dropped. Here the encoder throws on a frame whose standard
+// error is smaller than its mean (its first tile lies outside the error layer).
+TEST(TevStreamer, AnExceptionWhileSendingEndsTheStreamWithOneWarning) {
+  FakeTev tev;
+  std::vector<std::string> warnings;
+  {
+    TevStreamOptions o;
+    o.warn = [&](const std::string& w) { warnings.push_back(w); };
+    TevStreamer s(serverAt(tev.port()), o);
+    s.send({"a", Image(4, 4), Image()});
+    EXPECT_FALSE(s.failed());
+    s.send({"a", Image(200, 3), Image(100, 3)});
+    EXPECT_TRUE(s.failed());
+    s.send({"a", Image(4, 4), Image()});
+    s.finish(TevFrame{"a", Image(4, 4), Image()});
+    EXPECT_EQ(s.updatesSent(), 1u);
+  }
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("warning: display server 127.0.0.1:" + std::to_string(tev.port()) +
+                             ": cannot send (tev update: tile outside the 100x3 image of layer 'stderr.'); "
+                             "continuing without it"),
+            std::string::npos)
+      << warnings[0];
+}
+
 using Clock = std::chrono::steady_clock;
 
 double secondsSince(Clock::time_point t) {

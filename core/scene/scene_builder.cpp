@@ -112,7 +112,9 @@ void buildCamera(const SceneNode& node, RenderSettings& s) {
 void buildSampler(const SceneNode& node, RenderSettings& s) {
   if (!parseSamplerKind(node.type, s.samplerKind)) unknownType(node, acceptedSamplerNames().c_str());
   s.sampleCount = uint32_t(getCount(node, {"sampleCount"}, 1, kMaxSampleCount, "sampleCount"));
-  s.seed = uint64_t(node.props.getInteger({"seed"}, 0));
+  const int64_t seed = node.props.getInteger({"seed"}, 0);
+  if (seed < 0) fail(node, {"seed"}, "seed must be an integer >= 0, got " + std::to_string(seed));
+  s.seed = uint64_t(seed);
 }
 
 // A string property of the integrator naming a value of one axis (found by `lookup` in its table);

@@ -183,6 +183,12 @@ TEST(SceneBuilder, BadCountsAreRejectedWithTheirLine) {
               "shadingSamples");
 }
 
+// A negative seed is refused, not wrapped into a 64-bit one.
+TEST(SceneBuilder, NegativeSeedIsRejectedWithItsLine) {
+  expectError("<sampler type=\"independent\">\n<integer name=\"seed\" value=\"-1\"/></sampler>", 3,
+              "seed must be an integer >= 0, got -1");
+}
+
 TEST(SceneBuilder, BadValuesAreRejectedWithTheirLine) {
   expectError("<shape type=\"sphere\">\n<float name=\"radius\" value=\"-1\"/></shape>", 3, "radius");
   expectError("<shape type=\"sphere\">\n<float name=\"radius\" value=\"nan\"/></shape>", 3, "");

@@ -76,6 +76,24 @@ def test_converge_refuses_empty_strategy_and_sampler_lists():
             penumbra.converge(scene, strategies="area", samplers=empty, spp=1, reference=ref)
     with pytest.raises(TypeError, match="strategies"):
         penumbra.converge(scene, strategies=["area", 3], spp=1, reference=ref)
+
+
+def test_converge_refuses_empty_axis_lists_naming_the_axis_values():
+    # 'all' is no axis's "every value", so the message offers the names only.
+    scene, ref = _small_sphere_scene()
+    expected = {"light_selection": "all, uniform, power, bvh", "light_measure": "area, solid-angle",
+                "heuristic": "power, balance"}
+    for argument in expected:
+        for empty in ([], "", ","):
+            with pytest.raises(ValueError) as info:
+                penumbra.converge(scene, strategies="mis", spp=1, reference=ref, **{argument: empty})
+            message = str(info.value)
+            assert message.startswith(f"{argument}: expected at least one of "), message
+            assert message.endswith(", got none") and "'all' or" not in message, message
+            assert expected[argument] in message, message
+    for argument in ("light_measure", "heuristic"):  # and 'all' is refused there, naming the values
+        with pytest.raises(ValueError, match=f"{argument}: unknown"):
+            penumbra.converge(scene, strategies="mis", spp=1, reference=ref, **{argument: "all"})
     with pytest.raises(ValueError, match="strategies: unknown strategy"):
         penumbra.converge(scene, strategies="nope", spp=1, reference=ref)
 

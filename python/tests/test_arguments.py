@@ -27,7 +27,9 @@ BAD_CALLS = [
     ("render time str", lambda: SCENE.render(time="1"), TypeError, ""),
     ("render time huge int", lambda: SCENE.render(time=10**400), TypeError, ""),
     ("render seed negative", lambda: SCENE.render(seed=-1), ValueError, "seed"),
-    ("render seed beyond int64", lambda: SCENE.render(seed=2**64), TypeError, ""),
+    ("render seed beyond uint64", lambda: SCENE.render(seed=2**64), ValueError,
+     "seed: expected an integer in [0, 18446744073709551615], got 18446744073709551616"),
+    ("render seed float", lambda: SCENE.render(seed=1.0), TypeError, ""),
     ("render threads 0", lambda: SCENE.render(threads=0), ValueError, "threads"),
     ("render threads 1025", lambda: SCENE.render(threads=1025), ValueError, "threads"),
     ("render threads huge", lambda: SCENE.render(threads=2**40), ValueError, "threads"),
@@ -46,6 +48,8 @@ BAD_CALLS = [
     ("set fov inf", lambda: SCENE.set("camera.fov", INF), penumbra.SceneError, "fov"),
     ("set empty key", lambda: SCENE.set("", 1), penumbra.SceneError, "object.property"),
     ("set key without a dot", lambda: SCENE.set("sampler", 1), penumbra.SceneError, "object.property"),
+    ("set seed negative", lambda: SCENE.set("sampler.seed", -1), penumbra.SceneError,
+     "seed must be an integer >= 0, got -1"),
     ("set value list", lambda: SCENE.set("camera.fov", [1]), TypeError, "value"),
     ("set value None", lambda: SCENE.set("camera.fov", None), TypeError, "value"),
     ("load missing file", lambda: penumbra.load_scene("/nonexistent/scene.xml"), penumbra.SceneError,
@@ -78,6 +82,7 @@ BAD_CALLS = [
     ("chi2 res 1", lambda: penumbra.chi2_test("tent", res=1), ValueError, "res"),
     ("chi2 res 1001", lambda: penumbra.chi2_test("tent", res=1001), ValueError, "res"),
     ("chi2 seed negative", lambda: penumbra.chi2_test("tent", seed=-1), ValueError, "seed"),
+    ("chi2 seed beyond uint64", lambda: penumbra.chi2_test("tent", seed=2**64), ValueError, "seed"),
     ("chi2 test_count 0", lambda: penumbra.chi2_test("tent", test_count=0), ValueError, "test_count"),
     ("chi2 test_count huge", lambda: penumbra.chi2_test("tent", test_count=2**40), ValueError, "test_count"),
     ("chi2 param nan", lambda: penumbra.chi2_test("beckmann", param=NAN), ValueError, "param"),
@@ -95,12 +100,18 @@ BAD_CALLS = [
     ("sample_points empty sampler", lambda: penumbra.sample_points("", 4), ValueError, "sampler"),
     ("random_points n negative", lambda: penumbra.random_points(-1), ValueError, "n"),
     ("random_points seed negative", lambda: penumbra.random_points(4, seed=-1), ValueError, "seed"),
+    ("random_points seed beyond uint64", lambda: penumbra.random_points(4, seed=2**64), ValueError, "seed"),
+    ("sample_points seed negative", lambda: penumbra.sample_points("independent", 4, seed=-1), ValueError, "seed"),
+    ("sample_points seed beyond uint64", lambda: penumbra.sample_points("independent", 4, seed=2**64), ValueError,
+     "seed"),
     ("random_points out float64", lambda: penumbra.random_points(4, out=np.zeros((4, 2))), TypeError, "out"),
     ("converge spp 0", lambda: penumbra.converge(SCENE, spp=0, reference=REF), ValueError, "spp"),
     ("converge spp huge", lambda: penumbra.converge(SCENE, spp=2**24 + 1, reference=REF), ValueError, "spp"),
     ("converge no limit", lambda: penumbra.converge(SCENE, reference=REF), ValueError, "time or spp"),
     ("converge seed negative", lambda: penumbra.converge(SCENE, spp=1, seed=-1, reference=REF), ValueError,
      "seed"),
+    ("converge seed beyond uint64", lambda: penumbra.converge(SCENE, spp=1, seed=2**64, reference=REF),
+     ValueError, "seed"),
     ("converge reference seed", lambda: penumbra.converge(SCENE, spp=1, seed=REFERENCE_SEED, reference=REF),
      ValueError, "seed"),
     ("converge threads 0", lambda: penumbra.converge(SCENE, spp=1, threads=0, reference=REF), ValueError,
@@ -136,6 +147,31 @@ def test_the_module_still_works_after_every_bad_call():
             call()
     assert SCENE.sample_count == 2 and SCENE.width == 16  # no failed set() changed the scene
     assert SCENE.render(spp=1).spp == 1
+
+
+# Every function taking a seed, called with it: any 64-bit unsigned seed is taken, as by the CLI's --seed.
+SEEDED = {
+    "render": lambda seed: SCENE.render(spp=1, seed=seed).spp,
+    "converge": lambda seed: len(penumbra.converge(SCENE, strategies="area", spp=1, seed=seed, reference=REF)),
+    "chi2_test": lambda seed: penumbra.chi2_test("tent", samples=100, seed=seed).verdict,
+    "sample_points": lambda seed: penumbra.sample_points("independent", 4, seed=seed).shape,
+    "random_points": lambda seed: penumbra.random_points(4, seed=seed).shape,
+}
+
+
+@pytest.mark.parametrize("name", sorted(SEEDED))
+def test_every_64_bit_seed_is_taken_and_nothing_beyond(name):
+    call = SEEDED[name]
+    for seed in (0, 2**63 - 1, 2**63, 2**64 - 1, np.uint64(2**64 - 1)):
+        call(seed)
+    for seed in (-1, 2**64, -2**64, 10**30):
+        with pytest.raises(ValueError, match=r"^seed: expected an integer in \[0, 18446744073709551615\], got "):
+            call(seed)
+
+
+def test_the_largest_seed_is_not_clamped():
+    assert not np.array_equal(penumbra.random_points(8, seed=2**64 - 1), penumbra.random_points(8, seed=2**63 - 1))
+    assert not np.array_equal(SCENE.render(spp=1, seed=2**64 - 1).mean, SCENE.render(spp=1, seed=2**63 - 1).mean)
 
 
 def test_non_finite_points_give_nan_not_garbage():

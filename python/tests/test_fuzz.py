@@ -118,7 +118,7 @@ def specs(tmp: pathlib.Path):
             "scene": scene,
             "spp": Arg([None, 1, 2, 3], [0, -1, 2**30 + 1, 2**30] + INT_EDGES),
             "time": Arg([None, 0.01, 0.03], FLOAT_EDGES),
-            "seed": Arg([0, 1, 2**63 - 1], INT_EDGES),
+            "seed": Arg([0, 1, 2**63 - 1, 2**64 - 1], INT_EDGES),
             "threads": Arg([None, 1, 2], [0, -1, 1025, 2**40, 1.5]),
             "progress": Arg([None, False, lambda spp, s: None],
                             [3, "x", lambda: None, lambda spp, s: (_ for _ in ()).throw(ValueError("stop"))])}),
@@ -130,7 +130,7 @@ def specs(tmp: pathlib.Path):
         "samplers": (lambda **kw: penumbra.samplers(**kw), {"junk": Arg([], [1])}),
         "random_points": (penumbra.random_points, {
             "n": Arg([0, 1, 16, 1000], [-1, 2**40 + 1, 2**40, 2**64, 1.5, NAN], False),
-            "seed": Arg([0, 1, 2**63 - 1], INT_EDGES),
+            "seed": Arg([0, 1, 2**63 - 1, 2**64 - 1], INT_EDGES),
             "out": Arg([None, Fresh(lambda: np.empty((16, 2), np.float32))], OUT_ARRAYS)}),
         "warp": (penumbra.warp, {
             "name": Arg(WARPS, ["", "x", "tent\x00", 3, None], False),

@@ -17,8 +17,11 @@
 #   disagreement ranks given different image sizes, scene content (--set, an OBJ file), spp, block,
 #                seed, sampler or integrator: exit 2 naming each rank's first differing setting, nothing
 #                rendered or written; the same scene under another path agrees
-#   argument_error  bad arguments on rank 0 only, rank 1 only, every rank, --help on one rank only:
-#                every rank ends with exit 2, the message printed once
+#   argument_error  bad arguments on rank 0 only, rank 1 only, every rank, --help on one rank only, a
+#                seed beyond 64 bits: every rank ends with exit 2, the message printed once; the largest
+#                64-bit seed renders with that seed
+#   write_error  rank 0's write fails after the agreement (the output's directory replaced by a file
+#                mid-render): exit 2 through MPI_Abort, the error printed once, the old output untouched
 #   start_failure  an MPMD job whose second program is missing, fails, or exits 0 without starting
 #                MPI; Ctrl-C while a rank has not started: the job ends, the existing output is untouched
 # The fault cases print how long each job took to end ("... in S s").
@@ -354,7 +357,38 @@ argument_error)
   fault_run "bad argument on every rank" -np 2 "$PMPI" render "$SCENE" "${LONG[@]}" --block 3
   expect_refusal "bad argument on every rank" "error (ranks 0-1 of 2): --block must be a power of two, not 3"
   fault_run "--help on rank 1 only" -np 1 "$PMPI" render "$SCENE" "${LONG[@]}" : -np 1 "$PMPI" render --help
-  expect_refusal "--help on rank 1 only" "error (rank 1 of 2): --help given, but not to every rank" ;;
+  expect_refusal "--help on rank 1 only" "error (rank 1 of 2): --help given, but not to every rank"
+  # Seeds: any 64-bit unsigned integer is taken as given, one beyond is refused as the CLI refuses it.
+  fault_run "seed beyond 64 bits" -np 2 "$PMPI" render "$SCENE" "${LONG[@]}" --seed 18446744073709551616
+  expect_refusal "seed beyond 64 bits" \
+    "error (ranks 0-1 of 2): --seed: '18446744073709551616' is out of range (at most 18446744073709551615)"
+  mpi 2 render "$SCENE" "${SMALL[@]}" --spp 4 --threads 1 --seed 18446744073709551615 -o "$T/s.exr" >/dev/null ||
+    fail "--seed 18446744073709551615: mpirun"
+  [ "$(meta "$T/s.exr" seed)" = 18446744073709551615 ] ||
+    fail "--seed 18446744073709551615: metadata say seed=$(meta "$T/s.exr" seed)"
+  echo "--seed 18446744073709551615: rendered with seed=$(meta "$T/s.exr" seed)" ;;
+write_error)
+  # A failure on a rank after the agreement: rank 0's write fails because the output's directory was
+  # replaced by a file during the render (the old output moved away with it); the job ends with
+  # MPI_Abort, exit 2, the error printed once with its rank, and the old output is not touched.
+  mkdir "$T/d"; printf 'old image' >"$T/d/o.exr"; printf 'old standard error' >"$T/d/o.stderr.exr"
+  sums=$(cd "$T/d" && sha256sum o.exr o.stderr.exr)
+  : >"$T/err"
+  mpi_bg 2 render "$SCENE" "${LONG[@]:0:8}" -o "$T/d/o.exr" >"$T/out" 2>"$T/err"
+  wait_for_progress
+  mv "$T/d" "$T/moved" && : >"$T/d" || { kill -KILL $pid; fail "could not replace the output's directory"; }
+  kill -USR1 $pid; t0=$(date +%s.%N)  # rank 0 writes what the ranks have rendered: into a file, not a directory
+  mpi_wait
+  took=$(seconds_since "$t0")
+  [ $rc = 2 ] || { cat "$T/err"; fail "write error: exit code $rc, expected 2"; }
+  n=$(grep -c "^error (rank 0 of 2): .*$T/d/o.exr" "$T/err")
+  [ "$n" = 1 ] || { cat "$T/err"; fail "write error: rank 0's error printed $n times, expected once"; }
+  [ "$(cd "$T/moved" && sha256sum o.exr o.stderr.exr 2>&1)" = "$sums" ] || fail "write error: the old output changed"
+  ! ls "$T/moved" | grep -q "tmp-" || fail "write error: a temporary was left: $(ls "$T/moved")"
+  [ "$(cat "$T/d")" = "" ] || fail "write error: the file in the directory's place was written"
+  for i in $(seq 20); do pgrep -f "$T/d/o.exr" >/dev/null || break; sleep 0.1; done
+  ! pgrep -f "$T/d/o.exr" >/dev/null || { pkill -KILL -f "$T/d/o.exr"; fail "write error: a rank outlived mpirun"; }
+  echo "write error: exit 2 in $took s after the signal: $(grep "^error (rank 0" "$T/err")" ;;
 start_failure)
   old_output
   fault_run "missing program" -np 1 "$PMPI" render "$SCENE" "${LONG[@]}" : -np 1 "$T/no-such-program"
