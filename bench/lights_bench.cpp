@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/lights/projected_cap.h"
+#include "core/lights/projected_polygon.h"
 #include "core/lights/sphere_light.h"
 
 namespace penumbra {
@@ -94,6 +95,27 @@ void BM_SphereLight_SampleArea(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations());
 }
 BENCHMARK(BM_SphereLight_SampleArea);
+
+// A projected-solid-angle sample of a quad light (ProjectedPolygon: set-up and one sample), from the
+// same shading points: above every horizon (the scene light's place, 0.2 across), and a wall quad
+// straddling every horizon (x = 4, 1 wide, z from −1.5 to −0.5).
+void BM_QuadLight_SampleProjectedSolidAngle(benchmark::State& state) {
+  Fixture f;
+  const bool straddling = state.range(0) != 0;
+  const Vec3 quad[4] = {Vec3(0.9f, -1.6f, 1.75f), Vec3(1.1f, -1.6f, 1.75f), Vec3(1.1f, -1.4f, 1.75f),
+                        Vec3(0.9f, -1.4f, 1.75f)};
+  const Vec3 wall[4] = {Vec3(4.f, -0.5f, -1.5f), Vec3(4.f, 0.5f, -1.5f), Vec3(4.f, 0.5f, -0.5f),
+                        Vec3(4.f, -0.5f, -0.5f)};
+  size_t i = 0;
+  for (auto _ : state) {
+    const size_t k = i++ & (kCount - 1);
+    ProjectedPolygon map;
+    map.init(straddling ? wall : quad, 4, f.points[k], Vec3(0, 0, 1));
+    benchmark::DoNotOptimize(map.sampleDirection(f.u[k]));
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_QuadLight_SampleProjectedSolidAngle)->Arg(0)->Arg(1);
 
 }  // namespace
 }  // namespace penumbra

@@ -4,6 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <vector>
+
 #include <cmath>
 
 #include "core/math/vec.h"
@@ -106,6 +109,32 @@ TEST(ClosedForms, RestingConvexBody) {
   // Top of a sphere resting on a plane: unoccluded. Equator: the plane blocks half the cosine lobe.
   EXPECT_DOUBLE_EQ(aoOnRestingConvexBody(0.0), 1.0);
   EXPECT_NEAR(aoOnRestingConvexBody(kPiD / 2), 0.5, 1e-15);
+}
+
+// Lambert's formula: a square light straight above x tends to π close up and to A / h² far away; the
+// side facing away and the light's plane give 0; two triangles make their quad; a light straddling the
+// horizon counts only its part above it.
+TEST(ClosedForms, PolygonLightIrradianceFactor) {
+  const glm::dvec3 x(0), n(0, 0, 1);
+  auto squareAt = [](double h, double a) {  // wound clockwise seen from above: emits downwards
+    return std::vector<glm::dvec3>{{-a, -a, h}, {-a, a, h}, {a, a, h}, {a, -a, h}};
+  };
+  EXPECT_NEAR(polygonLightIrradianceFactor(x, n, squareAt(1e-6, 1)), kPiD, 1e-5);
+  EXPECT_NEAR(polygonLightIrradianceFactor(x, n, squareAt(1e3, 0.5)) / (1.0 / 1e6), 1.0, 1e-6);
+  std::vector<glm::dvec3> up = squareAt(1, 1);
+  std::reverse(up.begin(), up.end());
+  EXPECT_EQ(polygonLightIrradianceFactor(x, n, up), 0.0);
+  EXPECT_EQ(polygonLightIrradianceFactor(glm::dvec3(0, 0, 1), n, squareAt(1, 1)), 0.0);
+  const std::vector<glm::dvec3> quad = squareAt(0.7, 0.4);
+  EXPECT_NEAR(polygonLightIrradianceFactor(x, n, quad),
+              polygonLightIrradianceFactor(x, n, {quad[0], quad[1], quad[2]}) +
+                  polygonLightIrradianceFactor(x, n, {quad[0], quad[2], quad[3]}),
+              1e-14);
+  // A wall x = 1 facing x, from z = −1 to 1: its upper half's Ω⊥.
+  const std::vector<glm::dvec3> wall = {{1, -1, -1}, {1, -1, 1}, {1, 1, 1}, {1, 1, -1}};
+  const std::vector<glm::dvec3> upperHalf = {{1, -1, 0}, {1, -1, 1}, {1, 1, 1}, {1, 1, 0}};
+  EXPECT_GT(polygonLightIrradianceFactor(x, n, upperHalf), 0.1);
+  EXPECT_NEAR(polygonLightIrradianceFactor(x, n, wall), polygonLightIrradianceFactor(x, n, upperHalf), 1e-15);
 }
 
 }  // namespace
