@@ -240,7 +240,7 @@ py::object broadcast(F f, const std::array<py::object, N>& args) {
   for (py::ssize_t k = 0; k < out.size(); ++k)
     dst[k] = std::apply([&](const auto&... a) { return f(a.data()[k]...); }, in);
   if (scalars) return py::float_(dst[0]);
-  return std::move(out);
+  return out;
 }
 
 }  // namespace

@@ -8,9 +8,8 @@
 
 #include <glm/glm.hpp>
 
-#include <vector>
-
-#include "core/lights/sphere_cap.h"  // I(θ, α) from angles, and its building blocks
+#include "core/lights/polygon_lambert.h"  // Ω⊥ of a polygon light (Lambert)
+#include "core/lights/sphere_cap.h"       // I(θ, α) from angles, and its building blocks
 
 namespace penumbra {
 
@@ -22,13 +21,6 @@ namespace penumbra {
 // If x is at the centre (d = 0) the result is the inside value.
 double sphereLightIrradianceFactor(const glm::dvec3& x, const glm::dvec3& n, const glm::dvec3& c, double r,
                                    bool twoSided = false);
-
-// Irradiance from a uniform planar polygon light per unit radiance, E / Le: its projected solid angle
-// Ω⊥ from x with normal n (need not be normalised), by Lambert's formula over the polygon clipped to
-// x's upper half space. One-sided: it emits towards the side its counter-clockwise winding's normal
-// points to, and x behind it or in its plane gets 0. Vertices in winding order, convex or not.
-double polygonLightIrradianceFactor(const glm::dvec3& x, const glm::dvec3& n,
-                                    const std::vector<glm::dvec3>& vertices);
 
 // ---- Ambient occlusion, AO = (1/π) ∫ V cos dω with unbounded rays ----------------------------------
 

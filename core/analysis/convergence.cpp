@@ -86,32 +86,62 @@ ConvergenceRun runConvergence(const LoadedScene& scene, const IntegratorDesc& st
   Engine engine;
   double cpuStart = processCpuSeconds();
   pollerCpuStart = threadCpuSeconds();
-  engine.start(job, limits, o.threads);
-  std::size_t next = 0;
-  bool requested = false;
-  FilmSnapshot snap;
-  while (true) {
-    RenderProgress p = engine.progress();
-    if (engine.latestSnapshot(snap) && snap.spp > 0 && !snap.mean.empty()) {
-      if (run.points.empty() || snap.spp > run.points.back().spp)
-        record(snap.mean, snap.spp, snap.seconds, snap.cpuSeconds);
-      requested = false;
-      double reached = sppMode ? double(snap.spp) : snap.seconds;
-      while (next < targets.size() && targets[next] <= reached) ++next;
+  // Waits for the render to reach its limits, ending it and throwing Cancelled when asked to.
+  auto waitCancellable = [&] {
+    while (!engine.progress().finished) {
+      if (cancelRequested(o.cancel)) {
+        engine.cancel();
+        throw Cancelled();
+      }
+      std::this_thread::sleep_for(std::chrono::microseconds(500));
     }
-    if (p.finished) break;
-    if (cancelRequested(o.cancel)) {
-      engine.cancel();
-      throw Cancelled();
+  };
+  if (sppMode) {
+    // Every target is a stop: the render halts at its spp, the film is measured, and the render is
+    // extended to the next one. The points do not depend on how quickly this thread polls (a small
+    // image renders many passes within one poll on a loaded machine).
+    RenderLimits step = limits;
+    for (std::size_t k = 0; k < targets.size(); ++k) {
+      step.targetSpp = uint32_t(targets[k]);
+      if (k == 0)
+        engine.start(job, step, o.threads);
+      else
+        engine.extend(step);
+      waitCancellable();
+      engine.wait();
+      const RenderProgress p = engine.progress();
+      if (p.spp > 0 && (run.points.empty() || p.spp > run.points.back().spp))
+        record(engine.film().mean(p.spp), p.spp, p.seconds, processCpuSeconds() - cpuStart);
     }
-    if (!requested && next < targets.size()) {
-      double now = sppMode ? double(p.spp + 1) : p.seconds;  // spp: the pass in flight completes it
-      if (now >= targets[next]) {
+    if (targets.empty())
+      engine.start(job, limits, o.threads);
+    else
+      engine.extend(limits);
+    waitCancellable();
+  } else {
+    engine.start(job, limits, o.threads);
+    std::size_t next = 0;
+    bool requested = false;
+    FilmSnapshot snap;
+    while (true) {
+      RenderProgress p = engine.progress();
+      if (engine.latestSnapshot(snap) && snap.spp > 0 && !snap.mean.empty()) {
+        if (run.points.empty() || snap.spp > run.points.back().spp)
+          record(snap.mean, snap.spp, snap.seconds, snap.cpuSeconds);
+        requested = false;
+        while (next < targets.size() && targets[next] <= snap.seconds) ++next;
+      }
+      if (p.finished) break;
+      if (cancelRequested(o.cancel)) {
+        engine.cancel();
+        throw Cancelled();
+      }
+      if (!requested && next < targets.size() && p.seconds >= targets[next]) {
         engine.requestSnapshot(false);
         requested = true;
       }
+      std::this_thread::sleep_for(std::chrono::microseconds(500));
     }
-    std::this_thread::sleep_for(std::chrono::microseconds(500));
   }
   engine.wait();
   double cpuEnd = processCpuSeconds() - cpuStart;

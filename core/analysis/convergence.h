@@ -1,10 +1,12 @@
 // Error against run time (or samples) for one strategy from a cold start.
 //
-// The engine renders on all cores with a time (or spp) limit. A polling loop asks for a snapshot
-// when the elapsed rendering time (spp in spp mode) crosses the next of a log-spaced set of targets;
-// the snapshot is published at the next pass boundary and carries that boundary's exact spp and
-// seconds, which are what gets recorded (never the target). Snapshot resolution runs inside the
-// timed region, so the times include the measurement's own small overhead, as a user would see it.
+// The engine renders on all cores with a time (or spp) limit, measured at a log-spaced set of
+// targets. Time mode: a polling loop asks for a snapshot when the elapsed rendering time crosses the
+// next target; the snapshot is published at the next pass boundary and carries that boundary's exact
+// spp and seconds, which are what gets recorded (never the target). Snapshot resolution runs inside
+// the timed region, so the times include the measurement's own small overhead, as a user would see it.
+// Spp mode: the render stops at each target spp, its film is measured, and it is extended to the next
+// (Engine::extend), so the points are the targets whatever the machine's load.
 // The metrics are computed on the polling thread against the reference.
 #pragma once
 
