@@ -9,6 +9,7 @@
 #include "core/lights/projected_cap.h"
 #include "core/lights/projected_polygon.h"
 #include "core/lights/sphere_light.h"
+#include "core/lights/spherical_triangle.h"
 
 namespace penumbra {
 namespace {
@@ -116,6 +117,24 @@ void BM_QuadLight_SampleProjectedSolidAngle(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations());
 }
 BENCHMARK(BM_QuadLight_SampleProjectedSolidAngle)->Arg(0)->Arg(1);
+
+// A solid-angle sample (Arvo: SphericalTriangle set-up and one sample) of the first half of those quads.
+void BM_TriangleLight_SampleSolidAngle(benchmark::State& state) {
+  Fixture f;
+  const bool straddling = state.range(0) != 0;
+  const Vec3 quad[3] = {Vec3(0.9f, -1.6f, 1.75f), Vec3(1.1f, -1.6f, 1.75f), Vec3(1.1f, -1.4f, 1.75f)};
+  const Vec3 wall[3] = {Vec3(4.f, -0.5f, -1.5f), Vec3(4.f, 0.5f, -1.5f), Vec3(4.f, 0.5f, -0.5f)};
+  const Vec3* t = straddling ? wall : quad;
+  size_t i = 0;
+  for (auto _ : state) {
+    const size_t k = i++ & (kCount - 1);
+    SphericalTriangle map;
+    map.init(t[0], t[1], t[2], f.points[k]);
+    benchmark::DoNotOptimize(map.sampleDirection(f.u[k]));
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_TriangleLight_SampleSolidAngle)->Arg(0)->Arg(1);
 
 }  // namespace
 }  // namespace penumbra
