@@ -59,20 +59,21 @@ void radiusAt(const ProjectedPolygon::Edge& e, const Azimuth& u, double& r2, dou
   z2 = cc / sum;
 }
 
-// Area swept by the edge's ellipse from azimuth u0 to u0 rotated by t (one atan2 of the difference of
-// the two arctangents: ½ k (atan(k tan ψ₁) − atan(k tan ψ₀))).
-double sweptArea(const ProjectedPolygon::Edge& e, const Azimuth& u0, const Azimuth& u1, double t) {
+// Area swept by the edge's ellipse from azimuth u0 to u1, t radians further (sin t given): one atan2
+// of the difference of the two arctangents, ½ k (atan(k tan ψ₁) − atan(k tan ψ₀)).
+double sweptArea(const ProjectedPolygon::Edge& e, const Azimuth& u0, const Azimuth& u1, double sinT,
+                 double t) {
   if (e.c2 == 0) return 0.5 * t;  // the horizon, r = 1 (its ψ is arbitrary: no upper half to clamp to)
   const double c0 = cosPsi(e, u0), s0 = sinPsi(e, u0), c1 = cosPsi(e, u1), s1 = sinPsi(e, u1);
-  return 0.5 * e.k * std::atan2(e.k * std::sin(t), c0 * c1 + e.k * e.k * s0 * s1);
+  return 0.5 * e.k * std::atan2(e.k * sinT, c0 * c1 + e.k * e.k * s0 * s1);
 }
 
 }  // namespace
 
-double ProjectedPolygon::wedgeAreaTo(const Wedge& w, double t) {
-  const Azimuth u0{w.ux, w.uy}, u1 = rotated(u0, t);
-  double area = sweptArea(w.outer, u0, u1, t);
-  if (w.hasInner) area -= sweptArea(w.inner, u0, u1, t);
+double ProjectedPolygon::wedgeAreaTo(const Wedge& w, double ux, double uy, double sinT, double t) {
+  const Azimuth u0{w.ux, w.uy}, u1{ux, uy};
+  double area = sweptArea(w.outer, u0, u1, sinT, t);
+  if (w.hasInner) area -= sweptArea(w.inner, u0, u1, sinT, t);
   return std::max(0.0, area);
 }
 
@@ -139,18 +140,26 @@ bool ProjectedPolygon::init(const Vec3* vertices, int count, const Vec3& x, cons
     az[i] = hasAzimuth[i] ? Azimuth{clipped[i].x / len, clipped[i].y / len} : Azimuth{1, 0};
   }
 
-  // A wedge from azimuth u over `span`, halved until it spans at most π/2.
-  auto addWedge = [&](const Azimuth& u, double span, const Edge& outer, const Edge* inner) {
+  // A wedge from azimuth `from` to `to`, `span` radians (below π) apart, halved at their bisector when
+  // it spans more than π/2; its area from the two vectors (sin span = from × to: no rotation).
+  auto addWedge = [&](const Azimuth& from, const Azimuth& to, double span, const Edge& outer,
+                      const Edge* inner) {
     if (!(span > 0)) return;
-    const int pieces = span > 0.5 * kPiD ? 2 : 1;
+    Azimuth ends[3] = {from, to, to};
+    int pieces = 1;
+    if (span > 0.5 * kPiD) {
+      const double bx = from.x + to.x, by = from.y + to.y, len = std::hypot(bx, by);
+      ends[1] = Azimuth{bx / len, by / len};
+      pieces = 2;
+    }
     for (int p = 0; p < pieces; ++p) {
       Wedge& w = wedges[wedgeCount++];
-      const Azimuth start = rotated(u, span * p / pieces);
-      w.ux = start.x, w.uy = start.y, w.span = span / pieces;
+      const Azimuth &a = ends[p], &b = ends[p + 1];
+      w.ux = a.x, w.uy = a.y, w.span = span / pieces;
       w.outer = outer;
       w.hasInner = inner != nullptr;
       if (inner) w.inner = *inner;
-      w.area = 0;
+      w.area = wedgeAreaTo(w, b.x, b.y, a.x * b.y - a.y * b.x, w.span);
     }
   };
 
@@ -159,7 +168,7 @@ bool ProjectedPolygon::init(const Vec3* vertices, int count, const Vec3& x, cons
     for (int i = 0; i < vertexCount; ++i) {
       const int j = (i + 1) % vertexCount;
       if (!hasAzimuth[i] || !hasAzimuth[j]) continue;
-      addWedge(az[i], std::max(0.0, angleBetween(az[i], az[j])), edgeOf(edgeNormals[i]), nullptr);
+      addWedge(az[i], az[j], std::max(0.0, angleBetween(az[i], az[j])), edgeOf(edgeNormals[i]), nullptr);
     }
   } else {
     // The region spans less than π in azimuth: between consecutive vertex azimuths it lies between one
@@ -181,9 +190,9 @@ bool ProjectedPolygon::init(const Vec3* vertices, int count, const Vec3& x, cons
     for (int i = lo; i != hi; i = (i + 1) % vertexCount) chainA[lenA++] = i;
     for (int i = lo; i != hi; i = (i + vertexCount - 1) % vertexCount)
       chainB[lenB++] = (i + vertexCount - 1) % vertexCount;
-    double sorted[kMaxVertices];
-    std::copy(alpha, alpha + vertexCount, sorted);
-    std::sort(sorted, sorted + vertexCount);
+    int order[kMaxVertices];
+    for (int i = 0; i < vertexCount; ++i) order[i] = i;
+    std::sort(order, order + vertexCount, [&](int p, int q) { return alpha[p] < alpha[q]; });
     // The chain edge whose azimuth range holds `mid` (chains run monotonically in azimuth).
     auto edgeAt = [&](const int* chain, int length, bool forward, double mid) {
       for (int c = 0; c < length; ++c) {
@@ -195,28 +204,26 @@ bool ProjectedPolygon::init(const Vec3* vertices, int count, const Vec3& x, cons
       return chain[length - 1];
     };
     for (int s = 0; s + 1 < vertexCount; ++s) {
-      const double span = sorted[s + 1] - sorted[s];
+      const Azimuth &from = az[order[s]], &to = az[order[s + 1]];
+      const double span = alpha[order[s + 1]] - alpha[order[s]];
       if (!(span > 0)) continue;
-      const double mid = 0.5 * (sorted[s] + sorted[s + 1]);
+      const double mid = 0.5 * (alpha[order[s]] + alpha[order[s + 1]]);
       const Edge ea = edgeOf(edgeNormals[edgeAt(chainA, lenA, true, mid)]);
       const Edge eb = edgeOf(edgeNormals[edgeAt(chainB, lenB, false, mid)]);
-      const Azimuth um = rotated(ref, mid);
+      const double bx = from.x + to.x, by = from.y + to.y, len = std::hypot(bx, by);  // the bisector
+      const Azimuth um{bx / len, by / len};
       double ra, rb, za, zb;
       radiusAt(ea, um, ra, za);
       radiusAt(eb, um, rb, zb);
-      const Azimuth start = rotated(ref, sorted[s]);
       if (ra >= rb)
-        addWedge(start, span, ea, &eb);
+        addWedge(from, to, span, ea, &eb);
       else
-        addWedge(start, span, eb, &ea);
+        addWedge(from, to, span, eb, &ea);
     }
   }
 
   cumulativeArea[0] = 0;
-  for (int i = 0; i < wedgeCount; ++i) {
-    wedges[i].area = wedgeAreaTo(wedges[i], wedges[i].span);
-    cumulativeArea[i + 1] = cumulativeArea[i] + wedges[i].area;
-  }
+  for (int i = 0; i < wedgeCount; ++i) cumulativeArea[i + 1] = cumulativeArea[i] + wedges[i].area;
   projectedSolidAngle = cumulativeArea[wedgeCount];
   if (!(projectedSolidAngle > 0) || !std::isfinite(projectedSolidAngle)) {
     projectedSolidAngle = 0;
@@ -240,11 +247,12 @@ DVec3 ProjectedPolygon::sampleDirection(Vec2 u) const {
   const double ulps = 4 * std::numeric_limits<double>::epsilon() * w.span;
   const Azimuth u0{w.ux, w.uy};
   for (int step = 0; step < kMaxInversionSteps && hi - lo > ulps; ++step) {
-    const double f = wedgeAreaTo(w, t) - tau;
+    const double sinT = std::sin(t), cosT = std::cos(t);
+    const Azimuth ut{u0.x * cosT - u0.y * sinT, u0.x * sinT + u0.y * cosT};
+    const double f = wedgeAreaTo(w, ut.x, ut.y, sinT, t) - tau;
     if (std::fabs(f) <= tolerance) break;
     (f < 0 ? lo : hi) = t;
     double rOuter2, zOuter2, rInner2 = 0, zInner2 = 1;
-    const Azimuth ut = rotated(u0, t);
     radiusAt(w.outer, ut, rOuter2, zOuter2);
     if (w.hasInner) radiusAt(w.inner, ut, rInner2, zInner2);
     const double slope = 0.5 * (rOuter2 - rInner2);

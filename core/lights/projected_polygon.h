@@ -85,8 +85,9 @@ struct ProjectedPolygon {
   DVec3 edgeNormals[kMaxVertices];
   int edgeCount = 0;
 
-  // The area of wedge `w` at azimuths up to `t` radians past its start.
-  static double wedgeAreaTo(const Wedge& w, double t);
+  // The area of wedge `w` at azimuths up to the unit azimuth vector (ux, uy), `t` radians past its
+  // start (sinT = sin t).
+  static double wedgeAreaTo(const Wedge& w, double ux, double uy, double sinT, double t);
 };
 
 }  // namespace penumbra
