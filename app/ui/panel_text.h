@@ -10,8 +10,10 @@ void hintText(const char* fmt, ...);
 // Text in `colour`, wrapped at the window's edge.
 void colouredWrappedText(const ImVec4& colour, const char* fmt, ...);
 
-// The width a button labelled `label` takes (its label's shown part and the frame's padding).
+// The width a button labelled `label` takes (its label's shown part and the frame's padding), and a
+// radio button's (its circle, the inner spacing and the label).
 float buttonWidth(const char* label);
+float radioButtonWidth(const char* label);
 // Keeps the next item, `width` wide, on the line of the last one when it fits before the content
 // region's edge; otherwise it starts the next line.
 void sameLineIfFits(float width);

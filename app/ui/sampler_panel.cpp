@@ -38,8 +38,7 @@ void drawSamplerPanel(ViewerController& c, PanelState&) {
   const StopRule rule = c.stopRule();
   if (ImGui::RadioButton("target spp##stop-rule", rule == StopRule::TargetSpp))
     c.setStopRule(StopRule::TargetSpp);
-  sameLineIfFits(ImGui::GetFrameHeight() + ImGui::GetStyle().ItemInnerSpacing.x +
-                 ImGui::CalcTextSize("time budget##stop-rule", nullptr, true).x);
+  sameLineIfFits(radioButtonWidth("time budget##stop-rule"));
   if (ImGui::RadioButton("time budget##stop-rule", rule == StopRule::TimeBudget))
     c.setStopRule(StopRule::TimeBudget);
   if (c.stopRule() == StopRule::TargetSpp) {

@@ -86,13 +86,17 @@ ConvergenceRun runConvergence(const LoadedScene& scene, const IntegratorDesc& st
   Engine engine;
   double cpuStart = processCpuSeconds();
   pollerCpuStart = threadCpuSeconds();
-  // Waits for the render to reach its limits, ending it and throwing Cancelled when asked to.
+  // Ends the render and throws Cancelled when asked to.
+  auto stopIfCancelled = [&] {
+    if (cancelRequested(o.cancel)) {
+      engine.cancel();
+      throw Cancelled();
+    }
+  };
+  // Waits for the render to reach its limits.
   auto waitCancellable = [&] {
     while (!engine.progress().finished) {
-      if (cancelRequested(o.cancel)) {
-        engine.cancel();
-        throw Cancelled();
-      }
+      stopIfCancelled();
       std::this_thread::sleep_for(std::chrono::microseconds(500));
     }
   };
@@ -132,10 +136,7 @@ ConvergenceRun runConvergence(const LoadedScene& scene, const IntegratorDesc& st
         while (next < targets.size() && targets[next] <= snap.seconds) ++next;
       }
       if (p.finished) break;
-      if (cancelRequested(o.cancel)) {
-        engine.cancel();
-        throw Cancelled();
-      }
+      stopIfCancelled();
       if (!requested && next < targets.size() && p.seconds >= targets[next]) {
         engine.requestSnapshot(false);
         requested = true;

@@ -14,8 +14,10 @@ struct Azimuth {
   double x, y;  // unit vector in the local xy plane
 };
 
-Azimuth rotated(const Azimuth& a, double t) {
+// a turned counter-clockwise by t; sinT = sin t.
+Azimuth rotated(const Azimuth& a, double t, double& sinT) {
   const double c = std::cos(t), s = std::sin(t);
+  sinT = s;
   return {a.x * c - a.y * s, a.x * s + a.y * c};
 }
 
@@ -246,9 +248,9 @@ DVec3 ProjectedPolygon::sampleDirection(Vec2 u) const {
   const double tolerance = kAreaTolerance * w.area;
   const double ulps = 4 * std::numeric_limits<double>::epsilon() * w.span;
   const Azimuth u0{w.ux, w.uy};
+  double sinT;
+  Azimuth ut = rotated(u0, t, sinT);  // kept for the final t
   for (int step = 0; step < kMaxInversionSteps && hi - lo > ulps; ++step) {
-    const double sinT = std::sin(t), cosT = std::cos(t);
-    const Azimuth ut{u0.x * cosT - u0.y * sinT, u0.x * sinT + u0.y * cosT};
     const double f = wedgeAreaTo(w, ut.x, ut.y, sinT, t) - tau;
     if (std::fabs(f) <= tolerance) break;
     (f < 0 ? lo : hi) = t;
@@ -258,10 +260,10 @@ DVec3 ProjectedPolygon::sampleDirection(Vec2 u) const {
     const double slope = 0.5 * (rOuter2 - rInner2);
     const double next = slope > 0 ? t - f / slope : lo - 1;
     t = next > lo && next < hi ? next : 0.5 * (lo + hi);
+    ut = rotated(u0, t, sinT);
   }
 
   // r² uniform between the wedge's edges at azimuth t; z² the same way, each without cancellation.
-  const Azimuth ut = rotated(u0, t);
   double rOuter2, zOuter2, rInner2 = 0, zInner2 = 1;
   radiusAt(w.outer, ut, rOuter2, zOuter2);
   if (w.hasInner) radiusAt(w.inner, ut, rInner2, zInner2);
