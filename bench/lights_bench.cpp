@@ -9,6 +9,7 @@
 #include "core/lights/projected_cap.h"
 #include "core/lights/projected_polygon.h"
 #include "core/lights/sphere_light.h"
+#include "core/lights/spherical_rectangle.h"
 #include "core/lights/spherical_triangle.h"
 
 namespace penumbra {
@@ -135,6 +136,24 @@ void BM_TriangleLight_SampleSolidAngle(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations());
 }
 BENCHMARK(BM_TriangleLight_SampleSolidAngle)->Arg(0)->Arg(1);
+
+// A solid-angle sample of the whole quads (Ureña et al.: SphericalRectangle set-up and one sample).
+void BM_RectangleLight_SampleSolidAngle(benchmark::State& state) {
+  Fixture f;
+  const bool straddling = state.range(0) != 0;
+  const Vec3 corner = straddling ? Vec3(4.f, -0.5f, -1.5f) : Vec3(0.9f, -1.6f, 1.75f);
+  const Vec3 edgeU = straddling ? Vec3(0.f, 1.f, 0.f) : Vec3(0.2f, 0.f, 0.f);
+  const Vec3 edgeV = straddling ? Vec3(0.f, 0.f, 1.f) : Vec3(0.f, 0.2f, 0.f);
+  size_t i = 0;
+  for (auto _ : state) {
+    const size_t k = i++ & (kCount - 1);
+    SphericalRectangle map;
+    map.init(corner, edgeU, edgeV, f.points[k]);
+    benchmark::DoNotOptimize(map.sampleDirection(f.u[k]));
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_RectangleLight_SampleSolidAngle)->Arg(0)->Arg(1);
 
 }  // namespace
 }  // namespace penumbra
