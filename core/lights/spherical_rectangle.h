@@ -80,7 +80,7 @@ struct SphericalRectangle {
   DVec3 shear;         // ev's part along eu
   // The rectangle's frame: the column axis a (along eu, or along ev when swapped), the row axis b.
   double h;
-  bool swapped;
+  bool swapped = false;
   double a0, a1, b0, b1;
   double invA, invB;                         // 1 / (a1 − a0), 1 / (b1 − b0)
   double phi0;                               // Φ(a0)

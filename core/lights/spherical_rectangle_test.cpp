@@ -55,8 +55,8 @@ Config quad(const char* name, Vec3 corner, Vec3 u, Vec3 v, Vec3 x, bool detectab
 }
 
 // The polygon configurations that are rectangles (four vertices, perpendicular edges), a sliver of
-// aspect 1e4, the overhead light seen from above, a turned rectangle (its float edges perpendicular to
-// ~1e-8), and two parallelograms (two spherical triangles).
+// aspect 1e4 and one across x's foot, the overhead light seen from above, a turned rectangle (its float
+// edges perpendicular to ~1e-8), and two parallelograms (two spherical triangles).
 std::vector<Config> rectangleConfigs() {
   std::vector<Config> out;
   for (const Config& c : test::polygonConfigs()) {
