@@ -95,7 +95,7 @@ void setProperty(PyScene& s, const std::string& key, const py::handle& value) {
   std::string tag = key.substr(0, key.find('.'));
   if (tag == "camera" || tag == "sampler" || tag == "integrator" || tag == "rfilter") {
     std::vector<std::string> warnings;
-    RenderSettings settings = buildSettings(desc, &warnings);
+    RenderSettings settings = buildSettings(desc, &warnings, s.loaded.scene->areaLightCount());
     s.loaded.desc = std::move(desc);
     s.loaded.settings = settings;
     s.loaded.warnings.insert(s.loaded.warnings.end(), warnings.begin(), warnings.end());

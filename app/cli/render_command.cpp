@@ -170,9 +170,10 @@ int runRender(const RenderOptions& o) {
   meta.add("badSamples", std::to_string(p.badSamples));
   meta.add("interrupted", interrupted ? "true" : "false");
   // Whether the light selection was the scene's or the light-count default (a reference has its own).
-  const std::string selection = job->settings.integrator == loaded.settings.integrator
-                                    ? lightSelectionSummary(loaded.desc, job->settings.integrator)
-                                    : "";
+  const std::string selection =
+      job->settings.integrator == loaded.settings.integrator
+          ? lightSelectionSummary(loaded.desc, job->settings.integrator, loaded.scene->areaLightCount())
+          : "";
   if (!selection.empty()) meta.add("lightSelectionChoice", selection);
   if (o.reference) {
     meta.add("sceneHash", sceneContentHash(loaded.desc));

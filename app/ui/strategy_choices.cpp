@@ -21,9 +21,9 @@ std::string strategyUnavailableReason(const IntegratorDesc& choice, const Scene*
   return {};
 }
 
-std::string lightSelectionDefaultText(size_t sphereLights) {
-  return "default for " + sphereLightsText(sphereLights) + ": " +
-         std::string(nameOf(defaultLightSelection(sphereLights))) + " (" +
+std::string lightSelectionDefaultText(size_t areaLights) {
+  return "default for " + areaLightsText(areaLights) + ": " +
+         std::string(nameOf(defaultLightSelection(areaLights))) + " (" +
          std::string(nameOf(LightSelection::All)) + " up to " + std::to_string(kAllLightsUpTo) + ")";
 }
 

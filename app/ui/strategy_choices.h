@@ -15,7 +15,7 @@ namespace penumbra::ui {
 // simple without point or directional lights, hemisphere directions on a scene without lights.
 std::string strategyUnavailableReason(const IntegratorDesc& s, const Scene* scene);
 // "default for 64 sphere lights: all (all up to 256)".
-std::string lightSelectionDefaultText(size_t sphereLights);
+std::string lightSelectionDefaultText(size_t areaLights);
 
 // Whether compare mode has something to compare `left` with: its type has sampling axes (direct, ao).
 bool offersCompare(const IntegratorDesc& left);

@@ -55,5 +55,5 @@ TEST(StrategyChoices, UnavailableReasons) {
             "needs area lights (renders direct/cosine-hemisphere here)");
   EXPECT_EQ(strategyUnavailableReason(integratorOfType(IntegratorType::Simple), nullptr),
             "needs point or directional lights");
-  EXPECT_EQ(lightSelectionDefaultText(300), "default for 300 sphere lights: bvh (all up to 256)");
+  EXPECT_EQ(lightSelectionDefaultText(300), "default for 300 area lights: bvh (all up to 256)");
 }

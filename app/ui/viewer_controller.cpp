@@ -169,16 +169,16 @@ void ViewerController::setLightSelection(LightSelection selection) {
   setSettings(s);
 }
 
-size_t ViewerController::sphereLightCount() const {
-  return scene_.scene ? scene_.scene->sphereLights.size() : 0;
+size_t ViewerController::areaLightCount() const {
+  return scene_.scene ? scene_.scene->areaLightCount() : 0;
 }
 
 LightSelection ViewerController::defaultLightSelection() const {
-  return penumbra::defaultLightSelection(sphereLightCount());
+  return penumbra::defaultLightSelection(areaLightCount());
 }
 
 std::string ViewerController::lightSelectionDefaultText() const {
-  return ui::lightSelectionDefaultText(sphereLightCount());
+  return ui::lightSelectionDefaultText(areaLightCount());
 }
 
 // ---- MIS light share view ---------------------------------------------------------------------------

@@ -124,11 +124,11 @@ class ViewerController {
   std::string strategyUnavailableReason(const IntegratorDesc& s) const;
   // Switches the live light selection; ignored where the live strategy takes none.
   void setLightSelection(LightSelection selection);
-  // The scene's sphere lights, and the selection the scene builder picks for them when the scene
+  // The scene's area lights, and the selection the scene builder picks for them when the scene
   // names none (core/scene/light_selection_default.h).
-  size_t sphereLightCount() const;
+  size_t areaLightCount() const;
   LightSelection defaultLightSelection() const;
-  // "default for 64 sphere lights: bvh (all up to 8)", for the panel.
+  // "default for 300 area lights: bvh (all up to 256)", for the panel.
   std::string lightSelectionDefaultText() const;
 
   // ---- MIS light share view --------------------------------------------------------------------

@@ -200,14 +200,14 @@ TEST(ViewerController, InvalidSceneKeepsTheLastGoodOneAndShowsFileAndLine) {
 TEST(ViewerController, LightSelectionSwitchesLiveAndAMeasureChangeKeepsIt) {
   const int many = int(kAllLightsUpTo) + 1;
   ui::ViewerController c(loadSceneFromString(scalingSceneXml(many, 16, 100000), "scaling.xml", "."), {}, 2);
-  EXPECT_EQ(c.sphereLightCount(), size_t(many));
+  EXPECT_EQ(c.areaLightCount(), size_t(many));
   EXPECT_EQ(c.defaultLightSelection(), kManyLightsSelection);
   // The scene names no lightSelection: the builder resolved it by the light count.
   EXPECT_EQ(strategyLabel(c.settings().integrator),
             strategyLabel(directByLight(LightMeasure::SolidAngle, LightSelection::Bvh)));
   EXPECT_TRUE(c.settings().integrator.usesLightSelection());
   EXPECT_EQ(c.lightSelectionDefaultText(), "default for " + std::to_string(many) +
-                                               " sphere lights: bvh (all up to " +
+                                               " area lights: bvh (all up to " +
                                                std::to_string(kAllLightsUpTo) + ")");
 
   c.start();
@@ -253,11 +253,11 @@ TEST(ViewerController, LightSelectionSwitchesLiveAndAMeasureChangeKeepsIt) {
 
 TEST(ViewerController, TheAssignmentSceneDefaultsToAllLights) {
   ui::ViewerController c(smallDefaultScene(), {}, 1);
-  EXPECT_EQ(c.sphereLightCount(), 1u);
+  EXPECT_EQ(c.areaLightCount(), 1u);
   EXPECT_EQ(c.defaultLightSelection(), LightSelection::All);
   EXPECT_EQ(strategyLabel(c.settings().integrator), strategyLabel(directByLight(LightMeasure::SolidAngle)));
   EXPECT_EQ(c.lightSelectionDefaultText(),
-            "default for 1 sphere light: all (all up to " + std::to_string(kAllLightsUpTo) + ")");
+            "default for 1 area light: all (all up to " + std::to_string(kAllLightsUpTo) + ")");
 }
 
 TEST(ViewerCompare, EnablingStartsASecondAccumulationDisablingStopsIt) {

@@ -213,8 +213,7 @@ Reference closedFormReference(const LoadedScene& loaded, int grid, CancelFlag ca
           if (!scene.geometry.intersect(ray, hit)) continue;
           const SurfaceMaterial& m = scene.materials[hit.objectId];
           glm::dvec3 L(0.0);
-          if (m.sphereLight >= 0)
-            L += glm::dvec3(scene.sphereLights[m.sphereLight].eval(hit.p, hit.ng, ray.d));
+          L += glm::dvec3(emittedAt(scene, m, hit, ray));
           if (!isBlack(m.albedo)) {
             ShadingPoint sp(scene, ray, hit);
             glm::dvec3 E(0.0);
@@ -225,6 +224,9 @@ Reference closedFormReference(const LoadedScene& loaded, int grid, CancelFlag ca
                                                      glm::dvec3(light.sphere.center), light.sphere.radius);
               E += glm::dvec3(light.radiance) * I;
             }
+            for (const PolygonLight& light : scene.polygonLights)
+              E += glm::dvec3(light.radiance) *
+                   polygonLightIrradianceFactor(light, glm::dvec3(sp.hit.p), glm::dvec3(sp.ns));
             L += glm::dvec3(m.albedo) * (1.0 / kPiD) * E;
           }
           sum += L * double(weight);
@@ -246,7 +248,7 @@ std::vector<uint8_t> emitterMask(const LoadedScene& loaded, CancelFlag cancel) {
           Ray ray = camera.generateRay(
               Vec2(float(x) + (float(i) + 0.5f) / 3.f, float(y) + (float(j) + 0.5f) / 3.f));
           SurfaceHit hit;
-          if (scene.geometry.intersect(ray, hit) && scene.materials[hit.objectId].sphereLight >= 0) {
+          if (scene.geometry.intersect(ray, hit) && scene.materials[hit.objectId].emits()) {
             direct[std::size_t(y) * w + x] = 1;
             break;
           }

@@ -11,7 +11,7 @@
 //  (c) closed form, for the analytic scenes in scenes/analytic/: every pixel's filtered value is
 //      computed by tracing camera rays at a 16x16 stratified grid of filter samples (the same
 //      FilterSampler the renderer uses) and evaluating, at each hit point, the closed form of
-//      closed_forms.h: albedo/pi * sum over sphere lights of Le * I(theta, alpha). This is exact only
+//      closed_forms.h: albedo/pi * sum over area lights of Le * (sphere I(θ, α), polygon Ω⊥). Exact only
 //      when nothing occludes the lights (true for the shipped scenes); emitters seen directly
 //      contribute their radiance. Quadrature error of the 256-point average is < 1e-5 relative
 //      for the shipped scenes (smooth irradiance, ~30 px per unit).

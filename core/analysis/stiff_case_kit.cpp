@@ -85,13 +85,15 @@ CaseResult finiteOnly(const Estimate& e) {
   return r;
 }
 
-// Reflected radiance Lr of the albedo-1 receiver at x (normal n) lit by every sphere light.
+// Reflected radiance Lr of the albedo-1 receiver at x (normal n) lit by every area light (unoccluded).
 double directTruth(const Scene& scene, const Vec3& x, const Vec3& n) {
   double sum = 0;
   for (const SphereLight& l : scene.sphereLights)
     sum += double(l.radiance.x) / kPiD *
            sphereLightIrradianceFactor(glm::dvec3(x), glm::dvec3(n), glm::dvec3(l.sphere.center),
                                        double(l.sphere.radius));
+  for (const PolygonLight& l : scene.polygonLights)
+    sum += double(l.radiance.x) / kPiD * polygonLightIrradianceFactor(l, glm::dvec3(x), glm::dvec3(n));
   return sum;
 }
 
@@ -113,7 +115,7 @@ CaseResult directCase(const CaseOptions& o, const std::string& file, unsigned st
   Ray ray = shallowRayOnto(x, slope);
   CaseResult acc;
   SurfaceHit hit;
-  if (!scene.geometry.intersect(ray, hit) || scene.materials[hit.objectId].sphereLight >= 0) {
+  if (!scene.geometry.intersect(ray, hit) || scene.materials[hit.objectId].emits()) {
     acc.failures.push_back("the camera ray does not reach the receiver");
     return acc;
   }

@@ -102,6 +102,34 @@ std::vector<StiffCase> makeCases() {
   add("light-grazing-89.9", "horizon", "light centre 89.9 degrees from the normal", [](const CaseOptions& o) {
     return directCase(o, "light-grazing.xml", kSolid | kProjected | kArea | kCosine | kMis, 20000);
   });
+  // Polygon lights (rectangles): light sampling by every measure, MIS and, where the light is large
+  // enough for them to find, hemisphere directions.
+  const unsigned kLight = kSolid | kProjected | kArea;
+  const struct {
+    const char* name;
+    const char* description;
+    unsigned strategies;
+  } polygonCases[] = {
+      {"polygon-above", "rectangle light above the receiver (all strategies)", kAll},
+      {"polygon-tiny", "rectangle 2e-6 across at distance 1 (light sampling, mis)", kLight | kMis},
+      {"polygon-sliver", "rectangle of aspect 1e4 (light sampling, mis)", kLight | kMis},
+      {"polygon-straddling", "wall light straddling the horizon (all strategies)", kAll},
+      {"polygon-grazing", "window light within 0.4 degrees of the horizon (light sampling, mis)",
+       kLight | kMis},
+      // Area samples of a light 2e4 times wider than its height find the bright spot under it too rarely.
+      {"polygon-huge", "rectangle 200 across at height 0.01 (all but area sampling)",
+       kSolid | kProjected | kCosine | kUniform | kMis},
+  };
+  for (const auto& c : polygonCases) {
+    const std::string file = std::string(c.name) + ".xml";
+    const unsigned strategies = c.strategies;
+    add(c.name, "polygon-light", c.description,
+        [file, strategies](const CaseOptions& o) { return directCase(o, file, strategies, 20000); });
+  }
+  add("polygon-in-plane", "polygon-light", "the receiver in the light's plane: exactly 0",
+      [](const CaseOptions& o) { return exactlyZeroCase(o, "polygon-in-plane.xml", 4000); });
+  add("polygon-back-side", "polygon-light", "the light faces away (one-sided): exactly 0",
+      [](const CaseOptions& o) { return exactlyZeroCase(o, "polygon-back-side.xml", 4000); });
   add("equal-power-r1", "equal-power", "equal power, r = 1 (all strategies)",
       [](const CaseOptions& o) { return directCase(o, "equal-power-r1.xml", kAll, 20000); });
   add("equal-power-r1e-3", "equal-power", "equal power, r = 1e-3 (light sampling, mis; hemisphere finite)",

@@ -4,10 +4,12 @@
 // strategy chosen at compile time (one instantiation per combination of the axes, so no per-sample
 // branching):
 //   hemisphere (uniform or cosine warp): trace the sampled direction, add Le of an emitter it hits;
-//   area: a uniform point on each light sphere, pdf converted to solid angle (far side adds 0);
-//   solid angle: a uniform direction in the cone each light sphere subtends;
-//   projected solid angle: a direction in that cone with density cos θ / Ω⊥ above the horizon, whose
-//   estimate Le Ω⊥ has no variance where the light is unoccluded.
+//   area: a uniform point on each light (sphere or polygon), pdf converted to solid angle (a sphere's
+//   far side adds 0);
+//   solid angle: a uniform direction in the cone a sphere subtends, a polygon's spherical triangle or
+//   rectangle;
+//   projected solid angle: a direction in that solid angle with density cos θ / Ω⊥ above the horizon,
+//   whose estimate Le Ω⊥ has no variance where the light is unoccluded.
 // The three light measures sample every light per shading sample (light selection `all`), or one
 // light chosen per shading sample (uniform, by power, by the light BVH), its probability divided out.
 // `simple` renders the delta lights alone.
@@ -80,14 +82,24 @@ struct LightDirectIntegrator {
       const Vec2 u = sampler.next2D(uint32_t(i), uint32_t(samples), 1, 2);
       const LightPick pick = selection.pick(sp.hit.p, sp.ns, double(uPick.x) + double(uPick.y) * 0x1p-24);
       if (!(pick.pmf > 0.0)) continue;
-      const SphereLight& light = scene.sphereLights[pick.light];
-      const LightTechnique<kLightMeasure> technique(light, sp);
-      LightSample s;
-      float cosTheta;
-      if (!unoccludedLightSample(scene, light, lightScaleOf(light), technique, sp, u, s, cosTheta)) continue;
-      E += s.Le * static_cast<float>(technique.cosOverSelectedPdf(s, cosTheta, pick.pmf));
+      const size_t spheres = scene.sphereLights.size();
+      if (pick.light < spheres)
+        E += selectedSample(scene, scene.sphereLights[pick.light], sp, u, pick.pmf);
+      else
+        E += selectedSample(scene, scene.polygonLights[pick.light - spheres], sp, u, pick.pmf);
     }
     return E * (1.f / float(samples));
+  }
+
+  template <class Light>
+  static Color3 selectedSample(const Scene& scene, const Light& light, const ShadingPoint& sp, Vec2 u,
+                               double pmf) {
+    const LightTechnique<kLightMeasure, Light> technique(light, sp);
+    LightSample s;
+    float cosTheta;
+    if (!unoccludedLightSample(scene, light, lightScaleOf(light), technique, sp, u, s, cosTheta))
+      return Color3(0.f);
+    return s.Le * static_cast<float>(technique.cosOverSelectedPdf(s, cosTheta, pmf));
   }
 };
 

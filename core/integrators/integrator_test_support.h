@@ -15,6 +15,7 @@
 #include "core/integrators/integrator_desc.h"
 #include "core/integrators/mis_integrator.h"
 #include "core/integrators/normals_integrator.h"
+#include "core/lights/mesh_lights.h"
 #include "core/lights/sphere_cap.h"
 #include "core/math/vec.h"
 #include "core/sampling/sampler.h"
@@ -70,6 +71,20 @@ inline void addSphere(Scene& scene, const Vec3& center, float radius, Color3 rad
     light.geometryIndex = index;
     scene.sphereLights.push_back(light);
   }
+  scene.materials.push_back(material);
+}
+
+// Adds a one-sided emitting polygon (3 or 4 vertices, convex, emitting towards its counter-clockwise
+// winding's normal) as the next object: a triangle fan, made into lights as the scene builder does.
+inline void addPolygonLight(Scene& scene, const std::vector<Vec3>& vertices, Color3 radiance) {
+  TriangleMesh mesh;
+  mesh.positions = vertices;
+  for (uint32_t i = 1; i + 1 < vertices.size(); ++i) mesh.triangles.push_back(glm::uvec3(0, i, i + 1));
+  SurfaceMaterial material;
+  material.albedo = Color3(0.f);
+  material.polygonLightsAt = static_cast<int32_t>(scene.polygonLightOfPrim.size());
+  addMeshLights(mesh, radiance, scene.polygonLights, scene.polygonLightOfPrim);
+  scene.geometry.addMesh(mesh, static_cast<uint32_t>(scene.materials.size()));
   scene.materials.push_back(material);
 }
 

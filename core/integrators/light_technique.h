@@ -1,8 +1,9 @@
-// The light-sampling techniques of `direct`, one per measure, for one sphere light seen from one
-// shading point: how a direction towards the light is sampled, the factor cos θ / pdf its estimate
-// carries (cosOverPdf; cosOverSelectedPdf when the light was chosen with probability pmf), and the
-// solid-angle density with which the technique produces a given direction that reaches the light
-// (MIS weighs directions the other technique sampled with it).
+// The light-sampling techniques of `direct`, one per measure and light type (here the sphere's;
+// polygon_light_technique.h has the polygon's), for one light seen from one shading point: how a direction
+// towards the light is sampled, the factor cos θ / pdf its estimate carries (cosOverPdf; cosOverSelectedPdf
+// when the light was chosen with probability pmf), and the solid-angle density with which the technique
+// produces a given direction that reaches the light (MIS weighs directions the other technique sampled with
+// it).
 #pragma once
 
 #include <cstdint>
@@ -14,12 +15,12 @@
 
 namespace penumbra {
 
-template <LightMeasure kMeasure>
+template <LightMeasure kMeasure, class Light>
 class LightTechnique;
 
 // A uniform point on the whole sphere; far-side points are samples with Le = 0.
 template <>
-class LightTechnique<LightMeasure::Area> {
+class LightTechnique<LightMeasure::Area, SphereLight> {
  public:
   LightTechnique(const SphereLight& light, const ShadingPoint& sp) : light_(light), x_(sp.hit.p) {}
   bool canSample() const { return true; }
@@ -41,7 +42,7 @@ class LightTechnique<LightMeasure::Area> {
 
 // A uniform direction in the cone the sphere subtends.
 template <>
-class LightTechnique<LightMeasure::SolidAngle> {
+class LightTechnique<LightMeasure::SolidAngle, SphereLight> {
  public:
   LightTechnique(const SphereLight& light, const ShadingPoint& sp) : light_(light), x_(sp.hit.p) {}
   bool canSample() const { return true; }
@@ -60,7 +61,7 @@ class LightTechnique<LightMeasure::SolidAngle> {
 // A direction in the subtended cone with density cos θ / Ω⊥ above the horizon of the shading normal:
 // cos θ / pdf is Ω⊥ for every sample, in closed form.
 template <>
-class LightTechnique<LightMeasure::ProjectedSolidAngle> {
+class LightTechnique<LightMeasure::ProjectedSolidAngle, SphereLight> {
  public:
   LightTechnique(const SphereLight& light, const ShadingPoint& sp) {
     valid_ = cap_.init(light, sp.hit.p, sp.ns);

@@ -1,6 +1,6 @@
 // Direct illumination by multiple importance sampling (Veach's thesis, ch. 9, the multi-sample
 // model): the area-light integral ∫ Le cos θ dω is estimated with two techniques at once,
-//   light sampling: for every sphere light, `lightSamples` directions of the light measure
+//   light sampling: for every area light (sphere or polygon), `lightSamples` directions of the light measure
 //                   (area, solid angle or projected solid angle), and
 //   cosine-hemisphere sampling: `bsdfSamples` directions shared by all lights, a direction that
 //                   reaches a light unoccluded counting for that light,
@@ -9,7 +9,7 @@
 // direction both can produce. A count of 0 turns the other technique into the plain estimator
 // (bit for bit: its weights are then exactly 1). Point and directional lights are deterministic.
 //
-// Several sphere lights: every light is sampled (the loop of `lightSelection` `all`), none is chosen
+// Several area lights: every light is sampled (the loop of `lightSelection` `all`), none is chosen
 // by a light selection, so MIS takes no `lightSelection`. The weight of a cosine direction
 // that reaches light L needs the density with which light sampling would have produced it: L's
 // selection probability times the technique's pdf. With the loop that probability is 1, the weights
@@ -31,7 +31,7 @@ namespace penumbra {
 
 template <LightMeasure kMeasure, MisHeuristic kHeuristic>
 struct MisIntegrator {
-  int lightSamples = 1;  // per sphere light, per camera sample
+  int lightSamples = 1;  // per area light, per camera sample
   int bsdfSamples = 1;   // cosine-hemisphere directions per camera sample
 
   Color3 Li(const Scene& scene, const Ray& ray, Sampler& sampler) const {
@@ -54,9 +54,9 @@ struct MisIntegrator {
   // The density of the cosine-hemisphere technique, and of the light technique for light `l`, of a
   // direction w reaching that light at p (normal n): the pair every weight is computed from.
   static float bsdfPdf(float cosTheta) { return cosTheta * kInvPi; }
-  static float lightPdf(const SphereLight& l, const ShadingPoint& sp, const Vec3& w, const Vec3& p,
-                        const Vec3& n) {
-    return LightTechnique<kMeasure>(l, sp).pdf(w, p, n);
+  template <class Light>
+  static float lightPdf(const Light& l, const ShadingPoint& sp, const Vec3& w, const Vec3& p, const Vec3& n) {
+    return LightTechnique<kMeasure, Light>(l, sp).pdf(w, p, n);
   }
 
  private:
@@ -72,7 +72,7 @@ struct MisIntegrator {
     const float nL = float(lightSamples), nB = float(bsdfSamples);
     return hemisphereIrradiance<HemisphereWarp::Cosine>(
         scene, sp, sampler, bsdfSamples,
-        [&](const SphereLight& light, const SurfaceHit& lightHit, const Vec3& w, float cosTheta) {
+        [&](const auto& light, const SurfaceHit& lightHit, const Vec3& w, float cosTheta) {
           const float pL = lightSamples > 0 ? lightPdf(light, sp, w, lightHit.p, lightHit.ng) : 0.f;
           return misWeight<kHeuristic>(nB * bsdfPdf(cosTheta), nL * pL);
         });

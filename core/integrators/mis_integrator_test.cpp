@@ -119,7 +119,7 @@ struct WeightCheck {
       sampler.startPixelSample(IVec2(0), i);
       // Directions the light technique produced.
       for (size_t l = 0; l < scene.sphereLights.size(); ++l) {
-        const LightTechnique<kMeasure> technique(scene.sphereLights[l], sp);
+        const LightTechnique<kMeasure, SphereLight> technique(scene.sphereLights[l], sp);
         const Vec2 u = sampler.next2D();
         if (!technique.canSample()) continue;
         const LightSample s = technique.sample(u);

@@ -34,8 +34,7 @@ struct MisLightShareIntegrator {
     if (scene.hasAreaLights()) mis.techniques(scene, sp, sampler, lightPart, bsdfPart);
     // A light seen directly: its emission outshines what it reflects, so the whole estimate counts as
     // "the rest" and the view shows the light as having no share.
-    if (material.sphereLight >= 0)
-      return Color3(0.f, 0.f, luminance(L + reflect * (delta + (lightPart + bsdfPart))));
+    if (material.emits()) return Color3(0.f, 0.f, luminance(L + reflect * (delta + (lightPart + bsdfPart))));
     return Color3(luminance(reflect * lightPart), luminance(reflect * bsdfPart),
                   luminance(L + reflect * delta));
   }

@@ -10,11 +10,14 @@
 
 namespace penumbra {
 
-// The emission seen along `ray` at its hit: the sphere light's radiance there, 0 on other surfaces.
+// The emission seen along `ray` at its hit: the light's radiance there (on its emitting side), 0 on
+// other surfaces.
 [[gnu::always_inline]] inline Color3 emittedAt(const Scene& scene, const SurfaceMaterial& material,
                                                const SurfaceHit& hit, const Ray& ray) {
-  if (material.sphereLight < 0) return Color3(0.f);
-  return scene.sphereLights[material.sphereLight].eval(hit.p, hit.ng, ray.d);
+  if (material.sphereLight >= 0) return scene.sphereLights[material.sphereLight].eval(hit.p, hit.ng, ray.d);
+  if (material.polygonLightsAt < 0) return Color3(0.f);
+  const PolygonLight* light = scene.polygonLightOf(material, hit.primId);
+  return light ? light->eval(ray.d) : Color3(0.f);
 }
 
 struct ShadingPoint {

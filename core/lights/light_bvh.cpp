@@ -17,6 +17,8 @@ struct BuildItem {
   Vec3 centroid;
   double power;
   uint32_t light;
+  Vec3 coneAxis;
+  float cosConeAngle;
 };
 
 double surfaceArea(const Bounds& b) {
@@ -34,10 +36,13 @@ struct Builder {
     bvh.nodes.emplace_back();
     Bounds box, centroids;
     double power = 0.0;
+    Vec3 axis = items[begin].coneAxis;
+    float cosAngle = items[begin].cosConeAngle;
     for (uint32_t i = begin; i < end; ++i) {
       box.expand(items[i].box);
       centroids.expand(items[i].centroid);
       power += items[i].power;
+      if (i > begin) joinCones(axis, cosAngle, items[i].coneAxis, items[i].cosConeAngle);
     }
     {
       LightBvhNode& node = bvh.nodes[index];
@@ -45,6 +50,8 @@ struct Builder {
       node.hi = box.max;
       node.power = power;
       node.parent = parent;
+      node.coneAxis = axis;
+      node.cosConeAngle = cosAngle;
     }
     if (end - begin == 1) {
       bvh.nodes[index].leaf = true;
@@ -122,9 +129,12 @@ struct Builder {
 
 }  // namespace
 
-// pbrt-v4 LightBounds::Importance without the emitter's orientation terms: power over the squared
-// distance to the bounds' centre (at least the bounding sphere's radius squared), times the cosine
-// bound cos(max(0, θi − θb)) of the receiver's normal over the cone θb that the bounding sphere subtends.
+// After pbrt-v4's LightBounds::Importance: power over the squared distance to the bounds' centre (at
+// least the bounding sphere's radius squared), times the cosine bound cos(max(0, θi − θb)) of the
+// receiver's normal over the cone θb that the bounding sphere subtends, times, for a node of one-sided
+// emitters (normal cone θo < π), the bound cos(max(0, θw − θo − θb)) of the emitters' cosine towards p,
+// θw the angle between the cone's axis and the direction from the centre to p: 0 past π/2, where no
+// emitter of the node faces p.
 double lightBvhImportance(const LightBvhNode& node, const Vec3& p, const Vec3& n) {
   if (!(node.power > 0.0)) return 0.0;
   const DVec3 lo(node.lo), hi(node.hi);
@@ -133,11 +143,11 @@ double lightBvhImportance(const LightBvhNode& node, const Vec3& p, const Vec3& n
   const DVec3 toCentre = c - DVec3(p);
   const double d2 = glm::dot(toCentre, toCentre);
   if (d2 <= r2) return std::min(node.power / std::max(r2, 1e-300), kMaxImportance);  // p inside
+  const double sin2b = r2 / d2;
+  const double cosb = std::sqrt(1.0 - sin2b), sinb = std::sqrt(sin2b);
   double cosBound = 1.0;
   const DVec3 nd(n);
   if (nd != DVec3(0.0)) {
-    const double sin2b = r2 / d2;
-    const double cosb = std::sqrt(1.0 - sin2b), sinb = std::sqrt(sin2b);
     const double cosi = glm::dot(nd, toCentre) / std::sqrt(d2);
     if (cosi < cosb) {
       const double sini = std::sqrt(std::max(0.0, 1.0 - cosi * cosi));
@@ -145,7 +155,54 @@ double lightBvhImportance(const LightBvhNode& node, const Vec3& p, const Vec3& n
       if (!(cosBound > 0.0)) return 0.0;     // the whole bounding sphere is below the horizon
     }
   }
+  if (node.cosConeAngle > -1.f) {
+    // θw − θo − θb as one angle: cos and sin of θw − θo first, then less θb.
+    const double cosw = -glm::dot(DVec3(node.coneAxis), toCentre) / std::sqrt(d2);
+    const double sinw = std::sqrt(std::max(0.0, 1.0 - cosw * cosw));
+    const double coso = double(node.cosConeAngle), sino = std::sqrt(std::max(0.0, 1.0 - coso * coso));
+    if (cosw < coso) {  // θw > θo
+      const double cosx = cosw * coso + sinw * sino, sinx = sinw * coso - cosw * sino;
+      if (cosx < cosb) {  // θw − θo > θb
+        const double cosEmit = cosx * cosb + sinx * sinb;
+        if (!(cosEmit > 0.0)) return 0.0;  // no emitter of the node faces p
+        cosBound *= cosEmit;
+      }
+    }
+  }
   return std::min(node.power * cosBound / d2, kMaxImportance);
+}
+
+void joinCones(Vec3& axis, float& cosAngle, const Vec3& otherAxis, float otherCosAngle) {
+  if (cosAngle <= -1.f) return;
+  if (otherCosAngle <= -1.f) {
+    axis = otherAxis;
+    cosAngle = -1.f;
+    return;
+  }
+  const DVec3 a(axis), b(otherAxis);
+  const double thetaA = std::acos(std::clamp(double(cosAngle), -1.0, 1.0));
+  const double thetaB = std::acos(std::clamp(double(otherCosAngle), -1.0, 1.0));
+  const double thetaD = std::acos(std::clamp(glm::dot(a, b), -1.0, 1.0));
+  constexpr double kPiD = 3.14159265358979323846;
+  if (std::min(thetaD + thetaB, kPiD) <= thetaA) return;  // the first holds the second
+  if (std::min(thetaD + thetaA, kPiD) <= thetaB) {
+    axis = otherAxis;
+    cosAngle = otherCosAngle;
+    return;
+  }
+  const double thetaO = 0.5 * (thetaA + thetaD + thetaB);
+  const DVec3 across = glm::cross(a, b);
+  const double acrossLength = glm::length(across);
+  if (thetaO >= kPiD || !(acrossLength > 1e-12)) {
+    cosAngle = -1.f;
+    return;
+  }
+  // The axis turned from a towards b by θo − θa, in the plane of the two.
+  const double turn = thetaO - thetaA;
+  const DVec3 towardsB = glm::cross(across / acrossLength, a);
+  axis = Vec3(glm::normalize(std::cos(turn) * a + std::sin(turn) * towardsB));
+  // Rounded outwards by a little, so the joined cone keeps holding both after float rounding.
+  cosAngle = float(std::cos(std::min(kPiD, thetaO + 1e-6)));
 }
 
 namespace {
@@ -204,16 +261,16 @@ double LightBvh::pmf(const Vec3& p, const Vec3& n, uint32_t light) const {
   return pmf;
 }
 
-LightBvh makeLightBvh(std::span<const SphereLight> lights) {
+LightBvh makeLightBvh(std::span<const LightSummary> lights) {
   Builder builder;
   builder.bvh.leafOf.resize(lights.size());
   if (lights.empty()) return builder.bvh;
   double total = 0.0;
-  for (const SphereLight& l : lights) total += sphereLightPower(l);
+  for (const LightSummary& l : lights) total += l.power;
   const bool unitPower = !(total > 0.0);  // every light dark: choose by geometry alone
   for (uint32_t i = 0; i < lights.size(); ++i) {
-    const Bounds box = lights[i].sphere.bounds();
-    builder.items.push_back({box, lights[i].sphere.center, unitPower ? 1.0 : sphereLightPower(lights[i]), i});
+    const LightSummary& l = lights[i];
+    builder.items.push_back({l.box, l.centroid, unitPower ? 1.0 : l.power, i, l.coneAxis, l.cosConeAngle});
   }
   builder.bvh.nodes.reserve(2 * lights.size());
   builder.build(0, static_cast<uint32_t>(lights.size()), 0);

@@ -1,7 +1,7 @@
-// Ways of choosing one sphere light per shading sample, so that the cost of a sample does not grow
-// with the number of lights: uniform, proportional to emitted power (alias table), and a light BVH
-// (light_bvh.h). Each is a plain struct with the same two queries, so an integrator takes the
-// selection as a template parameter (no virtual call):
+// Ways of choosing one area light (a sphere or a polygon) per shading sample, so that the cost of a sample
+// does not grow with the number of lights: uniform, proportional to emitted power (alias table), and a light
+// BVH (light_bvh.h). Each is a plain struct with the same two queries, so an integrator takes the selection
+// as a template parameter (no virtual call):
 //   LightPick pick(const Vec3& p, const Vec3& n, double u) const;  // a light and its probability
 //   double pmf(const Vec3& p, const Vec3& n, uint32_t light) const;  // the probability pick gives it
 // p is the shading point and n its unit shading normal (zero: no normal). pick's pmf == 0 means
@@ -10,8 +10,11 @@
 
 #include <cstdint>
 #include <span>
+#include <vector>
 
+#include "core/geometry/bounds.h"
 #include "core/lights/alias_table.h"
+#include "core/lights/polygon_light.h"
 #include "core/lights/sphere_light.h"
 
 namespace penumbra {
@@ -24,6 +27,20 @@ struct LightPick {
 // Emitted power of a one-sided diffuse sphere (radiant exitance π·L over area 4π r²), from the mean
 // of the radiance's channels: 0 exactly when the light cannot contribute.
 double sphereLightPower(const SphereLight& light);
+
+// What the selections know of one area light: where it is, its power and which way it emits (the
+// cone of its surface normals, pbrt-v4's LightBounds: a sphere emits every way, a polygon along n).
+// The selections index lights in the order of the summaries they are built from.
+struct LightSummary {
+  Bounds box;
+  Vec3 centroid{0.f};
+  double power = 0.0;
+  Vec3 coneAxis{0.f, 0.f, 1.f};
+  float cosConeAngle = -1.f;  // cos of the normal cone's half-angle: -1 every direction, 1 only the axis
+};
+LightSummary summarizeLight(const SphereLight& light);
+LightSummary summarizeLight(const PolygonLight& light);
+std::vector<LightSummary> summarizeLights(std::span<const SphereLight> lights);
 
 struct UniformLightSelection {
   uint32_t count = 0;
@@ -49,7 +66,7 @@ struct PowerLightSelection {
   double pmf(const Vec3& /*p*/, const Vec3& /*n*/, uint32_t light) const { return table.pmf(light); }
 };
 
-UniformLightSelection makeUniformLightSelection(std::span<const SphereLight> lights);
-PowerLightSelection makePowerLightSelection(std::span<const SphereLight> lights);
+UniformLightSelection makeUniformLightSelection(std::span<const LightSummary> lights);
+PowerLightSelection makePowerLightSelection(std::span<const LightSummary> lights);
 
 }  // namespace penumbra

@@ -125,8 +125,8 @@ TEST(AliasTable, DrawsFollowThePmf) {
 
 TEST(LightSelection, UniformAndPowerPmfsSumToOneAndMatchTheirDraws) {
   const auto lights = randomLights(30, 5);
-  const UniformLightSelection uniform = makeUniformLightSelection(lights);
-  const PowerLightSelection power = makePowerLightSelection(lights);
+  const UniformLightSelection uniform = makeUniformLightSelection(summarizeLights(lights));
+  const PowerLightSelection power = makePowerLightSelection(summarizeLights(lights));
   double su = 0.0, sp = 0.0, total = 0.0;
   for (const SphereLight& l : lights) total += sphereLightPower(l);
   for (uint32_t i = 0; i < lights.size(); ++i) {
@@ -168,8 +168,8 @@ TEST(LightSelection, PowerIsZeroExactlyForDarkOrPointLikeLights) {
   l.radiance = Color3(1.f);
   l.sphere.radius = 0.f;
   EXPECT_EQ(sphereLightPower(l), 0.0);
-  EXPECT_EQ(makeUniformLightSelection({}).pick(Vec3(0), Vec3(0), 0.5).pmf, 0.0);
-  EXPECT_EQ(makePowerLightSelection({}).pick(Vec3(0), Vec3(0), 0.5).pmf, 0.0);
+  EXPECT_EQ(makeUniformLightSelection(summarizeLights({})).pick(Vec3(0), Vec3(0), 0.5).pmf, 0.0);
+  EXPECT_EQ(makePowerLightSelection(summarizeLights({})).pick(Vec3(0), Vec3(0), 0.5).pmf, 0.0);
 }
 
 // ---- light BVH -------------------------------------------------------------------------------------
@@ -237,7 +237,7 @@ void expectConsistentBvh(const std::vector<SphereLight>& lights, const LightBvh&
 TEST(LightBvh, PmfsSumToOneAndMatchPicksAtManyShadingPoints) {
   for (int n : {1, 2, 3, 10, 257}) {
     const auto lights = randomLights(n, 10 + uint64_t(n));
-    const LightBvh bvh = makeLightBvh(lights);
+    const LightBvh bvh = makeLightBvh(summarizeLights(lights));
     EXPECT_EQ(bvh.nodes.size(), size_t(2 * n - 1));
     expectConsistentBvh(lights, bvh, 300, uint64_t(n));
   }
@@ -245,7 +245,7 @@ TEST(LightBvh, PmfsSumToOneAndMatchPicksAtManyShadingPoints) {
 
 TEST(LightBvh, DrawsFollowThePmf) {
   const auto lights = randomLights(40, 11);
-  const LightBvh bvh = makeLightBvh(lights);
+  const LightBvh bvh = makeLightBvh(summarizeLights(lights));
   const auto points = shadingPoints(3, 12);
   for (const ShadingPointSample& s : points) {
     std::vector<double> pmf;
@@ -257,7 +257,7 @@ TEST(LightBvh, DrawsFollowThePmf) {
     std::string why;
     EXPECT_TRUE(discreteChi2Accepts(counts, pmf, n, sidakAlpha(0.01, int(points.size())), &why)) << why;
     // Power alone is a different distribution here: rejected.
-    const PowerLightSelection power = makePowerLightSelection(lights);
+    const PowerLightSelection power = makePowerLightSelection(summarizeLights(lights));
     std::vector<double> wrong;
     for (uint32_t i = 0; i < lights.size(); ++i) wrong.push_back(power.pmf(s.p, s.n, i));
     EXPECT_FALSE(discreteChi2Accepts(counts, wrong, n, 0.01));
@@ -270,7 +270,7 @@ TEST(LightBvh, PrefersNearAndPowerfulLights) {
   lights[1].sphere = {Vec3(20, 1, 0), 0.1f};
   lights[2].sphere = {Vec3(0, -3, 0), 0.1f};  // below the floor's horizon
   for (SphereLight& l : lights) l.radiance = Color3(1.f);
-  const LightBvh bvh = makeLightBvh(lights);
+  const LightBvh bvh = makeLightBvh(summarizeLights(lights));
   const Vec3 p(0, 0, 0), up(0, 1, 0);
   EXPECT_GT(bvh.pmf(p, up, 0), 0.9);
   EXPECT_GT(bvh.pmf(p, up, 1), 0.0);
@@ -284,7 +284,7 @@ TEST(LightBvh, DegenerateInputsGiveNoNaN) {
   for (int i = 0; i < 20; i += 3) lights[size_t(i)].radiance = Color3(0.f);
   lights[4].sphere.radius = 0.f;
   {
-    const LightBvh bvh = makeLightBvh(lights);
+    const LightBvh bvh = makeLightBvh(summarizeLights(lights));
     expectConsistentBvh(lights, bvh, 100, 16);
     for (const ShadingPointSample& s : shadingPoints(50, 17)) {
       for (int i = 0; i < 20; i += 3) EXPECT_EQ(bvh.pmf(s.p, s.n, uint32_t(i)), 0.0);
@@ -294,14 +294,14 @@ TEST(LightBvh, DegenerateInputsGiveNoNaN) {
   // Every light dark: chosen by geometry alone, still a distribution.
   auto dark = randomLights(9, 18);
   for (SphereLight& l : dark) l.radiance = Color3(0.f);
-  expectConsistentBvh(dark, makeLightBvh(dark), 100, 19);
+  expectConsistentBvh(dark, makeLightBvh(summarizeLights(dark)), 100, 19);
   // Coincident lights (and one of radius 0 at the same centre).
   std::vector<SphereLight> same(12);
   for (size_t i = 0; i < same.size(); ++i) {
     same[i].sphere = {Vec3(1, 2, 3), i == 5 ? 0.f : 0.5f};
     same[i].radiance = Color3(float(i + 1));
   }
-  const LightBvh coincident = makeLightBvh(same);
+  const LightBvh coincident = makeLightBvh(summarizeLights(same));
   expectConsistentBvh(same, coincident, 100, 20);
   // Shading points inside a light's bounds, at its centre, and on its surface.
   for (const Vec3& p : {Vec3(1, 2, 3), Vec3(1.2f, 2, 3), Vec3(1, 2.5f, 3)}) {
@@ -312,13 +312,13 @@ TEST(LightBvh, DegenerateInputsGiveNoNaN) {
     EXPECT_GT(pick.pmf, 0.0);
   }
   // No lights.
-  const LightBvh empty = makeLightBvh({});
+  const LightBvh empty = makeLightBvh(summarizeLights({}));
   EXPECT_EQ(empty.pick(Vec3(0), Vec3(0), 0.5).pmf, 0.0);
 }
 
 TEST(LightBvh, TenThousandLightsStayShallow) {
   const auto lights = randomLights(10000, 21, 20.f);
-  const LightBvh bvh = makeLightBvh(lights);
+  const LightBvh bvh = makeLightBvh(summarizeLights(lights));
   int maxDepth = 0;
   for (uint32_t leaf : bvh.leafOf) {
     int depth = 0;

@@ -35,4 +35,11 @@ double polygonLightIrradianceFactor(const glm::dvec3& x, const glm::dvec3& n,
   return 0.5 * std::fabs(sum);
 }
 
+double polygonLightIrradianceFactor(const PolygonLight& light, const glm::dvec3& x, const glm::dvec3& n) {
+  Vec3 v[4];
+  light.vertices(v);
+  std::vector<glm::dvec3> vertices(v, v + light.vertexCount());
+  return polygonLightIrradianceFactor(x, n, vertices);
+}
+
 }  // namespace penumbra

@@ -8,6 +8,8 @@
 
 #include <glm/glm.hpp>
 
+#include "core/lights/polygon_light.h"
+
 namespace penumbra {
 
 // Ω⊥ of the polygon `vertices` (winding order, planar, convex or not) from x with normal n (need not be
@@ -15,5 +17,7 @@ namespace penumbra {
 // counter-clockwise winding's normal points to, and x behind it or in its plane gets 0.
 double polygonLightIrradianceFactor(const glm::dvec3& x, const glm::dvec3& n,
                                     const std::vector<glm::dvec3>& vertices);
+// The same for a polygon light's vertices (its emitting side is its n).
+double polygonLightIrradianceFactor(const PolygonLight& light, const glm::dvec3& x, const glm::dvec3& n);
 
 }  // namespace penumbra

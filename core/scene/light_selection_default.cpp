@@ -11,8 +11,8 @@ size_t countSphereLights(const SceneNode& scene) {
   return n;
 }
 
-std::string sphereLightsText(size_t count) {
-  return std::to_string(count) + (count == 1 ? " sphere light" : " sphere lights");
+std::string areaLightsText(size_t count) {
+  return std::to_string(count) + (count == 1 ? " area light" : " area lights");
 }
 
 bool sceneNamesLightSelection(const SceneNode& scene) {
@@ -20,11 +20,11 @@ bool sceneNamesLightSelection(const SceneNode& scene) {
   return integrator && integrator->props.find(kLightSelectionProperty.list()) != nullptr;
 }
 
-std::string lightSelectionSummary(const SceneNode& scene, const IntegratorDesc& strategy) {
+std::string lightSelectionSummary(const SceneNode& scene, const IntegratorDesc& strategy, size_t areaLights) {
   if (!strategy.usesLightSelection()) return "";
   std::string out = "light selection " + std::string(nameOf(strategy.lightSelection));
   if (sceneNamesLightSelection(scene)) return out + " (named by the scene or --set)";
-  return out + " (the default for " + sphereLightsText(countSphereLights(scene)) + ": " +
+  return out + " (the default for " + areaLightsText(areaLights) + ": " +
          std::string(nameOf(LightSelection::All)) + " up to " + std::to_string(kAllLightsUpTo) + ", " +
          std::string(nameOf(kManyLightsSelection)) + " above)";
 }

@@ -16,21 +16,22 @@ inline constexpr size_t kAllLightsUpTo = 256;
 // The selection that wins above kAllLightsUpTo at every light count measured.
 inline constexpr LightSelection kManyLightsSelection = LightSelection::Bvh;
 
-// all up to kAllLightsUpTo sphere lights, kManyLightsSelection above.
-constexpr LightSelection defaultLightSelection(size_t sphereLights) {
-  return sphereLights <= kAllLightsUpTo ? LightSelection::All : kManyLightsSelection;
+// all up to kAllLightsUpTo area lights (spheres and polygons alike), kManyLightsSelection above.
+constexpr LightSelection defaultLightSelection(size_t areaLights) {
+  return areaLights <= kAllLightsUpTo ? LightSelection::All : kManyLightsSelection;
 }
 
 // The sphere lights a scene description builds (spheres with an area emitter).
 size_t countSphereLights(const SceneNode& scene);
-// "1 sphere light", "64 sphere lights".
-std::string sphereLightsText(size_t count);
+// "1 area light", "64 area lights".
+std::string areaLightsText(size_t count);
 // Whether the scene's <integrator> names its light selection.
 bool sceneNamesLightSelection(const SceneNode& scene);
 
 // What `render` prints (and writes into the image metadata) about the light selection of `strategy`
-// in `scene`: "" when the strategy takes none, else e.g. "light selection bvh (the default for 300 sphere
-// lights: all up to 256, bvh above)" or "light selection power (named by the scene or --set)".
-std::string lightSelectionSummary(const SceneNode& scene, const IntegratorDesc& strategy);
+// in `scene` (with `areaLights` area lights once built): "" when the strategy takes none, else e.g.
+// "light selection bvh (the default for 300 area lights: all up to 256, bvh above)" or "light selection
+// power (named by the scene or --set)".
+std::string lightSelectionSummary(const SceneNode& scene, const IntegratorDesc& strategy, size_t areaLights);
 
 }  // namespace penumbra

@@ -82,15 +82,15 @@ TEST(LightSelectionDefault, ANamedSelectionAlwaysWins) {
 // What `render` prints and writes into the image metadata.
 TEST(LightSelectionDefault, SummarySaysWhetherTheSceneOrTheDefaultChose) {
   SceneNode many = parseSceneString(scalingSceneXml(300, 16, 1), "scaling.xml", ".");
-  EXPECT_EQ(lightSelectionSummary(many, buildSettings(many).integrator),
-            "light selection bvh (the default for 300 sphere lights: all up to 256, bvh above)");
+  EXPECT_EQ(lightSelectionSummary(many, buildSettings(many).integrator, 300),
+            "light selection bvh (the default for 300 area lights: all up to 256, bvh above)");
   SceneNode one = parseSceneString(scalingSceneXml(1, 16, 1), "scaling.xml", ".");
-  EXPECT_EQ(lightSelectionSummary(one, buildSettings(one).integrator),
-            "light selection all (the default for 1 sphere light: all up to 256, bvh above)");
+  EXPECT_EQ(lightSelectionSummary(one, buildSettings(one).integrator, 1),
+            "light selection all (the default for 1 area light: all up to 256, bvh above)");
   applyOverride(many, "integrator.lightSelection", "power");
-  EXPECT_EQ(lightSelectionSummary(many, buildSettings(many).integrator),
+  EXPECT_EQ(lightSelectionSummary(many, buildSettings(many).integrator, 300),
             "light selection power (named by the scene or --set)");
-  EXPECT_EQ(lightSelectionSummary(many, directByHemisphere(HemisphereWarp::Cosine)), "");
+  EXPECT_EQ(lightSelectionSummary(many, directByHemisphere(HemisphereWarp::Cosine), 300), "");
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "core/geometry/procedural_mesh.h"
+#include "core/lights/mesh_lights.h"
 #include "core/math/error.h"
 #include "core/math/float_util.h"
 #include "core/render/strategy_axes.h"
@@ -133,14 +134,14 @@ Value getAxis(const SceneNode& node, const Spellings& property, Value def,
 // takes IntegratorDesc's default, an absent lightSelection the one defaultLightSelection picks for
 // the scene's sphere lights. A property of an axis that does not apply is left unread (the parser
 // warns that it is not used).
-void buildIntegrator(const SceneNode& node, size_t sphereLights, RenderSettings& s) {
+void buildIntegrator(const SceneNode& node, size_t areaLights, RenderSettings& s) {
   const std::optional<IntegratorType> type = integratorTypeNamed(node.type);
   if (!type) unknownType(node, acceptedIntegratorTypes().c_str());
   IntegratorDesc& d = s.integrator;
   const IntegratorDesc defaults;
   d = defaults;
   d.type = *type;
-  d.lightSelection = defaultLightSelection(sphereLights);
+  d.lightSelection = defaultLightSelection(areaLights);
   const Spellings& samples = rowOf(d.type).samplesProperty;
   d.samples =
       samples.empty() ? 1 : int(getCount(node, samples.list(), 1, kMaxShadingSamples, samples.canonical()));
@@ -200,7 +201,14 @@ TriangleMesh buildMesh(const SceneNode& node, std::vector<std::string>& warnings
     return mesh;
   }
   TriangleMesh mesh;
-  if (node.type == "plane") {
+  if (node.type == "rectangle") {
+    // Mitsuba 3's rectangle: the square [-1, 1]² of z = 0, normal +z, placed by toWorld.
+    const glm::mat3 linear(toWorld);
+    const float det = glm::determinant(linear);
+    if (!(std::abs(det) > 0.f) || !std::isfinite(det))
+      fail(node, {"toWorld"}, "the rectangle's toWorld is singular (it would have no area)");
+    mesh = makeGridPlane(Vec3(-1, -1, 0), Vec3(2, 0, 0), Vec3(0, 2, 0), 1, 1);
+  } else if (node.type == "plane") {
     // The assignment's plane.obj without a file: x, z in [-1, 1], y = 0, normal +y.
     mesh = makeGridPlane(Vec3(-1, 0, 1), Vec3(2, 0, 0), Vec3(0, 0, -2), 1, 1);
   } else {
@@ -213,6 +221,29 @@ TriangleMesh buildMesh(const SceneNode& node, std::vector<std::string>& warnings
   for (Vec3& p : mesh.positions) p = Vec3(toWorld * glm::vec4(p, 1.f));
   for (Vec3& n : mesh.normals) n = glm::normalize(normalMatrix * n);
   return mesh;
+}
+
+// Every triangle of an emitting mesh is a one-sided polygon light (pairs forming a parallelogram one
+// light); degenerate triangles emit nothing, with a warning.
+void addMeshEmitter(const SceneNode& shape, const SceneNode& emitter, const TriangleMesh& mesh, Scene& scene,
+                    SurfaceMaterial& material, std::vector<std::string>& warnings) {
+  if (emitter.type != "area") unknownType(emitter, "area (as a shape's child)");
+  const Color3 radiance = getNonNegativeColor(emitter, {"radiance"}, Color3(1.f), "radiance");
+  if (mesh.triangles.empty())
+    throw Error(emitter.file, emitter.line, "an area emitter on a mesh without triangles");
+  for (const Vec3& p : mesh.positions)
+    if (!isFinite(p))
+      fail(shape, {"toWorld"}, "toWorld takes the emitting mesh's vertices out of float range");
+  material.polygonLightsAt = int32_t(scene.polygonLightOfPrim.size());
+  const MeshLightStats stats = addMeshLights(mesh, radiance, scene.polygonLights, scene.polygonLightOfPrim);
+  if (stats.lights == 0)
+    throw Error(emitter.file, emitter.line,
+                "an area emitter on a mesh whose triangles all have zero or non-finite area");
+  if (stats.degenerate > 0)
+    warnings.push_back(emitter.file + ":" + std::to_string(emitter.line) +
+                       ": warning: " + std::to_string(stats.degenerate) + " of the mesh's " +
+                       std::to_string(mesh.triangles.size()) +
+                       " triangles have zero or non-finite area and emit nothing");
 }
 
 void buildShape(const SceneNode& node, Scene& scene, std::vector<std::string>& warnings) {
@@ -242,13 +273,12 @@ void buildShape(const SceneNode& node, Scene& scene, std::vector<std::string>& w
       const auto index = static_cast<int32_t>(scene.geometry.addSphere(sphere, objectId));
       if (emitter) scene.sphereLights.back().geometryIndex = index;
     }
-  } else if (node.type == "obj" || node.type == "plane" || node.type == "rock") {
-    if (emitter)
-      throw Error(emitter->file, emitter->line,
-                  "area emitters are supported on sphere shapes only (this one is on a mesh)");
-    scene.geometry.addMesh(buildMesh(node, warnings), objectId);
+  } else if (node.type == "obj" || node.type == "plane" || node.type == "rock" || node.type == "rectangle") {
+    const TriangleMesh mesh = buildMesh(node, warnings);
+    if (emitter) addMeshEmitter(node, *emitter, mesh, scene, material, warnings);
+    scene.geometry.addMesh(mesh, objectId);
   } else {
-    unknownType(node, "sphere, obj, plane, rock");
+    unknownType(node, "sphere, obj, plane, rectangle, rock");
   }
   scene.materials.push_back(material);
 }
@@ -268,22 +298,24 @@ void buildEmitter(const SceneNode& node, Scene& scene) {
     Color3 irradiance = getNonNegativeColor(node, {"radiance", "irradiance"}, Color3(1.f), "radiance");
     scene.directionalLights.push_back(DirectionalLight::make(dir, irradiance));
   } else if (node.type == "area") {
-    throw Error(node.file, node.line, "an area emitter must be nested inside the sphere it lights");
+    throw Error(node.file, node.line, "an area emitter must be nested inside the shape it lights");
   } else {
-    unknownType(node, "point, directional (and area inside a sphere)");
+    unknownType(node, "point, directional (and area inside a shape)");
   }
 }
 
 }  // namespace
 
-RenderSettings buildSettings(const SceneNode& desc, std::vector<std::string>* warnings) {
+RenderSettings buildSettings(const SceneNode& desc, std::vector<std::string>* warnings,
+                             std::optional<size_t> areaLights) {
+  const size_t lights = areaLights ? *areaLights : countSphereLights(desc);
   RenderSettings s;
   if (const SceneNode* cam = desc.child("camera")) buildCamera(*cam, s);
   if (const SceneNode* smp = desc.child("sampler")) buildSampler(*smp, s);
   if (const SceneNode* integ = desc.child("integrator"))
-    buildIntegrator(*integ, countSphereLights(desc), s);
+    buildIntegrator(*integ, lights, s);
   else {
-    s.integrator.lightSelection = defaultLightSelection(countSphereLights(desc));
+    s.integrator.lightSelection = defaultLightSelection(lights);
     if (warnings)
       warnings->push_back(desc.file + ": warning: no <integrator>; using " + strategyLabel(s.integrator));
   }
@@ -300,7 +332,7 @@ LoadedScene buildScene(SceneNode desc) {
     else if (node.tag == "emitter")
       buildEmitter(node, *scene);
   }
-  out.settings = buildSettings(desc, &out.warnings);
+  out.settings = buildSettings(desc, &out.warnings, scene->areaLightCount());
   scene->geometry.build();
   buildLightSelections(*scene);
   Bounds b = scene->geometry.bounds();
@@ -308,6 +340,7 @@ LoadedScene buildScene(SceneNode desc) {
     b.expand(l.sphere.center - Vec3(l.sphere.radius));
     b.expand(l.sphere.center + Vec3(l.sphere.radius));
   }
+  for (const PolygonLight& l : scene->polygonLights) b.expand(l.bounds());
   for (const PointLight& l : scene->pointLights) b.expand(l.position);
   // Slightly longer than the diagonal so that rays across the whole scene are never cut short.
   scene->rayLengthBound = b.empty() ? 1.f : std::max(b.diagonal() * 1.01f, 1e-30f);

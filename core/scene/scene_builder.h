@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -36,8 +37,11 @@ LoadedScene loadSceneFromString(const std::string& xml, const std::string& nameF
 // Builds geometry, lights and settings from a parsed description.
 LoadedScene buildScene(SceneNode desc);
 // Only the settings (camera, filter, sampler, integrator): cheap, no geometry. Used when the viewer
-// edits settings of an already built scene.
-RenderSettings buildSettings(const SceneNode& desc, std::vector<std::string>* warnings = nullptr);
+// edits settings of an already built scene. `areaLights` is the built scene's count of area lights,
+// which decides the default light selection; without it the description's sphere lights are counted
+// (a mesh's lights are known only once it is loaded).
+RenderSettings buildSettings(const SceneNode& desc, std::vector<std::string>* warnings = nullptr,
+                             std::optional<size_t> areaLights = std::nullopt);
 
 // The scene `penumbra` opens with no arguments: a copy of scenes/hw2/Tests/sphere-solid.xml, a
 // sphere on a plane lit by a sphere light.

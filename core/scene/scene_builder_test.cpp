@@ -279,3 +279,74 @@ TEST(SceneBuilder, InvalidSetValuesAreBlamedOnTheSet) {
 
 }  // namespace
 }  // namespace penumbra
+
+namespace penumbra {
+namespace {
+
+const char* kRectangleLight = R"(<shape type="rectangle">
+  <transform name="toWorld"><scale value="2, 0.5, 1"/><rotate axis="1, 0, 0" angle="180"/>
+    <translate value="0, 0, 3"/></transform>
+  <emitter type="area"><color name="radiance" value="4, 5, 6"/></emitter></shape>)";
+
+TEST(SceneBuilderPolygonLights, ARectangleIsOneParallelogramLightFacingItsTransformedNormal) {
+  auto s = fromXml(kRectangleLight);
+  ASSERT_EQ(s.scene->polygonLights.size(), 1u);
+  const PolygonLight& light = s.scene->polygonLights[0];
+  EXPECT_TRUE(light.parallelogram);
+  EXPECT_NEAR(light.area, 4.f * 2.f * 0.5f, 1e-5f);
+  EXPECT_NEAR(light.n.z, -1.f, 1e-6f);  // +z turned over: it faces down
+  EXPECT_EQ(light.radiance, Color3(4, 5, 6));
+  EXPECT_EQ(s.scene->areaLightCount(), 1u);
+  EXPECT_TRUE(s.scene->hasAreaLights());
+  ASSERT_EQ(s.scene->polygonLightOfPrim.size(), 2u);  // both triangles belong to it
+  EXPECT_EQ(s.scene->polygonLightOfPrim[0], 0);
+  EXPECT_EQ(s.scene->polygonLightOfPrim[1], 0);
+  EXPECT_TRUE(s.scene->materials[0].emits());
+}
+
+TEST(SceneBuilderPolygonLights, EveryTriangleOfAMeshEmitsAndLightsMixInOneScene) {
+  auto s = fromXml(std::string(kRectangleLight) + R"(
+    <shape type="rock"><integer name="subdivisions" value="0"/>
+      <emitter type="area"><color name="radiance" value="1"/></emitter></shape>
+    <shape type="plane"><emitter type="area"><color name="radiance" value="2"/></emitter></shape>
+    <shape type="sphere"><point name="center" value="0, 0, 9"/>
+      <emitter type="area"><color name="radiance" value="1"/></emitter></shape>
+    <emitter type="point"><point name="position" value="0, 0, 5"/></emitter>)");
+  EXPECT_EQ(s.scene->sphereLights.size(), 1u);
+  EXPECT_EQ(s.scene->polygonLights.size(), 1u + 20u + 1u);  // rectangle, the rock's 20 triangles, plane
+  EXPECT_EQ(s.scene->areaLightCount(), 23u);
+  EXPECT_EQ(s.scene->uniformSelection.count, 23u);
+  EXPECT_EQ(s.scene->lightBvh.leafOf.size(), 23u);
+  EXPECT_EQ(s.scene->pointLights.size(), 1u);
+  for (const PolygonLight& l : s.scene->polygonLights) EXPECT_TRUE(l.valid());
+}
+
+TEST(SceneBuilderPolygonLights, BadEmittersAreErrorsWithTheirLine) {
+  expectError(
+      "<shape type=\"rectangle\">\n<transform name=\"toWorld\"><scale value=\"1, 0, 1\"/></transform>"
+      "</shape>",
+      3, "singular");
+  expectError(
+      "<shape type=\"rectangle\">\n<emitter type=\"area\"><color name=\"radiance\" value=\"-1\"/>"
+      "</emitter></shape>",
+      3, "radiance");
+  expectError(
+      "<shape type=\"rectangle\">\n<emitter type=\"area\"><color name=\"radiance\" value=\"nan\"/>"
+      "</emitter></shape>",
+      3, "radiance");
+  expectError("<shape type=\"plane\">\n<emitter type=\"spot\"/></shape>", 3, "spot");
+  expectError(
+      "<shape type=\"rock\">\n<transform name=\"toWorld\"><scale value=\"3e38\"/><translate value=\"3e38, 0, "
+      "0\"/></transform>\n"
+      "<emitter type=\"area\"/></shape>",
+      3, "float range");
+  // Finite vertices whose triangles' areas overflow.
+  expectError(
+      "<shape type=\"rock\">\n<transform name=\"toWorld\"><scale value=\"1e38\"/></transform>\n"
+      "<emitter type=\"area\"/></shape>",
+      4, "zero or non-finite area");
+  expectError("\n<emitter type=\"area\"/>", 3, "inside the shape");
+}
+
+}  // namespace
+}  // namespace penumbra
