@@ -97,3 +97,27 @@ write("degenerate-mesh.xml", '  <shape type="obj"><string name="filename" value=
       '  <camera type="perspective"><transform name="toWorld"><lookat target="0,0,0" origin="0,0,3" up="0,1,0"/></transform>\n'
       '    <float name="fov" value="30"/><integer name="width" value="16"/><integer name="height" value="16"/></camera>\n',
       '<integrator type="ao"/>', comment="degenerate triangles, no normals")
+# 15: polygon lights, each a `rectangle` placed by a matrix: centre c, half-edges u and v; it emits
+# towards u x v.
+def cross(a, b): return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
+def rect_light(c, u, v, le):
+    w = unit(cross(u, v))
+    m = [u[0], v[0], w[0], c[0], u[1], v[1], w[1], c[1], u[2], v[2], w[2], c[2], 0, 0, 0, 1]
+    return (f'  <shape type="rectangle"><transform name="toWorld"><matrix value="{" ".join(fmt(x) for x in m)}"/></transform>\n'
+            f'    <emitter type="area"><color name="radiance" value="{le!r}"/></emitter></shape>\n')
+write("polygon-above.xml", plane() + rect_light(add(X, (0.2, -0.1, 1.0)), (0.4, 0, 0), (0, -0.3, 0), 2.0),
+      comment="rectangle light above the receiver, facing it")
+write("polygon-tiny.xml", plane() + rect_light(add(X, (0.3, 0.2, 1.0)), (1e-6, 0, 0), (0, -1e-6, 0), 1e12),
+      comment="rectangle 2e-6 across at distance 1")
+write("polygon-sliver.xml", plane() + rect_light(add(X, (0.1, 0.3, 1.0)), (1.0, 0, 0), (0, -1e-4, 0), 50.0),
+      comment="rectangle of aspect 1e4")
+write("polygon-straddling.xml", plane() + rect_light(add(X, (1.0, 0.2, 0.1)), (0, 0, 0.5), (0, 0.5, 0), 3.0),
+      comment="wall light straddling the horizon")
+write("polygon-grazing.xml", plane() + rect_light(add(X, (3.0, 0, 0.0105)), (0, 0, 0.0095), (0, 1.0, 0), 500.0),
+      comment="window light within 0.4 degrees of the horizon")
+write("polygon-huge.xml", plane(1e4) + rect_light(add(X, (0, 0, 0.01)), (100.0, 0, 0), (0, -100.0, 0), 1.0),
+      comment="rectangle 200 across at height 0.01: nearly the whole hemisphere")
+write("polygon-in-plane.xml", plane() + rect_light(add(X, (0, 1.0, 0.6)), (0, 0.5, 0), (0, 0, 0.5), 5.0),
+      comment="the receiver lies in the light's plane")
+write("polygon-back-side.xml", plane() + rect_light(add(X, (0.1, 0, 1.0)), (0.5, 0, 0), (0, 0.5, 0), 5.0),
+      comment="the light faces away from the receiver")
