@@ -260,8 +260,8 @@ DVec3 ProjectedPolygon::sampleDirection(Vec2 u) const {
   const Edge &eo = w.outer, &ei = w.inner;
   const double tau = std::clamp(target - cumulativeArea[i], 0.0, w.area);
 
-  // The first λ: the root in [0, 1] of the model's τ (1 + βo λ)(1 + βi λ) − αo λ (1 + βi λ) + αi λ (1 + βo
-  // λ), c2 λ² + c1 λ + τ (positive at 0, at most 0 at 1); else λ proportional to τ.
+  // The first λ: the model's root in [0, 1], where αo λ / (1 + βo λ) − αi λ / (1 + βi λ) = τ, i.e.
+  // c2 λ² + c1 λ + τ = 0 (positive at 0, at most 0 at 1); else λ proportional to τ.
   double t = w.area > 0 ? tau / w.area : 0;
   {
     const double ao = eo.alpha, bo = eo.beta, ai = w.hasInner ? ei.alpha : 0, bi = w.hasInner ? ei.beta : 0;
@@ -274,6 +274,28 @@ DVec3 ProjectedPolygon::sampleDirection(Vec2 u) const {
         t = r1;
       else if (r2 >= 0 && r2 <= 1)
         t = r2;
+    }
+  }
+  // Against the horizon (a circle in the projection, not a line) the model is poor where the wedge's
+  // width vanishes at an end (an edge meets the horizon tangentially there): two Newton steps on the
+  // cubic with the wedge's area and its slopes at both ends.
+  if (eo.gx == 0 && eo.gy == 0) {
+    const Azimuth v1{w.ax + w.dx, w.ay + w.dy};
+    const double q1 = dot(v1, v1), go1 = gDot(eo, v1);
+    double s1 = eo.k * eo.k / (eo.k * eo.k * q1 + go1 * go1);
+    if (w.hasInner) {
+      const double gi1 = gDot(ei, v1);
+      s1 -= ei.k * ei.k / (ei.k * ei.k * q1 + gi1 * gi1);
+    }
+    s1 *= 0.5 * w.sigma;
+    const double s0 = eo.alpha - (w.hasInner ? ei.alpha : 0), a1 = w.area;
+    if (s0 < 1e-2 * a1 || s1 < 1e-2 * a1) {
+      const double h2 = 3 * a1 - 2 * s0 - s1, h3 = s0 + s1 - 2 * a1;
+      for (int k = 0; k < 2; ++k) {
+        const double h = t * (s0 + t * (h2 + t * h3)) - tau, dh = s0 + t * (2 * h2 + 3 * t * h3);
+        const double next = dh > 0 ? t - h / dh : -1;
+        if (next >= 0 && next <= 1) t = next;
+      }
     }
   }
 

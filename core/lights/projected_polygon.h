@@ -23,17 +23,20 @@
 // between r_inner² and r_outer².
 //
 // Inside a wedge from unit azimuth vector a₀ to a₁ the azimuth is parametrised by the chord,
-// v(λ) = a₀ + λ (a₁ − a₀), λ in [0, 1] (monotone below π; wedges wider than π/2 are halved, so the
-// azimuth's rate along λ varies by at most a factor 2). An edge's point at azimuth v is along P(v) = (|m_z|
-// v, g · v) (g the horizontal part of m, turned to the upper half circle), linear in v, so the area it sweeps
-// from a₀ is ½ |m_z| atan2(λ |m_z| σ, P(a₀) · P(v(λ))), σ = a₀ × (a₁ − a₀), with derivative ½ σ m_z² / |P|²
-// and no trigonometry for the azimuth itself. Newton starts from the root of a model (each edge's
-// swept area as λ ↦ αλ / (1 + βλ), exact for a straight edge in the projection; its value at λ = 1 and
-// slope at 0 are the edge's), evaluates the area once with atan2 and after that by the increments
-// between iterates (the atan of a small ratio by its series). Plain data, built once per (shading point,
-// polygon) and reused for every sample there; double precision throughout (the polygon's edge normals
-// are formed from its edge vectors, so a polygon 1e-6 of its distance across keeps ~1e-10 relative
-// accuracy).
+// v(λ) = a₀ + λ (a₁ − a₀), λ in [0, 1] (monotone below π; wedges wider than π/2 are
+// halved, so the azimuth's rate along λ varies by at most a factor 2). An edge's point at
+// azimuth v is along P(v) = (|m_z| v, g · v) (g the horizontal part of m, turned to the
+// upper half circle), linear in v, so the area it sweeps from a₀ is
+//     ½ |m_z| atan2(λ |m_z| σ, P(a₀) · P(v(λ))),   σ = a₀ × (a₁ − a₀),
+// with derivative ½ σ m_z² / |P|², and no trigonometry for the azimuth itself. Newton starts
+// from the root of a model (each edge's swept area as λ ↦ αλ / (1 + βλ), exact for a straight
+// edge in the projection, with the edge's slope at 0 and area at 1; against the horizon,
+// where the wedge's width vanishes at an end, refined on the cubic with the wedge's area and
+// end slopes), evaluates the area once with atan2 and after that by the increments between
+// iterates (the atan of a small ratio by its series). Plain data, built once per (shading
+// point, polygon) and reused for every sample there; double precision throughout (the
+// polygon's edge normals are formed from its edge vectors, so a polygon 1e-6 of its distance
+// across keeps ~1e-10 relative accuracy).
 #pragma once
 
 #include "core/math/vec.h"
