@@ -333,7 +333,8 @@ DVec3 ProjectedPolygon::sampleDirection(Vec2 u) const {
   }
 
   // r² uniform between the wedge's edges at v; z² the same way, each without cancellation. r / |v| from
-  // m_z² / |P|², so v need not be normalised.
+  // m_z² / |P|², so v need not be normalised; r² + z² = 1 to rounding at each edge, so neither does the
+  // direction.
   const double v2 = dot(v, v);
   double rhoOuter2, zOuter2, rhoInner2 = 0, zInner2 = 1;
   radiusAt(eo, go, v2, rhoOuter2, zOuter2);
@@ -341,7 +342,7 @@ DVec3 ProjectedPolygon::sampleDirection(Vec2 u) const {
   const double s = u.y;
   const double rho = std::sqrt(std::max(0.0, (1 - s) * rhoInner2 + s * rhoOuter2));
   const double z = std::sqrt(std::max(0.0, (1 - s) * zInner2 + s * zOuter2));
-  return glm::normalize(ex * (rho * v.x) + ey * (rho * v.y) + ez * z);
+  return ex * (rho * v.x) + ey * (rho * v.y) + ez * z;
 }
 
 double ProjectedPolygon::pdfDirection(const DVec3& w) const {
