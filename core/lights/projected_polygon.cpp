@@ -154,33 +154,34 @@ bool ProjectedPolygon::init(const Vec3* vertices, int count, const Vec3& x, cons
     az[i] = hasAzimuth[i] ? Azimuth{clipped[i].x * inv, clipped[i].y * inv} : Azimuth{1, 0};
   }
 
-  // A wedge from azimuth `from` counter-clockwise to `to` (less than π apart), halved at their bisector
-  // when it spans more than π/2.
+  // A wedge from azimuth a counter-clockwise to b, less than π apart.
+  auto placeWedge = [&](const Azimuth& a, const Azimuth& b, const Edge& outer, const Edge* inner) {
+    Wedge& w = wedges[wedgeCount++];
+    const Azimuth d{b.x - a.x, b.y - a.y};
+    w.ax = a.x, w.ay = a.y, w.dx = d.x, w.dy = d.y;
+    w.sigma = cross(a, d);
+    w.outer = outer;
+    w.hasInner = inner != nullptr;
+    w.area = placeEdge(w.outer, a, d, w.sigma);
+    if (inner) {
+      w.inner = *inner;
+      w.area -= placeEdge(w.inner, a, d, w.sigma);
+    }
+    w.area = std::max(0.0, w.area);
+  };
+  // The same, halved at the bisector when it spans more than 3π/4: the chord then passes no nearer to
+  // the origin than cos(3π/8) ≈ 0.38, so the azimuth along it keeps its precision.
   auto addWedge = [&](const Azimuth& from, const Azimuth& to, const Edge& outer, const Edge* inner) {
     if (!(cross(from, to) > 0)) return;
-    Azimuth ends[3] = {from, to, to};
-    int pieces = 1;
-    if (dot(from, to) < 0) {
-      // The bisector as the sum of `from` and `to` each turned a quarter towards the other (they are
-      // less than π/2 apart: no cancellation).
+    if (dot(from, to) < -0.70710678118654752) {
+      // The bisector as the sum of `from` and `to` each turned a quarter towards the other (less than
+      // π/4 apart: no cancellation).
       const double bx = to.y - from.y, by = from.x - to.x, inv = 1 / std::hypot(bx, by);
-      ends[1] = Azimuth{bx * inv, by * inv};
-      pieces = 2;
-    }
-    for (int p = 0; p < pieces; ++p) {
-      Wedge& w = wedges[wedgeCount++];
-      const Azimuth &a = ends[p], &b = ends[p + 1];
-      const Azimuth d{b.x - a.x, b.y - a.y};
-      w.ax = a.x, w.ay = a.y, w.dx = d.x, w.dy = d.y;
-      w.sigma = cross(a, d);
-      w.outer = outer;
-      w.hasInner = inner != nullptr;
-      w.area = placeEdge(w.outer, a, d, w.sigma);
-      if (inner) {
-        w.inner = *inner;
-        w.area -= placeEdge(w.inner, a, d, w.sigma);
-      }
-      w.area = std::max(0.0, w.area);
+      const Azimuth mid{bx * inv, by * inv};
+      placeWedge(from, mid, outer, inner);
+      placeWedge(mid, to, outer, inner);
+    } else {
+      placeWedge(from, to, outer, inner);
     }
   };
 

@@ -23,8 +23,8 @@
 // between r_inner² and r_outer².
 //
 // Inside a wedge from unit azimuth vector a₀ to a₁ the azimuth is parametrised by the chord,
-// v(λ) = a₀ + λ (a₁ − a₀), λ in [0, 1] (monotone below π; wedges wider than π/2 are
-// halved, so the azimuth's rate along λ varies by at most a factor 2). An edge's point at
+// v(λ) = a₀ + λ (a₁ − a₀), λ in [0, 1] (monotone below π; wedges wider than 3π/4 are
+// halved, so the chord keeps 0.38 from the origin and the azimuth along it its precision). An edge's point at
 // azimuth v is along P(v) = (|m_z| v, g · v) (g the horizontal part of m, turned to the
 // upper half circle), linear in v, so the area it sweeps from a₀ is
 //     ½ |m_z| atan2(λ |m_z| σ, P(a₀) · P(v(λ))),   σ = a₀ × (a₁ − a₀),
@@ -47,7 +47,7 @@ struct ProjectedPolygon {
   // A quad clipped to the horizon has five vertices.
   static constexpr int kMaxInputVertices = 4;
   static constexpr int kMaxVertices = kMaxInputVertices + 1;
-  // A wedge spans at most π/2 (wider ones are halved): one per edge or vertex interval, at most two each.
+  // A wedge spans at most 3π/4 (wider ones are halved): one per edge or vertex interval, at most two each.
   static constexpr int kMaxWedges = 2 * kMaxVertices;
   // Stop rule of the azimuth's inversion in a wedge: |area below φ − target| ≤ kAreaTolerance · the
   // wedge's area (the sampled φ's CDF is then off by at most 1e-12 of the wedge: far below a float
