@@ -10,74 +10,76 @@ namespace penumbra {
 
 namespace {
 
+using Edge = ProjectedPolygon::Edge;
+using Wedge = ProjectedPolygon::Wedge;
+
 struct Azimuth {
-  double x, y;  // unit vector in the local xy plane
+  double x, y;  // a vector in the local xy plane
 };
 
-// a turned counter-clockwise by t; sinT = sin t.
-Azimuth rotated(const Azimuth& a, double t, double& sinT) {
-  const double c = std::cos(t), s = std::sin(t);
-  sinT = s;
-  return {a.x * c - a.y * s, a.x * s + a.y * c};
+double cross(const Azimuth& a, const Azimuth& b) {
+  return a.x * b.y - a.y * b.x;
+}
+double dot(const Azimuth& a, const Azimuth& b) {
+  return a.x * b.x + a.y * b.y;
 }
 
-// Counter-clockwise angle from a to b, in (−π, π].
-double angleBetween(const Azimuth& a, const Azimuth& b) {
-  return std::atan2(a.x * b.y - a.y * b.x, a.x * b.x + a.y * b.y);
+// A number that grows with the counter-clockwise angle from ref to a over (−π, π] (no atan2: only the
+// order of the vertices' azimuths is needed).
+double pseudoAngle(const Azimuth& ref, const Azimuth& a) {
+  const double x = dot(ref, a), y = cross(ref, a);
+  const double q = y / (std::fabs(x) + std::fabs(y));
+  return x >= 0 ? q : (y >= 0 ? 2 - q : -2 - q);
 }
 
-// The boundary edge on the great circle with unit normal m (see ProjectedPolygon::Edge).
-ProjectedPolygon::Edge edgeOf(const DVec3& m) {
-  ProjectedPolygon::Edge e;
+// The boundary edge on the great circle with unit normal m (see ProjectedPolygon::Edge), without its
+// wedge's terms.
+Edge edgeOf(const DVec3& m) {
+  Edge e{};
   e.k = std::fabs(m.z);
-  e.c2 = m.x * m.x + m.y * m.y;
-  const double len = std::sqrt(e.c2);
-  if (len > 0) {
-    const double sign = m.z < 0 ? 1.0 : -1.0;  // the upper half circle is where cos ψ ≥ 0
-    e.qx = sign * m.x / len;
-    e.qy = sign * m.y / len;
-  } else {
-    e.qx = 1, e.qy = 0;  // the horizon: every azimuth is alike
-  }
+  const double sign = m.z < 0 ? 1.0 : -1.0;  // the upper half circle is where g · v ≥ 0
+  e.gx = sign * m.x;
+  e.gy = sign * m.y;
   return e;
 }
 
-double cosPsi(const ProjectedPolygon::Edge& e, const Azimuth& u) {
-  return std::max(0.0, e.qx * u.x + e.qy * u.y);
-}
-double sinPsi(const ProjectedPolygon::Edge& e, const Azimuth& u) {
-  return e.qx * u.y - e.qy * u.x;
+double gDot(const Edge& e, const Azimuth& v) {
+  return e.gx * v.x + e.gy * v.y;
 }
 
-// r² and z² = 1 − r² of the edge's point at azimuth u, each without cancellation.
-void radiusAt(const ProjectedPolygon::Edge& e, const Azimuth& u, double& r2, double& z2) {
-  const double cc = e.c2 * cosPsi(e, u) * cosPsi(e, u), k2 = e.k * e.k;
-  const double sum = k2 + cc;
+// atan(y / x) for x > 0: the series when the ratio is small (an iterate's step), else atan2.
+double atanStep(double y, double x) {
+  if (std::fabs(y) <= 0x1p-6 * x) {
+    const double z = y / x, z2 = z * z;  // truncated after z⁹: below 2^-60 of the value
+    return z * (1 + z2 * (-1.0 / 3 + z2 * (1.0 / 5 + z2 * (-1.0 / 7 + z2 * (1.0 / 9)))));
+  }
+  return std::atan2(y, x);
+}
+
+// The edge's terms in a wedge from a to a + d (σ = a × d): its start, its swept area at λ = 1 and the
+// model αλ / (1 + βλ) of its area (slope α at 0, that area at 1).
+double placeEdge(Edge& e, const Azimuth& a, const Azimuth& d, double sigma) {
+  const double ga = gDot(e, a);
+  e.p0 = e.k * e.k + ga * ga;
+  e.pd = e.k * e.k * dot(a, d) + ga * gDot(e, d);
+  const double area = 0.5 * e.k * std::atan2(e.k * sigma, e.p0 + e.pd);
+  e.alpha = e.p0 > 0 ? 0.5 * e.k * e.k * sigma / e.p0 : 0;
+  e.beta = area > 0 ? e.alpha / area - 1 : 0;
+  return area;
+}
+
+// m_z² / |P(v)|² (= r² / |v|²) and (g · v)² / |P(v)|² (= z²) of the edge's point at azimuth v.
+void radiusAt(const Edge& e, double gv, double v2, double& rho2, double& z2) {
+  const double k2 = e.k * e.k, sum = k2 * v2 + gv * gv;
   if (!(sum > 0)) {  // an edge through the normal's direction, seen along it
-    r2 = 0, z2 = 1;
+    rho2 = 0, z2 = 1;
     return;
   }
-  r2 = k2 / sum;
-  z2 = cc / sum;
-}
-
-// Area swept by the edge's ellipse from azimuth u0 to u1, t radians further (sin t given): one atan2
-// of the difference of the two arctangents, ½ k (atan(k tan ψ₁) − atan(k tan ψ₀)).
-double sweptArea(const ProjectedPolygon::Edge& e, const Azimuth& u0, const Azimuth& u1, double sinT,
-                 double t) {
-  if (e.c2 == 0) return 0.5 * t;  // the horizon, r = 1 (its ψ is arbitrary: no upper half to clamp to)
-  const double c0 = cosPsi(e, u0), s0 = sinPsi(e, u0), c1 = cosPsi(e, u1), s1 = sinPsi(e, u1);
-  return 0.5 * e.k * std::atan2(e.k * sinT, c0 * c1 + e.k * e.k * s0 * s1);
+  rho2 = k2 / sum;
+  z2 = gv * gv / sum;
 }
 
 }  // namespace
-
-double ProjectedPolygon::wedgeAreaTo(const Wedge& w, double ux, double uy, double sinT, double t) {
-  const Azimuth u0{w.ux, w.uy}, u1{ux, uy};
-  double area = sweptArea(w.outer, u0, u1, sinT, t);
-  if (w.hasInner) area -= sweptArea(w.inner, u0, u1, sinT, t);
-  return std::max(0.0, area);
-}
 
 bool ProjectedPolygon::init(const Vec3* vertices, int count, const Vec3& x, const Vec3& n) {
   projectedSolidAngle = 0;
@@ -88,21 +90,29 @@ bool ProjectedPolygon::init(const Vec3* vertices, int count, const Vec3& x, cons
   orthonormalBasis(ez, ex, ey);
   auto toLocal = [&](const DVec3& v) { return DVec3(glm::dot(v, ex), glm::dot(v, ey), glm::dot(v, ez)); };
 
+  // Vertices relative to x and edge vectors, in the local frame.
+  DVec3 rel[kMaxInputVertices], edges[kMaxInputVertices];
+  for (int i = 0; i < count; ++i) {
+    rel[i] = toLocal(DVec3(vertices[i]) - DVec3(x));
+    edges[i] = toLocal(DVec3(vertices[(i + 1) % count]) - DVec3(vertices[i]));
+  }
   // Wound so that the inside is where m · w ≥ 0 for every edge normal m: (v0 − x) · ((v1 − v0) × (v2 − v1))
   // > 0. In the polygon's plane: nothing to sample.
-  auto rel = [&](int i) { return toLocal(DVec3(vertices[i]) - DVec3(x)); };
-  auto edge = [&](int i, int j) { return toLocal(DVec3(vertices[j]) - DVec3(vertices[i])); };
-  const DVec3 planeNormal = glm::cross(edge(0, 1), edge(1, 2));
-  const double side = glm::dot(rel(0), planeNormal);
-  if (!(std::fabs(side) > 1e-12 * glm::length(rel(0)) * glm::length(planeNormal))) return false;
-  int order[kMaxInputVertices];
-  for (int i = 0; i < count; ++i) order[i] = side > 0 ? i : (count - i) % count;  // reversed: 0, n-1, ..., 1
-  // Vertices relative to x and edge normals (v_i − x) × (v_i+1 − v_i), formed from the edge vector: no
-  // cancellation for a small polygon far away.
+  const DVec3 planeNormal = glm::cross(edges[0], edges[1]);
+  const double side = glm::dot(rel[0], planeNormal);
+  if (!(side * side > 1e-24 * glm::dot(rel[0], rel[0]) * glm::dot(planeNormal, planeNormal))) return false;
+  // Edge normals (v_i − x) × (v_i+1 − v_i), formed from the edge vector: no cancellation for a small
+  // polygon far away. Reversed (0, n-1, ..., 1), edge i runs back along an original edge.
   DVec3 pts[kMaxInputVertices], m[kMaxInputVertices];
   for (int i = 0; i < count; ++i) {
-    pts[i] = rel(order[i]);
-    m[i] = glm::cross(pts[i], edge(order[i], order[(i + 1) % count]));
+    if (side > 0) {
+      pts[i] = rel[i];
+      m[i] = glm::cross(rel[i], edges[i]);
+    } else {
+      const int j = (count - i) % count, p = (j + count - 1) % count;
+      pts[i] = rel[j];
+      m[i] = glm::cross(rel[j], -edges[p]);
+    }
   }
 
   // Clip to the upper half space (Sutherland–Hodgman); each output vertex carries the normal of the edge
@@ -127,41 +137,51 @@ bool ProjectedPolygon::init(const Vec3* vertices, int count, const Vec3& x, cons
   // Unit edge normals; the zenith is inside when every edge has it on its inner side.
   bool zenithInside = true;
   for (int i = 0; i < vertexCount; ++i) {
-    const double len = glm::length(normals[i]);
-    edgeNormals[i] = len > 0 ? normals[i] / len : DVec3(0);
+    const double len2 = glm::dot(normals[i], normals[i]);
+    edgeNormals[i] = len2 > 0 ? normals[i] * (1 / std::sqrt(len2)) : DVec3(0);
     if (edgeNormals[i].z < 0) zenithInside = false;
   }
   edgeCount = vertexCount;
 
-  // Each vertex's azimuth (a vertex at the zenith has none: its edges are radial and sweep nothing).
+  // Each vertex's unit azimuth vector (a vertex at the zenith has none: its edges are radial and sweep
+  // nothing).
   Azimuth az[kMaxVertices];
   bool hasAzimuth[kMaxVertices];
   for (int i = 0; i < vertexCount; ++i) {
-    const double len = std::hypot(clipped[i].x, clipped[i].y);
-    hasAzimuth[i] = len > 0;
-    az[i] = hasAzimuth[i] ? Azimuth{clipped[i].x / len, clipped[i].y / len} : Azimuth{1, 0};
+    const double len2 = clipped[i].x * clipped[i].x + clipped[i].y * clipped[i].y;
+    hasAzimuth[i] = len2 > 0;
+    const double inv = hasAzimuth[i] ? 1 / std::sqrt(len2) : 0;
+    az[i] = hasAzimuth[i] ? Azimuth{clipped[i].x * inv, clipped[i].y * inv} : Azimuth{1, 0};
   }
 
-  // A wedge from azimuth `from` to `to`, `span` radians (below π) apart, halved at their bisector when
-  // it spans more than π/2; its area from the two vectors (sin span = from × to: no rotation).
-  auto addWedge = [&](const Azimuth& from, const Azimuth& to, double span, const Edge& outer,
-                      const Edge* inner) {
-    if (!(span > 0)) return;
-    Azimuth ends[3] = {from, to, to};
-    int pieces = 1;
-    if (span > 0.5 * kPiD) {
-      const double bx = from.x + to.x, by = from.y + to.y, len = std::hypot(bx, by);
-      ends[1] = Azimuth{bx / len, by / len};
-      pieces = 2;
+  // A wedge from azimuth a counter-clockwise to b, less than π apart.
+  auto placeWedge = [&](const Azimuth& a, const Azimuth& b, const Edge& outer, const Edge* inner) {
+    Wedge& w = wedges[wedgeCount++];
+    const Azimuth d{b.x - a.x, b.y - a.y};
+    w.ax = a.x, w.ay = a.y, w.dx = d.x, w.dy = d.y;
+    w.sigma = cross(a, d);
+    w.outer = outer;
+    w.hasInner = inner != nullptr;
+    w.area = placeEdge(w.outer, a, d, w.sigma);
+    if (inner) {
+      w.inner = *inner;
+      w.area -= placeEdge(w.inner, a, d, w.sigma);
     }
-    for (int p = 0; p < pieces; ++p) {
-      Wedge& w = wedges[wedgeCount++];
-      const Azimuth &a = ends[p], &b = ends[p + 1];
-      w.ux = a.x, w.uy = a.y, w.span = span / pieces;
-      w.outer = outer;
-      w.hasInner = inner != nullptr;
-      if (inner) w.inner = *inner;
-      w.area = wedgeAreaTo(w, b.x, b.y, a.x * b.y - a.y * b.x, w.span);
+    w.area = std::max(0.0, w.area);
+  };
+  // The same, halved at the bisector when it spans more than 3π/4: the chord then passes no nearer to
+  // the origin than cos(3π/8) ≈ 0.38, so the azimuth along it keeps its precision.
+  auto addWedge = [&](const Azimuth& from, const Azimuth& to, const Edge& outer, const Edge* inner) {
+    if (!(cross(from, to) > 0)) return;
+    if (dot(from, to) < -0.70710678118654752) {
+      // The bisector as the sum of `from` and `to` each turned a quarter towards the other (less than
+      // π/4 apart: no cancellation).
+      const double bx = to.y - from.y, by = from.x - to.x, inv = 1 / std::hypot(bx, by);
+      const Azimuth mid{bx * inv, by * inv};
+      placeWedge(from, mid, outer, inner);
+      placeWedge(mid, to, outer, inner);
+    } else {
+      placeWedge(from, to, outer, inner);
     }
   };
 
@@ -170,20 +190,18 @@ bool ProjectedPolygon::init(const Vec3* vertices, int count, const Vec3& x, cons
     for (int i = 0; i < vertexCount; ++i) {
       const int j = (i + 1) % vertexCount;
       if (!hasAzimuth[i] || !hasAzimuth[j]) continue;
-      addWedge(az[i], az[j], std::max(0.0, angleBetween(az[i], az[j])), edgeOf(edgeNormals[i]), nullptr);
+      addWedge(az[i], az[j], edgeOf(edgeNormals[i]), nullptr);
     }
   } else {
     // The region spans less than π in azimuth: between consecutive vertex azimuths it lies between one
     // edge of each chain from the first vertex (in azimuth) to the last.
-    double sx = 0, sy = 0;
-    for (int i = 0; i < vertexCount; ++i) sx += az[i].x, sy += az[i].y;
-    const double len = std::hypot(sx, sy);
-    if (!(len > 0)) return false;
-    const Azimuth ref{sx / len, sy / len};
+    Azimuth ref{0, 0};
+    for (int i = 0; i < vertexCount; ++i) ref.x += az[i].x, ref.y += az[i].y;
+    if (!(ref.x * ref.x + ref.y * ref.y > 0)) return false;
     double alpha[kMaxVertices];
     int lo = 0, hi = 0;
     for (int i = 0; i < vertexCount; ++i) {
-      alpha[i] = angleBetween(ref, az[i]);
+      alpha[i] = pseudoAngle(ref, az[i]);
       if (alpha[i] < alpha[lo]) lo = i;
       if (alpha[i] > alpha[hi]) hi = i;
     }
@@ -192,9 +210,13 @@ bool ProjectedPolygon::init(const Vec3* vertices, int count, const Vec3& x, cons
     for (int i = lo; i != hi; i = (i + 1) % vertexCount) chainA[lenA++] = i;
     for (int i = lo; i != hi; i = (i + vertexCount - 1) % vertexCount)
       chainB[lenB++] = (i + vertexCount - 1) % vertexCount;
+    // The vertices in azimuth order (insertion sort: at most five).
     int order[kMaxVertices];
-    for (int i = 0; i < vertexCount; ++i) order[i] = i;
-    std::sort(order, order + vertexCount, [&](int p, int q) { return alpha[p] < alpha[q]; });
+    for (int i = 0; i < vertexCount; ++i) {
+      int j = i;
+      for (; j > 0 && alpha[order[j - 1]] > alpha[i]; --j) order[j] = order[j - 1];
+      order[j] = i;
+    }
     // The chain edge whose azimuth range holds `mid` (chains run monotonically in azimuth).
     auto edgeAt = [&](const int* chain, int length, bool forward, double mid) {
       for (int c = 0; c < length; ++c) {
@@ -207,20 +229,16 @@ bool ProjectedPolygon::init(const Vec3* vertices, int count, const Vec3& x, cons
     };
     for (int s = 0; s + 1 < vertexCount; ++s) {
       const Azimuth &from = az[order[s]], &to = az[order[s + 1]];
-      const double span = alpha[order[s + 1]] - alpha[order[s]];
-      if (!(span > 0)) continue;
+      if (!(alpha[order[s + 1]] > alpha[order[s]])) continue;
       const double mid = 0.5 * (alpha[order[s]] + alpha[order[s + 1]]);
       const Edge ea = edgeOf(edgeNormals[edgeAt(chainA, lenA, true, mid)]);
       const Edge eb = edgeOf(edgeNormals[edgeAt(chainB, lenB, false, mid)]);
-      const double bx = from.x + to.x, by = from.y + to.y, len = std::hypot(bx, by);  // the bisector
-      const Azimuth um{bx / len, by / len};
-      double ra, rb, za, zb;
-      radiusAt(ea, um, ra, za);
-      radiusAt(eb, um, rb, zb);
-      if (ra >= rb)
-        addWedge(from, to, span, ea, &eb);
+      // The outer edge at an azimuth inside: r² = k² |v|² / (k² |v|² + (g · v)²) is the larger.
+      const Azimuth um{from.x + to.x, from.y + to.y};
+      if (ea.k * std::fabs(gDot(eb, um)) >= eb.k * std::fabs(gDot(ea, um)))
+        addWedge(from, to, ea, &eb);
       else
-        addWedge(from, to, span, eb, &ea);
+        addWedge(from, to, eb, &ea);
     }
   }
 
@@ -240,37 +258,92 @@ DVec3 ProjectedPolygon::sampleDirection(Vec2 u) const {
   int i = 0;
   while (i + 1 < wedgeCount && cumulativeArea[i + 1] <= target) ++i;
   const Wedge& w = wedges[i];
+  const Edge &eo = w.outer, &ei = w.inner;
   const double tau = std::clamp(target - cumulativeArea[i], 0.0, w.area);
 
-  // Newton's method on the wedge's area below azimuth t, safeguarded by bisection.
-  double lo = 0, hi = w.span;
-  double t = w.area > 0 ? w.span * (tau / w.area) : 0;
-  const double tolerance = kAreaTolerance * w.area;
-  const double ulps = 4 * std::numeric_limits<double>::epsilon() * w.span;
-  const Azimuth u0{w.ux, w.uy};
-  double sinT;
-  Azimuth ut = rotated(u0, t, sinT);  // kept for the final t
-  for (int step = 0; step < kMaxInversionSteps && hi - lo > ulps; ++step) {
-    const double f = wedgeAreaTo(w, ut.x, ut.y, sinT, t) - tau;
-    if (std::fabs(f) <= tolerance) break;
-    (f < 0 ? lo : hi) = t;
-    double rOuter2, zOuter2, rInner2 = 0, zInner2 = 1;
-    radiusAt(w.outer, ut, rOuter2, zOuter2);
-    if (w.hasInner) radiusAt(w.inner, ut, rInner2, zInner2);
-    const double slope = 0.5 * (rOuter2 - rInner2);
-    const double next = slope > 0 ? t - f / slope : lo - 1;
-    t = next > lo && next < hi ? next : 0.5 * (lo + hi);
-    ut = rotated(u0, t, sinT);
+  // The first λ: the model's root in [0, 1], where αo λ / (1 + βo λ) − αi λ / (1 + βi λ) = τ, i.e.
+  // c2 λ² + c1 λ + τ = 0 (positive at 0, at most 0 at 1); else λ proportional to τ.
+  double t = w.area > 0 ? tau / w.area : 0;
+  {
+    const double ao = eo.alpha, bo = eo.beta, ai = w.hasInner ? ei.alpha : 0, bi = w.hasInner ? ei.beta : 0;
+    const double c2 = tau * bo * bi - ao * bi + ai * bo, c1 = tau * (bo + bi) - ao + ai;
+    const double disc = c1 * c1 - 4 * c2 * tau;
+    if (disc >= 0) {
+      const double q = -0.5 * (c1 + std::copysign(std::sqrt(disc), c1));
+      const double r1 = tau / q, r2 = q / c2;
+      if (r1 >= 0 && r1 <= 1)
+        t = r1;
+      else if (r2 >= 0 && r2 <= 1)
+        t = r2;
+    }
+  }
+  // Against the horizon (a circle in the projection, not a line) the model is poor where the wedge's
+  // width vanishes at an end (an edge meets the horizon tangentially there): two Newton steps on the
+  // cubic with the wedge's area and its slopes at both ends.
+  if (eo.gx == 0 && eo.gy == 0) {
+    const Azimuth v1{w.ax + w.dx, w.ay + w.dy};
+    const double q1 = dot(v1, v1), go1 = gDot(eo, v1);
+    double s1 = eo.k * eo.k / (eo.k * eo.k * q1 + go1 * go1);
+    if (w.hasInner) {
+      const double gi1 = gDot(ei, v1);
+      s1 -= ei.k * ei.k / (ei.k * ei.k * q1 + gi1 * gi1);
+    }
+    s1 *= 0.5 * w.sigma;
+    const double s0 = eo.alpha - (w.hasInner ? ei.alpha : 0), a1 = w.area;
+    if (s0 < 1e-2 * a1 || s1 < 1e-2 * a1) {
+      const double h2 = 3 * a1 - 2 * s0 - s1, h3 = s0 + s1 - 2 * a1;
+      for (int k = 0; k < 2; ++k) {
+        const double h = t * (s0 + t * (h2 + t * h3)) - tau, dh = s0 + t * (2 * h2 + 3 * t * h3);
+        const double next = dh > 0 ? t - h / dh : -1;
+        if (next >= 0 && next <= 1) t = next;
+      }
+    }
   }
 
-  // r² uniform between the wedge's edges at azimuth t; z² the same way, each without cancellation.
-  double rOuter2, zOuter2, rInner2 = 0, zInner2 = 1;
-  radiusAt(w.outer, ut, rOuter2, zOuter2);
-  if (w.hasInner) radiusAt(w.inner, ut, rInner2, zInner2);
-  const double v = u.y;
-  const double r = std::sqrt(std::max(0.0, (1 - v) * rInner2 + v * rOuter2));
-  const double z = std::sqrt(std::max(0.0, (1 - v) * zInner2 + v * zOuter2));
-  return glm::normalize(ex * (r * ut.x) + ey * (r * ut.y) + ez * z);
+  // Newton's method on the wedge's area below v(λ), safeguarded by bisection. The area once in full, then
+  // by the step between iterates: ½ k atan2((λ' − λ) k σ, P(v) · P(v')).
+  double lo = 0, hi = 1;
+  const double tolerance = kAreaTolerance * w.area;
+  const double ulps = 4 * std::numeric_limits<double>::epsilon();
+  const Azimuth a{w.ax, w.ay}, d{w.dx, w.dy};
+  Azimuth v{a.x + t * d.x, a.y + t * d.y};
+  double go = gDot(eo, v), gi = w.hasInner ? gDot(ei, v) : 0;
+  double area = 0.5 * eo.k * std::atan2(t * eo.k * w.sigma, eo.p0 + t * eo.pd);
+  if (w.hasInner) area -= 0.5 * ei.k * std::atan2(t * ei.k * w.sigma, ei.p0 + t * ei.pd);
+  for (int step = 0; step < kMaxInversionSteps; ++step) {
+    const double f = area - tau;
+    if (std::fabs(f) <= tolerance) break;
+    (f < 0 ? lo : hi) = t;
+    if (!(hi - lo > ulps)) break;
+    const double v2 = dot(v, v);
+    double slope = eo.k * eo.k / (eo.k * eo.k * v2 + go * go);
+    if (w.hasInner) slope -= ei.k * ei.k / (ei.k * ei.k * v2 + gi * gi);
+    slope *= 0.5 * w.sigma;
+    double next = slope > 0 ? t - f / slope : lo - 1;
+    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+    const Azimuth vn{a.x + next * d.x, a.y + next * d.y};
+    const double vv = dot(v, vn), goN = gDot(eo, vn);
+    area += 0.5 * eo.k * atanStep((next - t) * eo.k * w.sigma, eo.k * eo.k * vv + go * goN);
+    go = goN;
+    if (w.hasInner) {
+      const double giN = gDot(ei, vn);
+      area -= 0.5 * ei.k * atanStep((next - t) * ei.k * w.sigma, ei.k * ei.k * vv + gi * giN);
+      gi = giN;
+    }
+    t = next, v = vn;
+  }
+
+  // r² uniform between the wedge's edges at v; z² the same way, each without cancellation. r / |v| from
+  // m_z² / |P|², so v need not be normalised; r² + z² = 1 to rounding at each edge, so neither does the
+  // direction.
+  const double v2 = dot(v, v);
+  double rhoOuter2, zOuter2, rhoInner2 = 0, zInner2 = 1;
+  radiusAt(eo, go, v2, rhoOuter2, zOuter2);
+  if (w.hasInner) radiusAt(ei, gi, v2, rhoInner2, zInner2);
+  const double s = u.y;
+  const double rho = std::sqrt(std::max(0.0, (1 - s) * rhoInner2 + s * rhoOuter2));
+  const double z = std::sqrt(std::max(0.0, (1 - s) * zInner2 + s * zOuter2));
+  return ex * (rho * v.x) + ey * (rho * v.y) + ez * z;
 }
 
 double ProjectedPolygon::pdfDirection(const DVec3& w) const {

@@ -19,11 +19,24 @@
 //
 // The map of the unit square onto the region is a bijection that keeps stratification (no
 // rejection): u.x picks φ by inverting the region's area at azimuths below φ (the wedge by its
-// cumulative area, then Newton's method with bisection inside the wedge: the area's derivative is
-// ½ (r_outer² − r_inner²), in closed form), u.y places r² uniformly between r_inner² and r_outer².
-// Plain data, built once per (shading point, polygon) and reused for every sample there; double
-// precision throughout (the polygon's edge normals are formed from its edge vectors, so a polygon
-// 1e-6 of its distance across keeps ~1e-10 relative accuracy).
+// cumulative area, then Newton's method with bisection inside the wedge), u.y places r² uniformly
+// between r_inner² and r_outer².
+//
+// Inside a wedge from unit azimuth vector a₀ to a₁ the azimuth is parametrised by the chord,
+// v(λ) = a₀ + λ (a₁ − a₀), λ in [0, 1] (monotone below π; wedges wider than 3π/4 are
+// halved, so the chord keeps 0.38 from the origin and the azimuth along it its precision). An edge's point at
+// azimuth v is along P(v) = (|m_z| v, g · v) (g the horizontal part of m, turned to the
+// upper half circle), linear in v, so the area it sweeps from a₀ is
+//     ½ |m_z| atan2(λ |m_z| σ, P(a₀) · P(v(λ))),   σ = a₀ × (a₁ − a₀),
+// with derivative ½ σ m_z² / |P|², and no trigonometry for the azimuth itself. Newton starts
+// from the root of a model (each edge's swept area as λ ↦ αλ / (1 + βλ), exact for a straight
+// edge in the projection, with the edge's slope at 0 and area at 1; against the horizon,
+// where the wedge's width vanishes at an end, refined on the cubic with the wedge's area and
+// end slopes), evaluates the area once with atan2 and after that by the increments between
+// iterates (the atan of a small ratio by its series). Plain data, built once per (shading
+// point, polygon) and reused for every sample there; double precision throughout (the
+// polygon's edge normals are formed from its edge vectors, so a polygon 1e-6 of its distance
+// across keeps ~1e-10 relative accuracy).
 #pragma once
 
 #include "core/math/vec.h"
@@ -34,13 +47,13 @@ struct ProjectedPolygon {
   // A quad clipped to the horizon has five vertices.
   static constexpr int kMaxInputVertices = 4;
   static constexpr int kMaxVertices = kMaxInputVertices + 1;
-  // A wedge spans at most π/2 (wider ones are halved): one per edge or vertex interval, at most two each.
+  // A wedge spans at most 3π/4 (wider ones are halved): one per edge or vertex interval, at most two each.
   static constexpr int kMaxWedges = 2 * kMaxVertices;
   // Stop rule of the azimuth's inversion in a wedge: |area below φ − target| ≤ kAreaTolerance · the
   // wedge's area (the sampled φ's CDF is then off by at most 1e-12 of the wedge: far below a float
-  // u's quantisation, 2^-24), or the bracket down to a few ulps of the wedge's span; at most
+  // u's quantisation, 2^-24), or the bracket down to a few ulps of the chord parameter's [0, 1]; at most
   // kMaxInversionSteps steps (each halves the bracket at worst, so the bound is never the reason to stop
-  // in practice: 2^-64 of a span below π).
+  // in practice: 2^-64).
   static constexpr double kAreaTolerance = 1e-12;
   static constexpr int kMaxInversionSteps = 64;
 
@@ -62,18 +75,20 @@ struct ProjectedPolygon {
   // ---- the map's data (read by the tests) ----
   // Local frame: ez the shading normal.
   DVec3 ex, ey, ez;
-  // One boundary edge as the wedges use it: |m_z| and 1 − m_z² of its great circle's unit normal m,
-  // and the unit azimuth vector (qx, qy) of ψ = 0, the circle's highest point (r = |m_z|; r = 1 at
-  // ψ = ±π/2, where it meets the horizon). An edge on the horizon has k = 1, c2 = 0.
+  // One boundary edge as a wedge uses it: k = |m_z| and g = ∓(m_x, m_y) of its great circle's unit
+  // normal m (the sign that puts P(v) = (k v, g · v) on the upper half circle), P(a₀)² and
+  // P(a₀) · P(a₁ − a₀) at the wedge's start, and the model of its swept area, αλ / (1 + βλ). An edge on
+  // the horizon has k = 1, g = 0.
   struct Edge {
-    double k, c2;
-    double qx, qy;
+    double k, gx, gy;
+    double p0, pd;
+    double alpha, beta;
   };
-  // A wedge between two consecutive vertex azimuths: from the unit azimuth vector (ux, uy), `span`
-  // radians counter-clockwise; `outer` bounds it away from the origin, `inner` towards it (none when
-  // the polygon covers the normal's direction).
+  // A wedge between two consecutive vertex azimuths: from the unit azimuth vector (ax, ay) to
+  // (ax + dx, ay + dy), σ = a × d; `outer` bounds it away from the origin, `inner` towards it (none
+  // when the polygon covers the normal's direction).
   struct Wedge {
-    double ux, uy, span;
+    double ax, ay, dx, dy, sigma;
     Edge outer, inner;
     bool hasInner;
     double area;
@@ -84,10 +99,6 @@ struct ProjectedPolygon {
   // The clipped polygon's edge normals in the local frame (inside: m · w ≥ 0 for every edge).
   DVec3 edgeNormals[kMaxVertices];
   int edgeCount = 0;
-
-  // The area of wedge `w` at azimuths up to the unit azimuth vector (ux, uy), `t` radians past its
-  // start (sinT = sin t).
-  static double wedgeAreaTo(const Wedge& w, double ux, double uy, double sinT, double t);
 };
 
 }  // namespace penumbra

@@ -239,6 +239,49 @@ TEST(ProjectedPolygon, MapIsMonotoneInBothCoordinates) {
   }
 }
 
+// The polygon (relative to its shading point) clipped to the half space p · h ≥ 0 (Sutherland–Hodgman).
+std::vector<DVec3> clipToHalfSpace(const std::vector<DVec3>& poly, const DVec3& h) {
+  std::vector<DVec3> out;
+  for (size_t i = 0; i < poly.size(); ++i) {
+    const DVec3 &a = poly[i], &b = poly[(i + 1) % poly.size()];
+    const double da = glm::dot(a, h), db = glm::dot(b, h);
+    if (da >= 0) out.push_back(a);
+    if ((da >= 0) != (db >= 0)) out.push_back(a + (b - a) * (da / (da - db)));
+  }
+  return out;
+}
+
+// The azimuth's inversion is exact: the part of the polygon between the azimuths of the samples for
+// u.x = a and a + 1/4 (turning counter-clockwise about the normal, as the map does) has the projected
+// solid angle Ω⊥ / 4, by Lambert's closed form of the polygon clipped to that wedge. Measured: to 1e-12
+// for most, 5e-12 grazing, 2.3e-10 for the polygon 1e-6 across (a stop rule 1e-7 of the wedge's area
+// fails most of them).
+TEST(ProjectedPolygon, AzimuthInversionIsExact) {
+  for (const Config& c : configs()) {
+    ProjectedPolygon map;
+    ASSERT_TRUE(map.init(c.vertices.data(), int(c.vertices.size()), c.x, c.n)) << c.name;
+    const DVec3 n = glm::normalize(DVec3(c.n));
+    std::vector<DVec3> rel;
+    for (const Vec3& v : c.vertices) rel.push_back(DVec3(v) - DVec3(c.x));
+    const double total = lambert(c);
+    int checked = 0;
+    for (int i = 0; i < 12; ++i) {
+      const float a = i / 16.f;
+      const DVec3 w0 = map.sampleDirection(Vec2(a, 0.5f)), w1 = map.sampleDirection(Vec2(a + 0.25f, 0.5f));
+      if (!(glm::dot(glm::cross(w0, w1), n) > 0)) continue;  // a wedge of π or more: not one half space each
+      const std::vector<DVec3> part =
+          clipToHalfSpace(clipToHalfSpace(rel, glm::cross(n, w0)), glm::cross(w1, n));
+      ASSERT_GE(part.size(), 3u) << c.name;
+      std::vector<DVec3> reversed(part.rbegin(), part.rend());
+      const double omega = std::max(polygonLightIrradianceFactor(DVec3(0), n, part),
+                                    polygonLightIrradianceFactor(DVec3(0), n, reversed));
+      EXPECT_NEAR(omega / total, 0.25, 1e-9) << c.name << " from u.x " << a;
+      ++checked;
+    }
+    EXPECT_GE(checked, 6) << c.name;
+  }
+}
+
 TEST(ProjectedPolygon, NothingToSample) {
   ProjectedPolygon map;
   const std::vector<Vec3> quad = square(Vec3(0, 0, 1), Vec3(0.5f, 0, 0), Vec3(0, 0.5f, 0));
