@@ -2,7 +2,7 @@
 """Fails when an include points up the layer order (docs/architecture.md, "Layers").
 
 Core layers, bottom to top; a file may include its own layer and any layer below it:
-  math < image, sampling < geometry < lights < world < integrators < render < scene < analysis
+  math < image, sampling < geometry < lights, materials < world < integrators < render < scene < analysis
 App layers, bottom to top (every app layer may include all of core):
   platform, net < ui < cli < mpi
 (net: streaming to the tev viewer over TCP; mpi: penumbra-mpi, the render shared by MPI ranks.) Layers of one rank sit beside each other (image and
@@ -24,6 +24,7 @@ CORE_RANK = {
     "sampling": 1,
     "geometry": 2,
     "lights": 3,
+    "materials": 3,
     "world": 4,
     "integrators": 5,
     "render": 6,

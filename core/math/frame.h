@@ -18,6 +18,7 @@ struct Frame {
   }
 
   Vec3 toWorld(const Vec3& v) const { return s * v.x + t * v.y + n * v.z; }
+  Vec3 toLocal(const Vec3& v) const { return Vec3(glm::dot(v, s), glm::dot(v, t), glm::dot(v, n)); }
 };
 
 // The same basis around a unit double vector (light sampling builds its frames in double).
