@@ -33,7 +33,7 @@ struct LightFixture {
 
   LightFixture() {
     scene.geometry.addMesh(makeGridPlane(Vec3(-4, -4, 0), Vec3(8, 0, 0), Vec3(0, 8, 0), 1, 1), 0);
-    scene.materials.push_back(SurfaceMaterial{Color3(1.f)});
+    scene.materials.push_back(SurfaceMaterial{makeDiffuse(Color3(1.f))});
     scene.geometry.build();
     std::mt19937 rng(1);
     std::uniform_real_distribution<float> d(0.f, 0.999f);
@@ -78,7 +78,7 @@ BENCHMARK(BM_LightSample<LightMeasure::ProjectedSolidAngle>)
 std::unique_ptr<Scene> manyTrianglesScene(int n) {
   auto scene = std::make_unique<Scene>();
   scene->geometry.addMesh(makeGridPlane(Vec3(-10, -10, 0), Vec3(20, 0, 0), Vec3(0, 20, 0), 1, 1), 0);
-  scene->materials.push_back(SurfaceMaterial{Color3(1.f)});
+  scene->materials.push_back(SurfaceMaterial{makeDiffuse(Color3(1.f))});
   TriangleMesh mesh;
   std::mt19937 rng(7);
   std::uniform_real_distribution<float> d(-8.f, 8.f);
@@ -90,7 +90,7 @@ std::unique_ptr<Scene> manyTrianglesScene(int n) {
     mesh.triangles.push_back(glm::uvec3(base, base + 1, base + 2));
   }
   SurfaceMaterial emitter;
-  emitter.albedo = Color3(0.f);
+  emitter.bsdf = makeDiffuse(Color3(0.f));
   emitter.polygonLightsAt = 0;
   addMeshLights(mesh, Color3(4.f), scene->polygonLights, scene->polygonLightOfPrim);
   scene->geometry.addMesh(mesh, 1);

@@ -72,7 +72,7 @@ int runRender(const RenderOptions& o) {
   if (o.seed) settings.seed = *o.seed;
   std::string output = o.output;
   if (o.reference) {
-    settings.integrator = referenceEstimator(settings.integrator);
+    settings.integrator = referenceEstimator(settings.integrator, *loaded.scene);
     if (!o.seed) settings.seed = kReferenceSeed;              // independent of the runs measured against it
     if (output.empty()) output = referenceCachePath(loaded);  // where `penumbra converge` looks for it
   }
@@ -218,6 +218,8 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
   for (const IntegratorType type : {IntegratorType::Direct, IntegratorType::Ao})
     (references += references.empty() ? "" : ", ") +=
         strategyLabel(referenceStrategy(integratorOfType(type)));
+  references += "; with glossy surfaces " +
+                strategyLabel(referenceStrategy(integratorOfType(IntegratorType::Direct), true));
   cmd->add_flag(
       "--reference", opts->reference,
       "Converged reference: the lowest-variance estimator (" + references +

@@ -61,7 +61,7 @@ Loaded prepare(const Options& o, int rank) {
   if (o.seed) settings.seed = *o.seed;
   l.output = o.output;
   if (o.reference) {
-    settings.integrator = referenceEstimator(settings.integrator);
+    settings.integrator = referenceEstimator(settings.integrator, *l.scene.scene);
     if (!o.seed) settings.seed = kReferenceSeed;
     if (l.output.empty()) l.output = referenceCachePath(l.scene);
   }

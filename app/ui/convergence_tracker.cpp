@@ -27,8 +27,8 @@ void ConvergenceTracker::rekey(const ViewerController& c) {
   lastRestart_ = c.restartCount();
   lastScene_ = c.scene().scene;
   LoadedScene live = liveScene(c);
-  std::string key =
-      sceneContentHash(live.desc) + "/" + strategyLabel(referenceStrategy(live.settings.integrator));
+  std::string key = sceneContentHash(live.desc) + "/" +
+                    strategyLabel(referenceEstimator(live.settings.integrator, *live.scene));
   if (key == key_) return;
   key_ = key;
   curves_.clear();  // errors against another reference (camera, scene) are not comparable

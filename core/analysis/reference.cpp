@@ -22,8 +22,8 @@ namespace penumbra {
 
 namespace fs = std::filesystem;
 
-IntegratorDesc referenceEstimator(const IntegratorDesc& sceneIntegrator) {
-  return referenceStrategy(sceneIntegrator);
+IntegratorDesc referenceEstimator(const IntegratorDesc& sceneIntegrator, const Scene& scene) {
+  return referenceStrategy(sceneIntegrator, scene.hasGlossySurfaces());
 }
 
 namespace {
@@ -105,7 +105,7 @@ Reference renderReference(const LoadedScene& scene, RenderLimits limits, int thr
                           CancelFlag cancel) {
   if (limits.targetSpp == 0 && limits.seconds <= 0) throw Error("renderReference: no spp or time limit");
   RenderSettings settings = scene.settings;
-  settings.integrator = referenceEstimator(scene.settings.integrator);
+  settings.integrator = referenceEstimator(scene.settings.integrator, *scene.scene);
   settings.seed = seed;
   const auto job = std::make_shared<const RenderJob>(scene.scene, settings, limits);
   Engine engine;
@@ -185,7 +185,10 @@ void checkReferenceValues(const Reference& ref, const std::string& what) {
 bool hasClosedFormReference(const LoadedScene& scene) {
   if (scene.path.empty()) return false;
   fs::path dir = fs::path(scene.path).parent_path();
-  return dir.filename() == "analytic" && hasDirectClosedForm(scene.settings.integrator);
+  if (dir.filename() != "analytic" || !hasDirectClosedForm(scene.settings.integrator)) return false;
+  for (const SurfaceMaterial& m : scene.scene->materials)
+    if (!m.bsdf.isDiffuse()) return false;
+  return true;
 }
 
 Reference closedFormReference(const LoadedScene& loaded, int grid, CancelFlag cancel) {
@@ -193,6 +196,10 @@ Reference closedFormReference(const LoadedScene& loaded, int grid, CancelFlag ca
     throw Error("closed-form reference: only the direct integrator is supported");
   const Scene& scene = *loaded.scene;
   if (scene.hasDeltaLights()) throw Error("closed-form reference: the scene has point or directional lights");
+  for (const SurfaceMaterial& m : scene.materials)
+    if (!m.bsdf.isDiffuse())
+      throw Error(
+          "closed-form reference: the scene has a glossy surface (the closed forms are for diffuse ones)");
   PerspectiveCamera camera(loaded.settings.camera);
   FilterSampler filter(loaded.settings.filter);
   Reference ref;
@@ -214,7 +221,7 @@ Reference closedFormReference(const LoadedScene& loaded, int grid, CancelFlag ca
           const SurfaceMaterial& m = scene.materials[hit.objectId];
           glm::dvec3 L(0.0);
           L += glm::dvec3(emittedAt(scene, m, hit, ray));
-          if (!isBlack(m.albedo)) {
+          if (m.bsdf.reflects()) {
             ShadingPoint sp(scene, ray, hit);
             glm::dvec3 E(0.0);
             for (std::size_t k = 0; k < scene.sphereLights.size(); ++k) {
@@ -227,7 +234,7 @@ Reference closedFormReference(const LoadedScene& loaded, int grid, CancelFlag ca
             for (const PolygonLight& light : scene.polygonLights)
               E += glm::dvec3(light.radiance) *
                    polygonLightIrradianceFactor(light, glm::dvec3(sp.hit.p), glm::dvec3(sp.ns));
-            L += glm::dvec3(m.albedo) * (1.0 / kPiD) * E;
+            L += glm::dvec3(m.bsdf.albedo) * (1.0 / kPiD) * E;
           }
           sum += L * double(weight);
         }
@@ -303,7 +310,7 @@ Reference obtainReference(const LoadedScene& scene, const ReferenceRequest& requ
   if (!cacheDir.empty()) fs::create_directories(cacheDir, ec);
   if (ec) throw Error(cache + ": cannot create the reference cache's directory: " + ec.message());
   say("reference: rendering " + std::to_string(request.referenceSpp) + " spp of " +
-      strategyLabel(referenceEstimator(scene.settings.integrator)) + " into " + cache);
+      strategyLabel(referenceEstimator(scene.settings.integrator, *scene.scene)) + " into " + cache);
   Reference ref = renderReference(scene, RenderLimits{request.referenceSpp, request.referenceSeconds},
                                   request.threads, kReferenceSeed, request.cancel);
   ImageMetadata meta;

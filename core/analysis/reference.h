@@ -36,8 +36,9 @@ struct Reference {
   std::string source;   // "closed-form", "cache <path>", "rendered <label> <spp> spp", "file <path>"
 };
 
-// The estimator a rendered reference uses: the lowest-variance one for the scene's integrator type.
-IntegratorDesc referenceEstimator(const IntegratorDesc& sceneIntegrator);
+// The estimator a rendered reference of `scene` uses: the lowest-variance one for the scene's
+// integrator type and surfaces (referenceStrategy).
+IntegratorDesc referenceEstimator(const IntegratorDesc& sceneIntegrator, const Scene& scene);
 
 // 16 hex digits: FNV-1a over writeSceneXml of the description with the sampler removed and the
 // integrator reduced to its type, followed by the bytes of every file a "filename" property names.

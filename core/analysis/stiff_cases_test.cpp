@@ -61,7 +61,7 @@ struct HalvedSolidAngle {
     LightSample s = light.sampleSolidAngle(hit.p, sampler.next2D());
     if (!(s.pdf > 0.f)) return Color3(0.f);
     float cosTheta = std::max(0.f, glm::dot(sp.ns, s.wi));
-    return sp.material->albedo * kInvPi * s.Le * (cosTheta / (2.f * s.pdf));
+    return sp.material->bsdf.albedo * kInvPi * s.Le * (cosTheta / (2.f * s.pdf));
   }
 };
 

@@ -88,6 +88,7 @@ std::string axesSpelling(const IntegratorDesc& d) {
   if (d.type == IntegratorType::Ao) return "--strategies " + std::string(nameOf(d.warp));
   if (d.estimator == Estimator::Hemisphere) return "--strategies " + std::string(nameOf(d.warp));
   std::string out = "--strategies " + std::string(measureName(d));
+  if (d.estimator == Estimator::Bsdf) return out;
   if (d.estimator == Estimator::Light)
     return out + " --light-selection " + std::string(nameOf(d.lightSelection));
   return out + " --light-measure " + std::string(nameOf(d.lightMeasure)) + " --heuristic " +

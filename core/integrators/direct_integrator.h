@@ -1,15 +1,18 @@
-// Direct illumination from all emitters onto diffuse surfaces:
-//   Lr(x) = albedo/pi * [ sum over delta lights of E_i  +  integral of Le(x, w) cos(theta) dw ].
+// Direct illumination from all emitters:
+//   Lr(x, wo) = sum over delta lights of f Li cos θ  +  integral of Le(x, w) f(wo, w) cos θ dw,
+// on a diffuse surface albedo/π times the irradiance (reflection.h).
 // Point and directional lights are evaluated deterministically. The area-light integral uses the
 // strategy chosen at compile time (one instantiation per combination of the axes, so no per-sample
 // branching):
 //   hemisphere (uniform or cosine warp): trace the sampled direction, add Le of an emitter it hits;
+//   bsdf: the same with the surface's own directions (the cosine warp on a diffuse surface);
 //   area: a uniform point on each light (sphere or polygon), pdf converted to solid angle (a sphere's
 //   far side adds 0);
 //   solid angle: a uniform direction in the cone a sphere subtends, a polygon's spherical triangle or
 //   rectangle;
 //   projected solid angle: a direction in that solid angle with density cos θ / Ω⊥ above the horizon,
-//   whose estimate Le Ω⊥ has no variance where the light is unoccluded.
+//   whose estimate Le Ω⊥ has no variance where the light is unoccluded on a diffuse surface (on a
+//   glossy one, Le f Ω⊥ varies with f).
 // The three light measures sample every light per shading sample (light selection `all`), or one
 // light chosen per shading sample (uniform, by power, by the light BVH), its probability divided out.
 // `simple` renders the delta lights alone.
@@ -30,7 +33,7 @@ namespace penumbra {
 // Delta lights only (`simple`).
 struct SimpleIntegrator {
   Color3 Li(const Scene& scene, const Ray& ray, Sampler&) const {
-    return directRadiance<false>(scene, ray, [](const ShadingPoint&) { return Color3(0.f); });
+    return directRadiance<false>(scene, ray, [](const ShadingPoint&, const auto&) { return Color3(0.f); });
   }
 };
 
@@ -40,9 +43,21 @@ struct HemisphereDirectIntegrator {
   int samples = 1;
 
   Color3 Li(const Scene& scene, const Ray& ray, Sampler& sampler) const {
-    return directRadiance<true>(scene, ray, [&](const ShadingPoint& sp) {
+    return directRadiance<true>(scene, ray, [&](const ShadingPoint& sp, const auto& reflection) {
       if (!scene.hasAreaLights()) return Color3(0.f);
-      return hemisphereIrradiance<kWarp>(scene, sp, sampler, samples, UnitWeight{});
+      return hemisphereIrradiance<kWarp>(scene, sp, reflection, sampler, samples, UnitWeight{});
+    });
+  }
+};
+
+// The area-light integral by the surface's own direction sampling (`bsdf`), traced to the lights.
+struct BsdfDirectIntegrator {
+  int samples = 1;
+
+  Color3 Li(const Scene& scene, const Ray& ray, Sampler& sampler) const {
+    return directRadiance<true>(scene, ray, [&](const ShadingPoint& sp, const auto& reflection) {
+      if (!scene.hasAreaLights()) return Color3(0.f);
+      return surfaceSampledRadiance(scene, sp, reflection, sampler, samples, UnitWeight{});
     });
   }
 };
@@ -54,15 +69,15 @@ struct LightDirectIntegrator {
   int samples = 1;
 
   Color3 Li(const Scene& scene, const Ray& ray, Sampler& sampler) const {
-    return directRadiance<false>(scene, ray, [&](const ShadingPoint& sp) {
+    return directRadiance<false>(scene, ray, [&](const ShadingPoint& sp, const auto& reflection) {
       if constexpr (kSelection == LightSelection::Uniform) {
-        return selectedLightIrradiance(scene, scene.uniformSelection, sp, sampler);
+        return selectedLightIrradiance(scene, scene.uniformSelection, sp, reflection, sampler);
       } else if constexpr (kSelection == LightSelection::Power) {
-        return selectedLightIrradiance(scene, scene.powerSelection, sp, sampler);
+        return selectedLightIrradiance(scene, scene.powerSelection, sp, reflection, sampler);
       } else if constexpr (kSelection == LightSelection::Bvh) {
-        return selectedLightIrradiance(scene, scene.lightBvh, sp, sampler);
+        return selectedLightIrradiance(scene, scene.lightBvh, sp, reflection, sampler);
       } else {
-        return everyLightIrradiance<kLightMeasure>(scene, sp, sampler, samples, UnitWeight{});
+        return everyLightIrradiance<kLightMeasure>(scene, sp, reflection, sampler, samples, UnitWeight{});
       }
     });
   }
@@ -70,9 +85,9 @@ struct LightDirectIntegrator {
  private:
   // One light per shading sample, chosen by `selection` with probability pick.pmf, then sampled by
   // this strategy's measure: Le cos / (pdf · pmf) is unbiased for the sum over all lights.
-  template <class Selection>
+  template <class Selection, class Reflection>
   Color3 selectedLightIrradiance(const Scene& scene, const Selection& selection, const ShadingPoint& sp,
-                                 Sampler& sampler) const {
+                                 const Reflection& reflection, Sampler& sampler) const {
     Color3 E(0.f);
     for (int i = 0; i < samples; ++i) {
       // Two sampler dimensions give the choice 48 bits: a 24-bit float would quantise deep BVHs and
@@ -84,22 +99,22 @@ struct LightDirectIntegrator {
       if (!(pick.pmf > 0.0)) continue;
       const size_t spheres = scene.sphereLights.size();
       if (pick.light < spheres)
-        E += selectedSample(scene, scene.sphereLights[pick.light], sp, u, pick.pmf);
+        E += selectedSample(scene, scene.sphereLights[pick.light], sp, reflection, u, pick.pmf);
       else
-        E += selectedSample(scene, scene.polygonLights[pick.light - spheres], sp, u, pick.pmf);
+        E += selectedSample(scene, scene.polygonLights[pick.light - spheres], sp, reflection, u, pick.pmf);
     }
     return E * (1.f / float(samples));
   }
 
-  template <class Light>
-  static Color3 selectedSample(const Scene& scene, const Light& light, const ShadingPoint& sp, Vec2 u,
-                               double pmf) {
+  template <class Light, class Reflection>
+  static Color3 selectedSample(const Scene& scene, const Light& light, const ShadingPoint& sp,
+                               const Reflection& reflection, Vec2 u, double pmf) {
     const LightTechnique<kLightMeasure, Light> technique(light, sp);
     LightSample s;
     float cosTheta;
     if (!unoccludedLightSample(scene, light, lightScaleOf(light), technique, sp, u, s, cosTheta))
       return Color3(0.f);
-    return s.Le * static_cast<float>(technique.cosOverSelectedPdf(s, cosTheta, pmf));
+    return reflection(s.Le, s.wi) * static_cast<float>(technique.cosOverSelectedPdf(s, cosTheta, pmf));
   }
 };
 

@@ -15,11 +15,12 @@ enum class IntegratorType : uint8_t {
   Normals,  // the shading normal as a colour
 };
 
-// How `direct` estimates the area-light integral ∫ Le cos θ dω.
+// How `direct` estimates the area-light integral ∫ Le f cos θ dω.
 enum class Estimator : uint8_t {
   Hemisphere,  // hemisphere directions (by `warp`), traced to the lights they hit
+  Bsdf,        // the surface's own directions (its BSDF's sampling), traced to the lights they hit
   Light,       // directions towards the lights, by `lightMeasure`, one or all lights per sample
-  Mis,         // multiple importance sampling of `lightMeasure` and cosine-hemisphere directions
+  Mis,         // multiple importance sampling of `lightMeasure` and BSDF-sampled directions
 };
 
 // The distribution of hemisphere directions (`ao`, and `direct` by Hemisphere).
@@ -45,7 +46,7 @@ struct IntegratorDesc {
   LightSelection lightSelection = LightSelection::All;   // direct by Light
   MisHeuristic heuristic = MisHeuristic::Power;          // direct by Mis
   int samples = 1;  // shading samples per camera sample (ao: shadingSamples, direct: nSamples)
-  // MIS counts per camera sample: light-sampling directions per sphere light, and cosine-hemisphere
+  // MIS counts per camera sample: light-sampling directions per area light, and BSDF-sampled
   // directions shared by all lights (0 turns MIS into the other technique alone).
   int lightSamples = 1;
   int bsdfSamples = 1;
@@ -77,6 +78,11 @@ constexpr IntegratorDesc directByHemisphere(HemisphereWarp warp) {
   IntegratorDesc d;
   d.estimator = Estimator::Hemisphere;
   d.warp = warp;
+  return d;
+}
+constexpr IntegratorDesc directByBsdf() {
+  IntegratorDesc d;
+  d.estimator = Estimator::Bsdf;
   return d;
 }
 constexpr IntegratorDesc directByLight(LightMeasure measure, LightSelection selection = LightSelection::All) {

@@ -36,6 +36,8 @@ auto integratorOf(int samples) {
     return NormalsIntegrator{};
   else if constexpr (D.estimator == Estimator::Hemisphere)
     return HemisphereDirectIntegrator<D.warp>{samples};
+  else if constexpr (D.estimator == Estimator::Bsdf)
+    return BsdfDirectIntegrator{samples};
   else if constexpr (D.estimator == Estimator::Light)
     return LightDirectIntegrator<D.lightMeasure, D.lightSelection>{samples};
   else
@@ -55,7 +57,7 @@ inline std::unique_ptr<Scene> planeScene(float half = 10.f, Color3 albedo = Colo
   scene->geometry.addMesh(
       makeGridPlane(Vec3(-half, -half, 0.f), Vec3(2.f * half, 0.f, 0.f), Vec3(0.f, 2.f * half, 0.f), 1, 1),
       0);
-  scene->materials.push_back(SurfaceMaterial{albedo});
+  scene->materials.push_back(SurfaceMaterial{makeDiffuse(albedo)});
   return scene;
 }
 
@@ -65,7 +67,7 @@ inline void addSphere(Scene& scene, const Vec3& center, float radius, Color3 rad
   const auto objectId = static_cast<uint32_t>(scene.materials.size());
   const auto index = static_cast<int32_t>(scene.geometry.addSphere(Sphere{center, radius}, objectId));
   if (!isBlack(radiance)) {
-    material.albedo = Color3(0.f);
+    material.bsdf = makeDiffuse(Color3(0.f));
     material.sphereLight = static_cast<int32_t>(scene.sphereLights.size());
     SphereLight light{Sphere{center, radius}, radiance};
     light.geometryIndex = index;
@@ -81,7 +83,7 @@ inline void addPolygonLight(Scene& scene, const std::vector<Vec3>& vertices, Col
   mesh.positions = vertices;
   for (uint32_t i = 1; i + 1 < vertices.size(); ++i) mesh.triangles.push_back(glm::uvec3(0, i, i + 1));
   SurfaceMaterial material;
-  material.albedo = Color3(0.f);
+  material.bsdf = makeDiffuse(Color3(0.f));
   material.polygonLightsAt = static_cast<int32_t>(scene.polygonLightOfPrim.size());
   addMeshLights(mesh, radiance, scene.polygonLights, scene.polygonLightOfPrim);
   scene.geometry.addMesh(mesh, static_cast<uint32_t>(scene.materials.size()));

@@ -11,6 +11,11 @@
 namespace penumbra {
 namespace {
 
+// The cosine-hemisphere density, the BSDF technique's on a diffuse surface.
+float cosineDensity(float cosTheta) {
+  return cosTheta * kInvPi;
+}
+
 using test::Estimate;
 using test::estimateAlong;
 
@@ -128,8 +133,8 @@ struct WeightCheck {
         int32_t reached;
         SurfaceHit lh;
         if (!reach(scene, sp, s.wi, reached, lh) || reached != int32_t(l)) continue;  // occluded: weightless
-        const float wL = misWeight<kHeuristic>(nL * s.pdf, nB * Mis::bsdfPdf(cosTheta));
-        const float wB = misWeight<kHeuristic>(nB * Mis::bsdfPdf(cosTheta),
+        const float wL = misWeight<kHeuristic>(nL * s.pdf, nB * cosineDensity(cosTheta));
+        const float wB = misWeight<kHeuristic>(nB * cosineDensity(cosTheta),
                                                nL * lightPdf(scene.sphereLights[l], sp, s.wi, lh));
         worst = std::max(worst, std::fabs(double(wL) + wB - 1.0));
         ++directions;
@@ -143,10 +148,11 @@ struct WeightCheck {
       const SphereLight& light = scene.sphereLights[reached];
       if (isBlack(light.eval(lh.p, lh.ng, w))) continue;
       const float pL = lightPdf(light, sp, w, lh);
-      const float wB = misWeight<kHeuristic>(nB * Mis::bsdfPdf(local.z), nL * pL);
+      const float wB = misWeight<kHeuristic>(nB * cosineDensity(local.z), nL * pL);
       // The light technique's weight for w, from the same density (its sampler returns it for w, as the
       // first half checks).
-      const float wL = pL > 0.f ? misWeight<kHeuristic>(nL * pL, nB * Mis::bsdfPdf(glm::dot(sp.ns, w))) : 0.f;
+      const float wL =
+          pL > 0.f ? misWeight<kHeuristic>(nL * pL, nB * cosineDensity(glm::dot(sp.ns, w))) : 0.f;
       worst = std::max(worst, std::fabs(double(wL) + wB - 1.0));
       ++directions;
     }

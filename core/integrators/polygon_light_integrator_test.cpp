@@ -44,7 +44,7 @@ PolygonScene polygonScene(const Config& c) {
   const float half = float(1e3 * nearest);
   out.scene->geometry.addMesh(
       makeGridPlane(c.x - half * (frame.s + frame.t), 2.f * half * frame.s, 2.f * half * frame.t, 1, 1), 0);
-  out.scene->materials.push_back(SurfaceMaterial{Color3(1.f)});
+  out.scene->materials.push_back(SurfaceMaterial{makeDiffuse(Color3(1.f))});
   test::addPolygonLight(*out.scene, v, Color3(kRadiance));
   test::finish(*out.scene);
 

@@ -20,6 +20,10 @@
 namespace penumbra {
 
 enum class BsdfType : uint8_t { Diffuse, Microfacet, RoughConductor };
+
+// The roughness range of the microfacet models, where D, G1 and their sampling stay finite in float
+// (scene files, `penumbra warp` and Python check it alike).
+inline constexpr float kMinAlpha = 1e-6f, kMaxAlpha = 1e3f;
 enum class MicrofacetDistribution : uint8_t { Beckmann, Ggx };
 
 struct Bsdf {
@@ -32,6 +36,11 @@ struct Bsdf {
   float ks = 0.f;  // microfacet: 1 - max(kd), set by makeMicrofacet (also the specular lobe's probability)
 
   bool isDiffuse() const { return type == BsdfType::Diffuse; }
+  // False when f = 0 everywhere (a black diffuse or conductor surface): nothing to estimate.
+  bool reflects() const {
+    if (type == BsdfType::RoughConductor) return !isBlack(specularReflectance);
+    return !isBlack(albedo) || ks > 0.f;
+  }
 };
 
 Bsdf makeDiffuse(const Color3& albedo);

@@ -77,6 +77,8 @@ decltype(auto) withIntegrator(const IntegratorDesc& d, F&& f) {
     case Estimator::Hemisphere:
       return withWarp(d.warp,
                       [&](auto w) { return f(HemisphereDirectIntegrator<decltype(w)::value>{d.samples}); });
+    case Estimator::Bsdf:
+      return f(BsdfDirectIntegrator{d.samples});
     case Estimator::Light:
       return withLightMeasure(d.lightMeasure, [&](auto m) {
         return withLightSelection(d.lightSelection, [&](auto s) {

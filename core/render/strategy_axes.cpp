@@ -166,6 +166,8 @@ std::string strategyShortName(const IntegratorDesc& desc) {
   switch (desc.estimator) {
     case Estimator::Hemisphere:
       return std::string(nameOf(desc.warp));
+    case Estimator::Bsdf:
+      return std::string(rowOf(desc.estimator).measure.canonical());
     case Estimator::Light:
       return std::string(nameOf(desc.lightMeasure)) + (desc.lightSelection == LightSelection::All
                                                            ? ""
@@ -196,7 +198,9 @@ IntegratorDesc applicableStrategy(const IntegratorDesc& desc, bool sceneHasAreaL
   return out;
 }
 
-IntegratorDesc referenceStrategy(const IntegratorDesc& desc) {
+IntegratorDesc referenceStrategy(const IntegratorDesc& desc, bool glossySurfaces) {
+  if (desc.type == IntegratorType::Direct && glossySurfaces)
+    return withCountsOf(directByMis(LightMeasure::SolidAngle, MisHeuristic::Power), desc);
   if (desc.type == IntegratorType::Direct) return withCountsOf(directByLight(LightMeasure::SolidAngle), desc);
   if (desc.type == IntegratorType::Ao) return withCountsOf(aoBy(HemisphereWarp::Cosine), desc);
   return desc;
@@ -225,6 +229,8 @@ std::vector<IntegratorDesc> everyStrategyOfType(const IntegratorDesc& desc) {
     d.estimator = e.estimator;
     if (e.estimator == Estimator::Hemisphere)
       for (const WarpRow& w : kWarps) d.warp = w.warp, out.push_back(d);
+    else if (e.estimator == Estimator::Bsdf)
+      out.push_back(d);
     else if (e.estimator == Estimator::Light)
       for (const LightMeasureRow& m : kLightMeasures)
         for (const LightSelectionRow& s : kLightSelections)

@@ -81,7 +81,7 @@ inline constexpr std::array kIntegratorTypes = {
     IntegratorTypeRow{IntegratorType::Direct,
                       {{"direct"}},
                       kDirectSamplesProperty,
-                      "Direct illumination from every emitter onto diffuse surfaces."},
+                      "Direct illumination from every emitter."},
     IntegratorTypeRow{IntegratorType::Ao,
                       {{"ao"}},
                       kAoSamplesProperty,
@@ -98,11 +98,16 @@ inline constexpr std::array kEstimators = {
                  SceneNeed::Nothing,
                  "Hemisphere directions traced to the lights they hit."},
     EstimatorRow{
+        Estimator::Bsdf,
+        {{"bsdf"}},
+        SceneNeed::Nothing,
+        "The surface's own directions (its BSDF's sampling; cosine on diffuse) traced to the lights."},
+    EstimatorRow{
         Estimator::Light, {}, SceneNeed::AreaLights, "Directions towards the lights, by the light measure."},
     EstimatorRow{Estimator::Mis,
                  {{"mis"}},
                  SceneNeed::AreaLights,
-                 "Multiple importance sampling of light sampling and cosine directions."},
+                 "Multiple importance sampling of light sampling and BSDF sampling."},
 };
 
 inline constexpr std::array kWarps = {
@@ -192,9 +197,11 @@ SceneNeed sceneNeed(const IntegratorDesc& desc);
 // what renders instead: desc itself, or cosine-hemisphere directions (which see emitters they hit).
 bool strategyApplies(const IntegratorDesc& desc, bool sceneHasAreaLights);
 IntegratorDesc applicableStrategy(const IntegratorDesc& desc, bool sceneHasAreaLights);
-// The lowest-variance strategy of desc's type (direct/solid-angle, ao/cosine), which renders
-// references, and the naive one speed-ups are reported against (uniform hemisphere); desc's counts.
-IntegratorDesc referenceStrategy(const IntegratorDesc& desc);
+// The lowest-variance strategy of desc's type, which renders references (direct: solid-angle light
+// sampling, or MIS of it with BSDF sampling by the power heuristic when some surface is glossy, where
+// light sampling alone misses sharp highlights of large lights; ao: cosine), and the naive one
+// speed-ups are reported against (uniform hemisphere); desc's counts.
+IntegratorDesc referenceStrategy(const IntegratorDesc& desc, bool glossySurfaces = false);
 IntegratorDesc baselineStrategy(const IntegratorDesc& desc);
 bool isBaseline(const IntegratorDesc& desc);
 

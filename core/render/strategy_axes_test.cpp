@@ -31,7 +31,7 @@ TEST(StrategyAxes, EverySpellingNamesOneValue) {
   std::set<std::string_view> measures;
   for (std::string_view m : measureNames()) EXPECT_TRUE(measures.insert(m).second) << m;
   EXPECT_EQ(acceptedMeasures(),
-            "hemisphere, area, solid-angle, solidAngle, projected-solid-angle, "
+            "hemisphere, bsdf, area, solid-angle, solidAngle, projected-solid-angle, "
             "projectedSolidAngle, mis");
   for (const LightMeasureRow& m : kLightMeasures) {
     IntegratorDesc d;
@@ -53,9 +53,10 @@ TEST(StrategyAxes, LabelsAndShortNamesAreComposedAndUnique) {
     EXPECT_TRUE(shortNames.insert(strategyShortName(d)).second) << strategyShortName(d);
     EXPECT_EQ(label.substr(0, nameOf(d.type).size()), nameOf(d.type)) << label;
   }
-  // direct's hemisphere warps, light measures x selections and x heuristics; ao's warps; simple, normals.
+  // direct's hemisphere warps, bsdf, light measures x selections and x heuristics; ao's warps; simple,
+  // normals.
   const size_t direct =
-      kWarps.size() + kLightMeasures.size() * (kLightSelections.size() + kHeuristics.size());
+      kWarps.size() + 1 + kLightMeasures.size() * (kLightSelections.size() + kHeuristics.size());
   EXPECT_EQ(labels.size(), direct + kWarps.size() + 2);
   EXPECT_EQ(strategyLabel(directByLight(LightMeasure::SolidAngle, LightSelection::Bvh)),
             "direct/solid-angle-bvh");
@@ -116,7 +117,10 @@ TEST(StrategyAxes, FallbacksApplyEverywhere) {
 TEST(StrategyAxes, ReferenceAndBaselineKeepTheCounts) {
   EXPECT_EQ(referenceStrategy(withSamples(directByLight(LightMeasure::Area, LightSelection::Bvh), 3)),
             withSamples(directByLight(LightMeasure::SolidAngle), 3));
+  EXPECT_EQ(referenceStrategy(withSamples(directByLight(LightMeasure::Area), 3), true),
+            withSamples(directByMis(LightMeasure::SolidAngle, MisHeuristic::Power), 3));
   EXPECT_EQ(referenceStrategy(aoBy(HemisphereWarp::Uniform)), aoBy(HemisphereWarp::Cosine));
+  EXPECT_EQ(referenceStrategy(aoBy(HemisphereWarp::Uniform), true), aoBy(HemisphereWarp::Cosine));
   EXPECT_EQ(baselineStrategy(directByLight(LightMeasure::SolidAngle)),
             directByHemisphere(HemisphereWarp::Uniform));
   EXPECT_EQ(referenceStrategy(integratorOfType(IntegratorType::Normals)),
@@ -130,10 +134,11 @@ TEST(StrategyAxes, EveryStrategyOfTypeCrossesTheAxesThatApply) {
   const std::vector<IntegratorDesc> direct =
       everyStrategyOfType(withSamples(integratorOfType(IntegratorType::Direct), 5));
   ASSERT_EQ(direct.size(),
-            kWarps.size() + kLightMeasures.size() * (kLightSelections.size() + kHeuristics.size()));
+            kWarps.size() + 1 + kLightMeasures.size() * (kLightSelections.size() + kHeuristics.size()));
   EXPECT_EQ(strategyLabel(direct.front()), "direct/uniform-hemisphere");
-  EXPECT_EQ(strategyLabel(direct[2]), "direct/area");
-  EXPECT_EQ(strategyLabel(direct[3]), "direct/area-uniform");
+  EXPECT_EQ(strategyLabel(direct[2]), "direct/bsdf");
+  EXPECT_EQ(strategyLabel(direct[3]), "direct/area");
+  EXPECT_EQ(strategyLabel(direct[4]), "direct/area-uniform");
   for (const IntegratorDesc& d : direct) EXPECT_EQ(d.samples, 5);
   EXPECT_EQ(everyStrategyOfType(aoBy(HemisphereWarp::Cosine)).size(), 2u);
   EXPECT_EQ(everyStrategyOfType(integratorOfType(IntegratorType::Simple)).size(), 1u);

@@ -10,7 +10,9 @@
 #include "core/math/float_util.h"
 #include "core/render/strategy_axes.h"
 #include "core/sampling/sampler_table.h"
+#include "core/scene/bsdf_builder.h"
 #include "core/scene/light_selection_default.h"
+#include "core/scene/node_checks.h"
 #include "core/scene/obj_loader.h"
 #include "core/scene/xml_parser.h"
 
@@ -18,58 +20,19 @@ namespace penumbra {
 
 namespace {
 
-// An error about a property's value: at the --set override that gave it, else at its line (the
-// object's line when the file does not have it).
-[[noreturn]] void fail(const SceneNode& node, std::span<const std::string_view> names,
-                       const std::string& message) {
-  if (const Property* p = node.props.find(names); p && !p->setBy.empty())
-    throw node.props.errorAt(*p, message);
-  int line = node.props.lineOf(names);
-  throw Error(node.file, line > 0 ? line : node.line, message);
-}
-
-[[noreturn]] void fail(const SceneNode& node, std::initializer_list<std::string_view> names,
-                       const std::string& message) {
-  fail(node, std::span<const std::string_view>(names.begin(), names.size()), message);
-}
-
-[[noreturn]] void unknownType(const SceneNode& node, const char* known) {
-  const std::string message =
-      "unknown " + node.tag + " type \"" + node.type + "\" (expected one of: " + known + ")";
-  if (!node.typeSetBy.empty()) throw Error(node.typeSetBy + ": " + message);
-  throw Error(node.file, node.line, message);
-}
-
 int64_t getCount(const SceneNode& node, std::span<const std::string_view> names, int64_t def,
                  int64_t maxValue, std::string_view what) {
   int64_t v = node.props.getInteger(names, def);
   if (v < 1 || v > maxValue)
-    fail(node, names,
-         std::string(what) + " must be an integer in [1, " + std::to_string(maxValue) + "], got " +
-             std::to_string(v));
+    failProperty(node, names,
+                 std::string(what) + " must be an integer in [1, " + std::to_string(maxValue) + "], got " +
+                     std::to_string(v));
   return v;
 }
 
 int64_t getCount(const SceneNode& node, std::initializer_list<std::string_view> names, int64_t def,
                  int64_t maxValue, std::string_view what) {
   return getCount(node, std::span<const std::string_view>(names.begin(), names.size()), def, maxValue, what);
-}
-
-float getPositiveFloat(const SceneNode& node, std::initializer_list<std::string_view> names, float def,
-                       const char* what, bool allowZero = false) {
-  float v = node.props.getFloat(names, def);
-  if (!std::isfinite(v) || v < 0.f || (!allowZero && v == 0.f))
-    fail(node, names,
-         std::string(what) + (allowZero ? " must be >= 0" : " must be > 0") + ", got " + std::to_string(v));
-  return v;
-}
-
-Color3 getNonNegativeColor(const SceneNode& node, std::initializer_list<std::string_view> names,
-                           const Color3& def, const char* what) {
-  Color3 c = node.props.getColor(names, def);
-  if (!(c.x >= 0.f && c.y >= 0.f && c.z >= 0.f) || !std::isfinite(c.x + c.y + c.z))
-    fail(node, names, std::string(what) + " must be finite and non-negative");
-  return c;
 }
 
 void collectWarnings(const SceneNode& node, std::vector<std::string>& out) {
@@ -97,15 +60,15 @@ void buildCamera(const SceneNode& node, RenderSettings& s) {
   c.toWorld = node.props.getTransform({"toWorld"}, glm::mat4(1.f));
   c.fovDegrees = node.props.getFloat({"fov"}, 30.f);
   if (!(c.fovDegrees > 0.f && c.fovDegrees < 180.f))
-    fail(node, {"fov"}, "fov must be in (0, 180) degrees, got " + std::to_string(c.fovDegrees));
+    failProperty(node, {"fov"}, "fov must be in (0, 180) degrees, got " + std::to_string(c.fovDegrees));
   c.width = int(getCount(node, {"width"}, 1280, 16384, "width"));
   c.height = int(getCount(node, {"height"}, 720, 16384, "height"));
   c.nearClip = getPositiveFloat(node, {"nearClip"}, 1e-4f, "nearClip");
   c.farClip = getPositiveFloat(node, {"farClip"}, 1e4f, "farClip");
-  if (!(c.farClip > c.nearClip)) fail(node, {"farClip"}, "farClip must be greater than nearClip");
+  if (!(c.farClip > c.nearClip)) failProperty(node, {"farClip"}, "farClip must be greater than nearClip");
   for (int i = 0; i < 4; ++i)
     for (int j = 0; j < 4; ++j)
-      if (!std::isfinite(c.toWorld[i][j])) fail(node, {"toWorld"}, "camera transform is not finite");
+      if (!std::isfinite(c.toWorld[i][j])) failProperty(node, {"toWorld"}, "camera transform is not finite");
   s.filter = FilterDesc{};
   if (const SceneNode* rf = node.child("rfilter")) s.filter = buildFilter(*rf);
 }
@@ -114,7 +77,7 @@ void buildSampler(const SceneNode& node, RenderSettings& s) {
   if (!parseSamplerKind(node.type, s.samplerKind)) unknownType(node, acceptedSamplerNames().c_str());
   s.sampleCount = uint32_t(getCount(node, {"sampleCount"}, 1, kMaxSampleCount, "sampleCount"));
   const int64_t seed = node.props.getInteger({"seed"}, 0);
-  if (seed < 0) fail(node, {"seed"}, "seed must be an integer >= 0, got " + std::to_string(seed));
+  if (seed < 0) failProperty(node, {"seed"}, "seed must be an integer >= 0, got " + std::to_string(seed));
   s.seed = uint64_t(seed);
 }
 
@@ -125,9 +88,9 @@ Value getAxis(const SceneNode& node, const Spellings& property, Value def,
               std::optional<Value> (*lookup)(std::string_view), const std::string& accepted) {
   const std::string value = node.props.getString(property.list(), std::string(nameOf(def)));
   if (std::optional<Value> v = lookup(value)) return *v;
-  fail(node, property.list(),
-       "unknown " + std::string(property.canonical()) + " \"" + value + "\" of <integrator type=\"" +
-           node.type + "\"> (expected one of: " + accepted + ")");
+  failProperty(node, property.list(),
+               "unknown " + std::string(property.canonical()) + " \"" + value + "\" of <integrator type=\"" +
+                   node.type + "\"> (expected one of: " + accepted + ")");
 }
 
 // Each axis the integrator's type (and its measure) reads, from its own table; an absent property
@@ -149,9 +112,9 @@ void buildIntegrator(const SceneNode& node, size_t areaLights, RenderSettings& s
     const std::string measure =
         node.props.getString(kMeasureProperty.list(), std::string(measureName(defaults)));
     if (!applyMeasure(measure, d))
-      fail(node, kMeasureProperty.list(),
-           "unknown measure \"" + measure + "\" of <integrator type=\"" + node.type +
-               "\"> (expected one of: " + acceptedMeasures() + ")");
+      failProperty(node, kMeasureProperty.list(),
+                   "unknown measure \"" + measure + "\" of <integrator type=\"" + node.type +
+                       "\"> (expected one of: " + acceptedMeasures() + ")");
   }
   if (d.usesWarp()) d.warp = getAxis(node, kWarpProperty, defaults.warp, warpNamed, acceptedWarps());
   if (d.usesLightSelection())
@@ -169,24 +132,6 @@ void buildIntegrator(const SceneNode& node, size_t areaLights, RenderSettings& s
 }
 
 // ---- geometry and lights ------------------------------------------------------------------------
-
-Color3 buildBsdf(const SceneNode* bsdf, std::vector<std::string>& warnings) {
-  if (!bsdf) return Color3(0.5f);
-  Color3 albedo = getNonNegativeColor(*bsdf, {"albedo"}, Color3(0.5f), "albedo");
-  if (bsdf->type == "diffuse") return albedo;
-  if (bsdf->type == "phong") {
-    // The assignment's dev scenes carry a Phong BSDF; only its diffuse lobe is rendered here.
-    float kd = getPositiveFloat(*bsdf, {"diffuseCoef"}, 1.f, "diffuseCoef", true);
-    float ks = getPositiveFloat(*bsdf, {"specularCoef"}, 0.f, "specularCoef", true);
-    bsdf->props.markUsed({"shininess"});
-    if (ks > 0.f)
-      warnings.push_back(
-          bsdf->file + ":" + std::to_string(bsdf->line) +
-          ": warning: phong specular lobe is not implemented; rendering the diffuse part only");
-    return albedo * kd;
-  }
-  unknownType(*bsdf, "diffuse, phong (diffuse part)");
-}
 
 TriangleMesh buildMesh(const SceneNode& node, std::vector<std::string>& warnings) {
   glm::mat4 toWorld = node.props.getTransform({"toWorld"}, glm::mat4(1.f));
@@ -206,7 +151,7 @@ TriangleMesh buildMesh(const SceneNode& node, std::vector<std::string>& warnings
     const glm::mat3 linear(toWorld);
     const float det = glm::determinant(linear);
     if (!(std::abs(det) > 0.f) || !std::isfinite(det))
-      fail(node, {"toWorld"}, "the rectangle's toWorld is singular (it would have no area)");
+      failProperty(node, {"toWorld"}, "the rectangle's toWorld is singular (it would have no area)");
     mesh = makeGridPlane(Vec3(-1, -1, 0), Vec3(2, 0, 0), Vec3(0, 2, 0), 1, 1);
   } else if (node.type == "plane") {
     // The assignment's plane.obj without a file: x, z in [-1, 1], y = 0, normal +y.
@@ -214,7 +159,8 @@ TriangleMesh buildMesh(const SceneNode& node, std::vector<std::string>& warnings
   } else {
     // "rock": a procedural stand-in for large scanned meshes (no big files in the repository).
     int subdivisions = int(node.props.getInteger({"subdivisions"}, 7));
-    if (subdivisions < 0 || subdivisions > 9) fail(node, {"subdivisions"}, "subdivisions must be in [0, 9]");
+    if (subdivisions < 0 || subdivisions > 9)
+      failProperty(node, {"subdivisions"}, "subdivisions must be in [0, 9]");
     mesh = makeRockMesh(subdivisions, uint32_t(node.props.getInteger({"seed"}, 1)));
   }
   glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(toWorld)));
@@ -233,7 +179,7 @@ void addMeshEmitter(const SceneNode& shape, const SceneNode& emitter, const Tria
     throw Error(emitter.file, emitter.line, "an area emitter on a mesh without triangles");
   for (const Vec3& p : mesh.positions)
     if (!isFinite(p))
-      fail(shape, {"toWorld"}, "toWorld takes the emitting mesh's vertices out of float range");
+      failProperty(shape, {"toWorld"}, "toWorld takes the emitting mesh's vertices out of float range");
   material.polygonLightsAt = int32_t(scene.polygonLightOfPrim.size());
   const MeshLightStats stats = addMeshLights(mesh, radiance, scene.polygonLights, scene.polygonLightOfPrim);
   if (stats.lights == 0)
@@ -249,7 +195,7 @@ void addMeshEmitter(const SceneNode& shape, const SceneNode& emitter, const Tria
 void buildShape(const SceneNode& node, Scene& scene, std::vector<std::string>& warnings) {
   uint32_t objectId = uint32_t(scene.materials.size());
   SurfaceMaterial material;
-  material.albedo = buildBsdf(node.child("bsdf"), warnings);
+  material.bsdf = buildBsdf(node.child("bsdf"), warnings);
   const SceneNode* emitter = node.child("emitter");
   node.props.markUsed({"name"});  // the assignment's scenes label shapes; harmless
 
@@ -258,8 +204,9 @@ void buildShape(const SceneNode& node, Scene& scene, std::vector<std::string>& w
     sphere.center = node.props.getPoint({"center"}, Vec3(0.f));
     sphere.radius = node.props.getFloat({"radius"}, 1.f);
     if (!(sphere.radius >= 0.f) || !std::isfinite(sphere.radius))
-      fail(node, {"radius"}, "sphere radius must be finite and >= 0, got " + std::to_string(sphere.radius));
-    if (!isFinite(sphere.center)) fail(node, {"center"}, "sphere center must be finite");
+      failProperty(node, {"radius"},
+                   "sphere radius must be finite and >= 0, got " + std::to_string(sphere.radius));
+    if (!isFinite(sphere.center)) failProperty(node, {"center"}, "sphere center must be finite");
     if (emitter) {
       if (emitter->type != "area") unknownType(*emitter, "area (as a shape's child)");
       SphereLight light;
@@ -288,13 +235,13 @@ void buildEmitter(const SceneNode& node, Scene& scene) {
     PointLight light;
     light.position = node.props.getPoint({"position"}, Vec3(0.f));
     light.intensity = getNonNegativeColor(node, {"radiance", "intensity", "power"}, Color3(1.f), "radiance");
-    if (!isFinite(light.position)) fail(node, {"position"}, "position must be finite");
+    if (!isFinite(light.position)) failProperty(node, {"position"}, "position must be finite");
     scene.pointLights.push_back(light);
   } else if (node.type == "directional") {
     // `direction` points toward the light (see DirectionalLight).
     Vec3 dir = node.props.getVector({"direction"}, Vec3(0, 0, 1));
     if (!isFinite(dir) || glm::length(dir) == 0.f)
-      fail(node, {"direction"}, "direction must be a non-zero vector");
+      failProperty(node, {"direction"}, "direction must be a non-zero vector");
     Color3 irradiance = getNonNegativeColor(node, {"radiance", "irradiance"}, Color3(1.f), "radiance");
     scene.directionalLights.push_back(DirectionalLight::make(dir, irradiance));
   } else if (node.type == "area") {

@@ -160,9 +160,10 @@ TEST(SceneBuilder, MisCountsDefaultToOneAndMustBePositive) {
 
 TEST(SceneBuilder, UnknownStrategiesAreRejectedWithWhatIsAccepted) {
   expectError("<integrator type=\"path\"/>", 2, "(expected one of: direct, ao, simple, normals)");
-  expectError("<integrator type=\"direct\">\n<string name=\"measure\" value=\"solid\"/></integrator>", 3,
-              "unknown measure \"solid\" of <integrator type=\"direct\"> (expected one of: hemisphere, area, "
-              "solid-angle, solidAngle, projected-solid-angle, projectedSolidAngle, mis)");
+  expectError(
+      "<integrator type=\"direct\">\n<string name=\"measure\" value=\"solid\"/></integrator>", 3,
+      "unknown measure \"solid\" of <integrator type=\"direct\"> (expected one of: hemisphere, bsdf, area, "
+      "solid-angle, solidAngle, projected-solid-angle, projectedSolidAngle, mis)");
   expectError("<integrator type=\"ao\">\n<string name=\"sampling\" value=\"area\"/></integrator>", 3,
               "(expected one of: uniform-hemisphere, uniform, cosine-hemisphere, cosine)");
   expectError(

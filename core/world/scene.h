@@ -12,12 +12,13 @@
 #include "core/lights/point_light.h"
 #include "core/lights/polygon_light.h"
 #include "core/lights/sphere_light.h"
+#include "core/materials/bsdf.h"
 #include "core/math/vec.h"
 
 namespace penumbra {
 
 struct SurfaceMaterial {
-  Color3 albedo{0.5f};       // diffuse reflectance
+  Bsdf bsdf;                 // how the surface reflects (diffuse albedo 0.5 unless the scene says)
   int32_t sphereLight = -1;  // index into Scene::sphereLights when the object is an emitting sphere
   // When the object is an emitting mesh: where its triangles start in Scene::polygonLightOfPrim.
   int32_t polygonLightsAt = -1;
@@ -44,6 +45,11 @@ struct Scene {
   float rayLengthBound = 0.f;
 
   bool hasAreaLights() const { return !sphereLights.empty() || !polygonLights.empty(); }
+  bool hasGlossySurfaces() const {
+    for (const SurfaceMaterial& m : materials)
+      if (m.bsdf.reflects() && !m.bsdf.isDiffuse()) return true;
+    return false;
+  }
   size_t areaLightCount() const { return sphereLights.size() + polygonLights.size(); }
   // The polygon light that triangle `primId` of object `material` belongs to (null: it emits nothing).
   const PolygonLight* polygonLightOf(const SurfaceMaterial& material, uint32_t primId) const {
