@@ -1,4 +1,5 @@
 // `penumbra warp`: chi-square tests of the sample warps, sample dumps and pdf evaluation.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -9,6 +10,7 @@
 
 #include "app/cli/commands.h"
 #include "app/cli/option_checks.h"
+#include "core/materials/bsdf_warp.h"
 #include "core/math/error.h"
 #include "core/math/float_util.h"
 #include "core/sampling/chi2.h"
@@ -33,6 +35,7 @@ struct WarpArgs {
   double pdfParam = 0.0;
   double pdfScale = 1.0;
   bool mismatch = false;
+  BsdfWarpInputs bsdf;  // TYPE microfacet | roughconductor
   // --gui: the warp inspector
   bool gui = false;
   int points = 14;
@@ -81,16 +84,16 @@ std::string paramText(WarpType type, float param) {
   return buf;
 }
 
-void dumpSamples(WarpType type, float param, uint64_t count, uint64_t seed) {
+void dumpSamples(const SampleFunction& sample, uint64_t count, uint64_t seed) {
   Rng rng(mix64(seed), seed);  // the same stream the chi-square test draws from
   for (uint64_t i = 0; i < count; ++i) {
     float u1 = rng.nextFloat();
-    Vec3 v = Warp::warp(type, Vec2(u1, rng.nextFloat()), param);
+    Vec3 v = sample(Vec2(u1, rng.nextFloat()));
     std::printf("%.9g %.9g %.9g\n", v.x, v.y, v.z);
   }
 }
 
-void evaluatePdfs(WarpType type, float param) {
+void evaluatePdfs(const PdfFunction& pdf) {
   std::string line;
   int lineNo = 0;
   while (std::getline(std::cin, line)) {
@@ -100,8 +103,24 @@ void evaluatePdfs(WarpType type, float param) {
     float x, y, z;
     if (!(in >> x >> y >> z))
       throw Error("<stdin>", lineNo, "expected three numbers 'x y z', got '" + line + "'");
-    std::printf("%.9g\n", Warp::pdf(type, Vec3(x, y, z), param));
+    std::printf("%.9g\n", pdf(Vec3(x, y, z)));
   }
+}
+
+void printVerdict(const Chi2Result& r) {
+  std::printf("chi2      %.2f\n", r.chi2);
+  std::printf("dof       %d\n", r.dof);
+  std::printf("p-value   %.4g\n", r.pValue);
+  std::printf("verdict   %s (alpha %.3g)%s%s\n", chi2Verdict(r), r.alphaEffective,
+              r.message.empty() ? "" : ": ", r.message.c_str());
+}
+
+Chi2Options chi2OptionsOf(const WarpArgs& a) {
+  Chi2Options opt;
+  opt.sampleCount = a.samples;
+  opt.resolution = a.res;
+  opt.seed = a.seed;
+  return opt;
 }
 
 int runSingle(const WarpArgs& a, const CLI::App& cmd) {
@@ -116,12 +135,8 @@ int runSingle(const WarpArgs& a, const CLI::App& cmd) {
     pdfParam = checkedWarpParam(pdfType, cmd.count("--pdf-param") > 0, a.pdfParam, "--pdf-param");
   }
 
-  Chi2Options opt;
-  opt.sampleCount = a.samples;
-  opt.resolution = a.res;
-  opt.seed = a.seed;
   Chi2Result r = chi2Test(chi2DomainFor(pdfType, pdfParam), warpSampleFunction(type, param),
-                          warpPdfFunction(pdfType, pdfParam, a.pdfScale), opt);
+                          warpPdfFunction(pdfType, pdfParam, a.pdfScale), chi2OptionsOf(a));
 
   std::printf("warp      %s%s%s\n", warpTypeName(type), warpHasParameter(type) ? "  param " : "",
               warpHasParameter(type) ? paramText(type, param).c_str() : "");
@@ -132,45 +147,122 @@ int runSingle(const WarpArgs& a, const CLI::App& cmd) {
   std::printf("samples   %llu (seed %llu) in %d x %d cells + outside, %d pooled\n",
               static_cast<unsigned long long>(a.samples), static_cast<unsigned long long>(a.seed), r.resX,
               r.resY, r.pooledCells);
-  std::printf("chi2      %.2f\n", r.chi2);
-  std::printf("dof       %d\n", r.dof);
-  std::printf("p-value   %.4g\n", r.pValue);
-  std::printf("verdict   %s (alpha %.3g)%s%s\n", chi2Verdict(r), r.alphaEffective,
-              r.message.empty() ? "" : ": ", r.message.c_str());
+  printVerdict(r);
+  return r.accepted ? 0 : 1;
+}
+
+// The BSDF inputs from the options; the BSDF options with another warp are an error.
+BsdfWarp bsdfWarpOf(const WarpArgs& a, const CLI::App& cmd) {
+  BsdfWarpInputs in = a.bsdf;
+  in.type = a.type;
+  if (cmd.count("--param")) in.alpha = a.param;
+  if (in.type != "microfacet")
+    for (const char* o : {"--kd", "--int-ior", "--ext-ior"})
+      if (cmd.count(o)) throw Error(std::string(o) + " is a parameter of microfacet, not of " + in.type);
+  if (in.type != "roughconductor" && cmd.count("--distribution"))
+    throw Error("--distribution is a parameter of roughconductor, not of " + in.type);
+  return checkedBsdfWarp(in);
+}
+
+// A deliberately wrong density for a BSDF (--mismatch): the lobe's density at twice its roughness.
+BsdfWarp bsdfMismatchPartner(BsdfWarp w) {
+  w.bsdf.alpha = std::min(2.f * w.bsdf.alpha, kMaxAlpha);
+  return w;
+}
+
+int runBsdfSingle(const WarpArgs& a, const CLI::App& cmd) {
+  if (!a.pdfOf.empty()) throw Error("--pdf-of judges by another warp's pdf; a BSDF takes --mismatch");
+  const BsdfWarp warp = bsdfWarpOf(a, cmd);
+  const BsdfWarp judge = a.mismatch ? bsdfMismatchPartner(warp) : warp;
+  Chi2Options opt = chi2OptionsOf(a);
+  opt.rejectedDraws = true;
+  Chi2Result r =
+      chi2Test(bsdfChi2Domain(), bsdfSampleFunction(warp), bsdfPdfFunction(judge, a.pdfScale), opt);
+  std::printf("bsdf      %s\n", describeBsdfWarp(warp).c_str());
+  if (a.mismatch || a.pdfScale != 1.0)
+    std::printf("pdf of    %s  x %g   (mismatched pair)\n", describeBsdfWarp(judge).c_str(), a.pdfScale);
+  std::printf(
+      "samples   %llu (seed %llu) in %d x %d cells of the upper hemisphere + rejected draws, %d pooled\n",
+      static_cast<unsigned long long>(a.samples), static_cast<unsigned long long>(a.seed), r.resX, r.resY,
+      r.pooledCells);
+  std::printf("rejected  %.0f draws (expected %.1f: the mass the pdf misses)\n", r.observedRejected,
+              r.expectedRejected);
+  printVerdict(r);
   return r.accepted ? 0 : 1;
 }
 
 struct Case {
-  WarpType type;
-  float param;
-  std::string label;
+  std::string name, label;
+  Chi2Domain domain;
+  SampleFunction sample;
+  PdfFunction pdf;
+  bool rejectedDraws = false;
 };
+
+Case warpCase(WarpType type, float param, std::string label) {
+  return {warpTypeName(type),           std::move(label),
+          chi2DomainFor(type, param),   warpSampleFunction(type, param),
+          warpPdfFunction(type, param), false};
+}
+
+Case bsdfCase(const BsdfWarp& w) {
+  char label[96];
+  if (w.bsdf.type == BsdfType::Microfacet)
+    std::snprintf(label, sizeof label, "a=%g kd=%g %g deg", w.bsdf.alpha, w.bsdf.albedo.x, w.incidentDegrees);
+  else
+    std::snprintf(label, sizeof label, "%s a=%g %g deg",
+                  w.bsdf.distribution == MicrofacetDistribution::Ggx ? "ggx" : "beckmann", w.bsdf.alpha,
+                  w.incidentDegrees);
+  return {w.bsdf.type == BsdfType::Microfacet ? "microfacet" : "roughconductor",
+          label,
+          bsdfChi2Domain(),
+          bsdfSampleFunction(w),
+          bsdfPdfFunction(w),
+          true};
+}
 
 std::vector<Case> allCases() {
   std::vector<Case> cases;
   for (int i = 0; i < kWarpTypeCount; ++i) {
     auto t = static_cast<WarpType>(i);
-    if (!warpHasParameter(t)) cases.push_back({t, 0.f, "-"});
+    if (!warpHasParameter(t)) cases.push_back(warpCase(t, 0.f, "-"));
   }
   for (float c : {-0.5f, 0.f, 0.5f, 0.9f, 0.99f})
-    cases.push_back({WarpType::UniformCone, c, paramText(WarpType::UniformCone, c)});
+    cases.push_back(warpCase(WarpType::UniformCone, c, paramText(WarpType::UniformCone, c)));
   for (double s2 : {1e-4, 1e-6}) {
     auto c = static_cast<float>(std::sqrt(1.0 - s2));
     char label[64];
     std::snprintf(label, sizeof label, "%.9g (sin2=%g)", c, s2);
-    cases.push_back({WarpType::UniformCone, c, label});
+    cases.push_back(warpCase(WarpType::UniformCone, c, label));
   }
   for (float alpha : {0.05f, 0.2f, 0.5f, 1.0f})
-    cases.push_back({WarpType::Beckmann, alpha, paramText(WarpType::Beckmann, alpha)});
+    cases.push_back(warpCase(WarpType::Beckmann, alpha, paramText(WarpType::Beckmann, alpha)));
+  // The BSDFs: sharp to rough, at normal, oblique and grazing incidence.
+  struct BsdfRow {
+    const char* type;
+    const char* distribution;
+    double alpha, kd, incident;
+  };
+  for (const BsdfRow& b :
+       {BsdfRow{"microfacet", "beckmann", 0.05, 0.3, 30}, BsdfRow{"microfacet", "beckmann", 0.2, 0.0, 60},
+        BsdfRow{"microfacet", "beckmann", 0.6, 0.5, 80}, BsdfRow{"roughconductor", "beckmann", 0.05, 0, 0},
+        BsdfRow{"roughconductor", "beckmann", 0.3, 0, 45}, BsdfRow{"roughconductor", "beckmann", 1.0, 0, 85},
+        BsdfRow{"roughconductor", "ggx", 0.05, 0, 30}, BsdfRow{"roughconductor", "ggx", 0.3, 0, 60},
+        BsdfRow{"roughconductor", "ggx", 1.0, 0, 85}}) {
+    BsdfWarpInputs in;
+    in.type = b.type;
+    in.distribution = b.distribution;
+    in.alpha = b.alpha;
+    in.kd = b.kd;
+    in.incidentDegrees = b.incident;
+    cases.push_back(bsdfCase(checkedBsdfWarp(in)));
+  }
   return cases;
 }
 
 int runAll(const WarpArgs& a) {
   std::vector<Case> cases = allCases();
-  Chi2Options opt;
-  opt.sampleCount = a.samples;
-  opt.resolution = a.res;
-  opt.seed = a.seed;
+  Chi2Options opt = chi2OptionsOf(a);
   opt.testCount = static_cast<int>(cases.size());
   std::printf(
       "chi-square tests: %llu samples each, seed %llu, alpha 0.01 over %d tests (Sidak: %.3g per test)\n\n",
@@ -179,11 +271,11 @@ int runAll(const WarpArgs& a) {
   std::printf("%-20s %-26s %12s %6s %10s  %s\n", "warp", "param", "chi2", "dof", "p-value", "verdict");
   int failures = 0;
   for (const Case& c : cases) {
-    Chi2Result r = chi2Test(chi2DomainFor(c.type, c.param), warpSampleFunction(c.type, c.param),
-                            warpPdfFunction(c.type, c.param), opt);
+    opt.rejectedDraws = c.rejectedDraws;
+    Chi2Result r = chi2Test(c.domain, c.sample, c.pdf, opt);
     if (!r.accepted) ++failures;
-    std::printf("%-20s %-26s %12.2f %6d %10.4f  %s%s%s\n", warpTypeName(c.type), c.label.c_str(), r.chi2,
-                r.dof, r.pValue, chi2Verdict(r), r.message.empty() ? "" : ": ", r.message.c_str());
+    std::printf("%-20s %-26s %12.2f %6d %10.4f  %s%s%s\n", c.name.c_str(), c.label.c_str(), r.chi2, r.dof,
+                r.pValue, chi2Verdict(r), r.message.empty() ? "" : ": ", r.message.c_str());
     std::fflush(stdout);
   }
   std::printf("\n%d of %zu accepted\n", static_cast<int>(cases.size()) - failures, cases.size());
@@ -197,11 +289,27 @@ void addWarpCommand(CLI::App& app, int& exitCode, WarpGuiRunner gui) {
   CLI::App* cmd = app.add_subcommand(
       "warp", "Chi-square test a sample warp against its pdf; dump samples; evaluate pdfs");
   cmd->footer(
+      "A BSDF's sampling is tested with wo at --incident in the xz-plane; its rejected draws (directions "
+      "below the surface) dump as '0 0 0' and are tested as a cell expecting the mass its pdf misses.\n"
       "Exit code of a test: 0 accept; 1 REJECT, or inconclusive (too few samples for the grid: pooling "
       "leaves fewer than two cells); 2 bad arguments.");
-  cmd->add_option("type", args->type, "Warp: " + warpTypeList());
+  cmd->add_option("type", args->type,
+                  "Warp: " + warpTypeList() + "; or a BSDF's sampling: " + bsdfWarpTypeList());
   cmd->add_option("--param", args->param,
-                  "uniform-cone: cos(theta_max) in [-1, 1) (default 0.5); beckmann: alpha > 0 (default 0.2)");
+                  "uniform-cone: cos(theta_max) in [-1, 1) (default 0.5); beckmann: alpha > 0 (default 0.2); "
+                  "microfacet, roughconductor: alpha in [1e-6, 1000] (default 0.1)");
+  cmd->add_option("--incident", args->bsdf.incidentDegrees,
+                  "microfacet, roughconductor: the angle of wo = (sin, 0, cos) to the normal, degrees in "
+                  "[0, 89.99]")
+      ->capture_default_str();
+  cmd->add_option("--kd", args->bsdf.kd, "microfacet: the diffuse reflectance in [0, 1]")
+      ->capture_default_str();
+  cmd->add_option("--int-ior", args->bsdf.intIOR, "microfacet: the interior index of refraction")
+      ->capture_default_str();
+  cmd->add_option("--ext-ior", args->bsdf.extIOR, "microfacet: the exterior index of refraction")
+      ->capture_default_str();
+  cmd->add_option("--distribution", args->bsdf.distribution, "roughconductor: beckmann or ggx")
+      ->capture_default_str();
   cmd->add_option("--samples", args->samples, "Number of samples for the test")
       ->capture_default_str()
       ->check(unsignedInteger() & CLI::Range(uint64_t(kMinChi2Samples), uint64_t(kMaxChi2Samples)));
@@ -282,24 +390,37 @@ void addWarpCommand(CLI::App& app, int& exitCode, WarpGuiRunner gui) {
                           "--offscreen", "--screenshot", "--frames", "--window", "--no-wait"})
       if (cmd->count(o)) throw Error(std::string(o) + " is an option of the warp inspector: add --gui");
     if (a.all) {
-      if (!a.type.empty() || cmd->count("--param"))
-        throw Error("--all runs every warp: give no TYPE or --param");
+      for (const char* o : {"--param", "--incident", "--kd", "--int-ior", "--ext-ior", "--distribution"})
+        if (cmd->count(o)) throw Error(std::string("--all runs every warp: give no TYPE or ") + o);
+      if (!a.type.empty()) throw Error("--all runs every warp: give no TYPE or --param");
       exitCode = runAll(a);
       return;
     }
     if (a.type.empty()) throw Error("missing warp TYPE (one of: " + warpTypeList() + "), or use --all");
+    if (!(a.pdfScale > 0.0 && std::isfinite(a.pdfScale)))
+      throw Error("--pdf-scale must be a positive number");
+    if (isBsdfWarpName(a.type)) {
+      const BsdfWarp warp = bsdfWarpOf(a, *cmd);
+      if (a.pdf)
+        evaluatePdfs(bsdfPdfFunction(warp));
+      else if (cmd->count("--dump"))
+        dumpSamples(bsdfSampleFunction(warp), a.dump, a.seed);
+      exitCode = a.pdf || cmd->count("--dump") ? 0 : runBsdfSingle(a, *cmd);
+      return;
+    }
+    for (const char* o : {"--incident", "--kd", "--int-ior", "--ext-ior", "--distribution"})
+      if (cmd->count(o))
+        throw Error(std::string(o) + " is a parameter of the BSDFs (" + bsdfWarpTypeList() + ")");
     if (cmd->count("--dump") || a.pdf) {
       WarpType type = parseWarpTypeOrThrow(a.type);
       float param = checkedWarpParam(type, cmd->count("--param") > 0, a.param, "--param");
       if (a.pdf)
-        evaluatePdfs(type, param);
+        evaluatePdfs(warpPdfFunction(type, param));
       else
-        dumpSamples(type, param, a.dump, a.seed);
+        dumpSamples(warpSampleFunction(type, param), a.dump, a.seed);
       exitCode = 0;
       return;
     }
-    if (!(a.pdfScale > 0.0 && std::isfinite(a.pdfScale)))
-      throw Error("--pdf-scale must be a positive number");
     exitCode = runSingle(a, *cmd);
   });
 }

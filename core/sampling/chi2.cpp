@@ -18,6 +18,7 @@ constexpr double kBinSlack = 1e-5;  // relative slack for samples rounded just p
 constexpr int kRefineMinDepth = 6;  // forced depth when re-checking a "zero" cell that got samples
 constexpr int kBlockCells = 16;     // expected counts: blocks of 16 x 16 cells (see expectedCounts)
 constexpr uint64_t kSamplesPerCancelCheck = 1 << 16;
+constexpr double kExcessMassTolerance = 1e-4;  // a pdf integrating to more than 1 + this is rejected
 
 // ---- nested adaptive Gauss-Lobatto quadrature ----------------------------------------------------
 // Densities are >= 0, so a relative tolerance per subinterval bounds the relative error of the cell;
@@ -275,6 +276,7 @@ Chi2Result chi2Run(const Chi2Domain& domain, uint64_t count, Next&& next, const 
   Grid g = gridFor(domain, std::max(options.resolution, 1));
   r.resX = g.resX;
   r.resY = g.resY;
+  const bool rejectedDraws = options.rejectedDraws && domain.kind == Chi2Domain::Kind::Sphere;
   const size_t cellCount = static_cast<size_t>(g.resX) * g.resY;
   r.observed.assign(cellCount, 0.0);
 
@@ -286,6 +288,10 @@ Chi2Result chi2Run(const Chi2Domain& domain, uint64_t count, Next&& next, const 
     Vec3 v = next();
     if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z)) {
       ++r.invalidSamples;
+      continue;
+    }
+    if (rejectedDraws && v == Vec3(0.f)) {
+      r.observedRejected += 1.0;
       continue;
     }
     double x, y;
@@ -315,6 +321,11 @@ Chi2Result chi2Run(const Chi2Domain& domain, uint64_t count, Next&& next, const 
   r.expected = expectedCounts(domain, pdf, g, n, options.minExpected, r.observed, options.cancel);
   r.expectedOutside = n * integrateOutside(domain, pdf, options.cancel);
   throwIfCancelled(options.cancel);
+  if (rejectedDraws) {
+    // The mass the pdf misses (negative: more than 1, beyond the quadrature's error, is rejected below).
+    const double missing = n - std::accumulate(r.expected.begin(), r.expected.end(), r.expectedOutside);
+    r.expectedRejected = missing < -kExcessMassTolerance * n ? missing : std::max(missing, 0.0);
+  }
 
   auto reject = [&](std::string why) {
     r.accepted = false;
@@ -326,6 +337,14 @@ Chi2Result chi2Run(const Chi2Domain& domain, uint64_t count, Next&& next, const 
   if (r.invalidSamples > 0) {
     std::snprintf(buf, sizeof buf, "%llu samples are NaN or infinite",
                   static_cast<unsigned long long>(r.invalidSamples));
+    return reject(buf);
+  }
+  if (r.expectedRejected < 0.0) {
+    std::snprintf(buf, sizeof buf, "the pdf integrates to %.6g, more than 1", 1.0 - r.expectedRejected / n);
+    return reject(buf);
+  }
+  if (r.observedRejected > 0.0 && r.expectedRejected == 0.0) {
+    std::snprintf(buf, sizeof buf, "%.0f draws failed, where the pdf integrates to 1", r.observedRejected);
     return reject(buf);
   }
   if (r.observedOutside > 0.0 && r.expectedOutside == 0.0) {
@@ -357,6 +376,7 @@ Chi2Result chi2Run(const Chi2Domain& domain, uint64_t count, Next&& next, const 
   for (size_t c = 0; c < cellCount; ++c)
     if (r.expected[c] > 0.0) cells.push_back({r.observed[c], r.expected[c]});
   if (r.expectedOutside > 0.0) cells.push_back({r.observedOutside, r.expectedOutside});
+  if (r.expectedRejected > 0.0) cells.push_back({r.observedRejected, r.expectedRejected});
   std::sort(cells.begin(), cells.end(), [](const Cell& a, const Cell& b) { return a.exp < b.exp; });
   Cell pool{0.0, 0.0};
   size_t first = 0;

@@ -7,6 +7,9 @@
 // to the cap the warp covers (solid angle d(omega) = d(phi) dw, so densities integrate directly).
 // Everything outside the binned region (samples outside the square, or w > wMax) forms one extra
 // "outside" cell whose expected count is the integral of the pdf there (0 for a 2-D square).
+// A sampler that can fail (a BSDF whose reflected direction falls below the surface) returns the
+// zero vector for a failed draw; with Chi2Options::rejectedDraws those draws form one more cell,
+// which expects the mass the pdf misses, 1 - (its integral over the sphere).
 #pragma once
 
 #include <cstdint>
@@ -44,9 +47,12 @@ struct Chi2Options {
   uint64_t sampleCount = 1'000'000;
   int resolution = 51;  // Square: res x res cells; Sphere: 2 res (phi) x res (w) cells
   uint64_t seed = 1;
-  double alpha = 0.01;          // significance level of the whole run
-  int testCount = 1;            // number of tests in the run (Sidak correction)
-  double minExpected = 5.0;     // cells expecting fewer samples are pooled
+  double alpha = 0.01;       // significance level of the whole run
+  int testCount = 1;         // number of tests in the run (Sidak correction)
+  double minExpected = 5.0;  // cells expecting fewer samples are pooled
+  // Sphere only: a zero vector is a failed draw, expected with probability 1 - ∫ pdf (a pdf that
+  // integrates to more than 1 is then rejected). Off: every sample must be a direction.
+  bool rejectedDraws = false;
   CancelFlag cancel = nullptr;  // set: the test throws Cancelled within a fraction of a second
 };
 
@@ -68,8 +74,9 @@ struct Chi2Result {
   int resX = 0, resY = 0;
   std::vector<double> observed, expected;
   double observedOutside = 0.0, expectedOutside = 0.0;
-  int pooledCells = 0;          // cells merged into the pooled cell
-  uint64_t invalidSamples = 0;  // NaN/inf samples (any of them rejects)
+  double observedRejected = 0.0, expectedRejected = 0.0;  // failed draws (Chi2Options::rejectedDraws)
+  int pooledCells = 0;                                    // cells merged into the pooled cell
+  uint64_t invalidSamples = 0;                            // NaN/inf samples (any of them rejects)
 };
 
 // "accept", "REJECT" or "inconclusive": the CLI's word for the outcome.
