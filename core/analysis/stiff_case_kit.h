@@ -95,5 +95,15 @@ CaseResult badValues(const CaseOptions& o);
 CaseResult degenerateMesh(const CaseOptions& o);
 CaseResult cameraFov(const CaseOptions& o);
 CaseResult accumulation(const CaseOptions& o);
+CaseResult badBsdfValues(const CaseOptions& o);
+
+// ---- stiff_cases_glossy.cpp (the reflection models' extremes) ------------------------------------
+CaseResult glossyNearMirror(const CaseOptions& o);
+CaseResult glossyRough(const CaseOptions& o);
+CaseResult glossyGrazing(const CaseOptions& o);
+CaseResult glossyMirrorDirection(const CaseOptions& o);
+CaseResult glossyKdZeroAndOne(const CaseOptions& o);
+CaseResult glossyHorizon(const CaseOptions& o);
+CaseResult glossyIorOne(const CaseOptions& o);
 
 }  // namespace penumbra::analysis::kit

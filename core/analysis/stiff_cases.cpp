@@ -130,6 +130,15 @@ std::vector<StiffCase> makeCases() {
       [](const CaseOptions& o) { return exactlyZeroCase(o, "polygon-in-plane.xml", 4000); });
   add("polygon-back-side", "polygon-light", "the light faces away (one-sided): exactly 0",
       [](const CaseOptions& o) { return exactlyZeroCase(o, "polygon-back-side.xml", 4000); });
+  add("glossy-near-mirror", "glossy", "alpha 1e-4, every model at 0, 45 and 80 degrees: draws vs albedo",
+      glossyNearMirror);
+  add("glossy-rough", "glossy", "alpha 1 and 10, every model: draws vs albedo", glossyRough);
+  add("glossy-grazing-89.9", "glossy", "wo 89.9 degrees from the normal, alpha 0.05 and 0.5", glossyGrazing);
+  add("glossy-mirror-direction", "glossy", "f and pdf at the exact mirror direction, alpha down to 1e-6",
+      glossyMirrorDirection);
+  add("glossy-kd-0-1", "glossy", "microfacet kd 0 (specular only) and 1 (diffuse only)", glossyKdZeroAndOne);
+  add("glossy-horizon", "glossy", "directions in the surface and 1e-7 above it", glossyHorizon);
+  add("glossy-ior-1", "glossy", "intIOR = extIOR: no specular reflection", glossyIorOne);
   add("equal-power-r1", "equal-power", "equal power, r = 1 (all strategies)",
       [](const CaseOptions& o) { return directCase(o, "equal-power-r1.xml", kAll, 20000); });
   add("equal-power-r1e-3", "equal-power", "equal power, r = 1e-3 (light sampling, mis; hemisphere finite)",
@@ -180,6 +189,8 @@ std::vector<StiffCase> makeCases() {
   add("degenerate-mesh", "degenerate-geometry",
       "zero-area and repeated-vertex triangles, a mesh without normals", degenerateMesh);
   add("camera-fov-0-180", "bad-input", "camera fov 0 and 180 rejected", cameraFov);
+  add("bad-bsdf-values", "bad-input", "alpha <= 0 or NaN, IOR <= 0, kd outside [0, 1] or NaN rejected",
+      badBsdfValues);
   add("film-1e6-samples", "accumulation", "10^6 samples in one pixel without drift", accumulation);
   return v;
 }

@@ -47,13 +47,14 @@ struct StiffCase {
 };
 
 // What the cases stress, in catalogue order; every category has at least one case.
-inline constexpr std::array<const char*, 14> kStiffCaseCategories = {
+inline constexpr std::array<const char*, 15> kStiffCaseCategories = {
     "warp-extremes",        // warps and samplers at the edges of [0,1)^2
     "narrow-cone",          // solid-angle sampling of lights subtending sin^2 theta_max down to 1e-12
     "tiny-light",           // lights of radius 0 or so small that r^2 underflows
     "near-light",           // shading points on, just outside or inside a light
     "horizon",              // lights below, straddling, centred on or grazing the horizon
     "polygon-light",        // rectangle lights: tiny, sliver, straddling, grazing, huge, in plane, behind
+    "glossy",               // microfacet BSDFs: near mirror, very rough, grazing, horizon, kd 0 and 1, IOR 1
     "equal-power",          // the same power from lights of radius 1 down to 1e-6
     "scale",                // the same scene scaled by 1e-4 and 1e4
     "contact",              // ambient occlusion next to a contact point

@@ -263,6 +263,18 @@ CaseResult degenerateMesh(const CaseOptions& o) {
   return r;
 }
 
+CaseResult badBsdfValues(const CaseOptions& o) {
+  return rejectAll(
+      o, {{"bad-bsdf-alpha-0.xml", "alpha (the roughness) must be in [1e-06, 1000], got 0"},
+          {"bad-bsdf-alpha-nan.xml", "expected a finite number, got \"nan\""},
+          {"bad-bsdf-alpha-negative.xml", "alpha (the roughness) must be in [1e-06, 1000], got -0.1"},
+          {"bad-bsdf-intIOR-0.xml", "intIOR (an index of refraction) must be finite and > 0, got 0"},
+          {"bad-bsdf-extIOR-negative.xml", "extIOR (an index of refraction) must be finite and > 0, got -1"},
+          {"bad-bsdf-kd-1.5.xml", "kd must have every channel in [0, 1], got 1.5, 0.5, 0.5"},
+          {"bad-bsdf-kd-nan.xml", "expected a color like \"1, 0.5, 0\" or a grey value, got \"nan\""},
+          {"bad-bsdf-distribution.xml", "unknown distribution \"phong\" (expected one of: beckmann, ggx)"}});
+}
+
 CaseResult cameraFov(const CaseOptions& o) {
   return rejectAll(o, {{"bad-fov-0.xml", "fov must be in (0, 180) degrees, got 0"},
                        {"bad-fov-180.xml", "fov must be in (0, 180) degrees, got 180"}});

@@ -121,3 +121,14 @@ write("polygon-in-plane.xml", plane() + rect_light(add(X, (0, 1.0, 0.6)), (0, 0.
       comment="the receiver lies in the light's plane")
 write("polygon-back-side.xml", plane() + rect_light(add(X, (0.1, 0, 1.0)), (0.5, 0, 0), (0, 0.5, 0), 5.0),
       comment="the light faces away from the receiver")
+# Glossy BSDFs with values a scene must be rejected for.
+for tag, bsdf in (("alpha-0", '<bsdf type="roughconductor"><float name="alpha" value="0"/></bsdf>'),
+                  ("alpha-nan", '<bsdf type="microfacet"><float name="alpha" value="nan"/></bsdf>'),
+                  ("alpha-negative", '<bsdf type="microfacet"><float name="alpha" value="-0.1"/></bsdf>'),
+                  ("intIOR-0", '<bsdf type="microfacet"><float name="intIOR" value="0"/></bsdf>'),
+                  ("extIOR-negative", '<bsdf type="microfacet"><float name="extIOR" value="-1"/></bsdf>'),
+                  ("kd-1.5", '<bsdf type="microfacet"><color name="kd" value="1.5, 0.5, 0.5"/></bsdf>'),
+                  ("kd-nan", '<bsdf type="microfacet"><color name="kd" value="nan"/></bsdf>'),
+                  ("distribution", '<bsdf type="roughconductor"><string name="distribution" value="phong"/></bsdf>')):
+    write(f"bad-bsdf-{tag}.xml", plane() + f'  <shape type="sphere"><float name="radius" value="0.5"/>\n    {bsdf}</shape>\n',
+          comment=f"bad BSDF value: {tag}")
