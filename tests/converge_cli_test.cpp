@@ -64,9 +64,10 @@ TEST(ConvergeCli, ReportFilesExistAndParse) {
     }
     EXPECT_EQ(cols, 15) << line;
   }
-  EXPECT_GE(rows, 20 * 3);  // every measure crossed with every axis: 20 strategies, three measurements each
+  EXPECT_GE(rows, 21 * 3);  // every measure crossed with every axis: 21 strategies, three measurements each
   EXPECT_EQ(strategies, (std::set<std::string>{"uniform-hemisphere",
                                                "cosine-hemisphere",
+                                               "bsdf",
                                                "area",
                                                "area-uniform",
                                                "area-power",

@@ -6,8 +6,10 @@
 #include <CLI/CLI.hpp>
 
 #include <cstdint>
+#include <optional>
 #include <string>
 
+#include "core/materials/bsdf_warp.h"
 #include "core/sampling/warp.h"
 
 namespace penumbra::cli {
@@ -23,6 +25,7 @@ inline constexpr int kExitInterrupted = 130;  // 128 + SIGINT, as shells report 
 struct WarpGuiArgs {
   WarpType type = WarpType::CosineHemisphere;
   float param = 0.f;
+  std::optional<BsdfWarpInputs> bsdf;  // TYPE microfacet | roughconductor (checked)
   int log2Points = 14;
   std::string pointSet = "independent";
   std::string sampler = "sobol";  // --point-set sampler

@@ -368,8 +368,15 @@ void addWarpCommand(CLI::App& app, int& exitCode, WarpGuiRunner gui) {
     if (a.gui) {
       if (!gui) throw Error("--gui: the warp inspector is not part of this build");
       WarpGuiArgs g = a.view;
-      g.type = a.type.empty() ? WarpType::CosineHemisphere : parseWarpTypeOrThrow(a.type);
-      g.param = checkedWarpParam(g.type, cmd->count("--param") > 0, a.param, "--param");
+      if (isBsdfWarpName(a.type)) {
+        bsdfWarpOf(a, *cmd);  // checks the values as the test does
+        g.bsdf = a.bsdf;
+        g.bsdf->type = a.type;
+        if (cmd->count("--param")) g.bsdf->alpha = a.param;
+      } else {
+        g.type = a.type.empty() ? WarpType::CosineHemisphere : parseWarpTypeOrThrow(a.type);
+        g.param = checkedWarpParam(g.type, cmd->count("--param") > 0, a.param, "--param");
+      }
       g.log2Points = checkedLog2Points(a.points, "--points");
       g.request = checkedSamplerRequest(a.view.request, "--request");
       g.pointSet = a.pointSet;

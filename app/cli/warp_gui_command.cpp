@@ -23,7 +23,7 @@ std::vector<std::string> offscreenArgs(const WarpGuiArgs& g) {
   char param[32];
   std::snprintf(param, sizeof param, "%.9g", g.param);
   std::vector<std::string> args = {"warp",
-                                   warpTypeName(g.type),
+                                   g.bsdf ? g.bsdf->type : std::string(warpTypeName(g.type)),
                                    "--gui",
                                    "--points",
                                    std::to_string(g.log2Points),
@@ -31,7 +31,19 @@ std::vector<std::string> offscreenArgs(const WarpGuiArgs& g) {
                                    g.pointSet,
                                    "--seed",
                                    std::to_string(g.seed)};
-  if (warpHasParameter(g.type)) args.insert(args.end(), {"--param", param});
+  if (g.bsdf) {
+    char v[32];
+    auto number = [&](double x) { return std::snprintf(v, sizeof v, "%.9g", x), std::string(v); };
+    args.insert(args.end(),
+                {"--param", number(g.bsdf->alpha), "--incident", number(g.bsdf->incidentDegrees)});
+    if (g.bsdf->type == "microfacet")
+      args.insert(args.end(), {"--kd", number(g.bsdf->kd), "--int-ior", number(g.bsdf->intIOR), "--ext-ior",
+                               number(g.bsdf->extIOR)});
+    else
+      args.insert(args.end(), {"--distribution", g.bsdf->distribution});
+  } else if (warpHasParameter(g.type)) {
+    args.insert(args.end(), {"--param", param});
+  }
   if (g.pointSet == "sampler")
     args.insert(args.end(), {"--sampler", g.sampler, "--request", std::to_string(g.request), "--pixel",
                              std::to_string(g.pixelX) + "," + std::to_string(g.pixelY)});
@@ -64,6 +76,10 @@ int runWarpGui(const WarpGuiArgs& in) {
                                        [&] { return offscreenArgs(g); });
   o.settings.type = g.type;
   o.settings.param = warpHasParameter(g.type) ? g.param : 0.f;
+  if (g.bsdf) {
+    const std::string refused = ui::enterBsdf(o.settings, *g.bsdf);
+    if (!refused.empty()) throw Error(refused);
+  }
   o.settings.log2Points = g.log2Points;
   o.settings.mismatch = g.mismatch;
   o.settings.gridLines = g.gridLines;

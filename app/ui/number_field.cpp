@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "core/materials/bsdf.h"
 #include "core/scene/scene_builder.h"
 
 namespace penumbra::ui {
@@ -20,6 +21,8 @@ const NumberField kFov{"fov", 1, 179, false, " deg", 1};
 const NumberField kExposure{"exposure", -20, 20, false, " stops", 2};
 const NumberField kZoomStops{"zoom", -4, 4, false, " stops", 2};
 const NumberField kDividerPercent{"divider", 0, 100, false, " %", 0};
+const NumberField kAlpha{"alpha", kMinAlpha, kMaxAlpha, false, "", -4};
+const NumberField kReflectance{"kd", 0, 1, false, "", 3};
 }  // namespace fields
 
 NumberField shadingSamplesField(std::string_view name) {
@@ -32,6 +35,8 @@ std::string formatNumber(double value, const NumberField& field) {
   char buf[64];
   if (field.integer)
     std::snprintf(buf, sizeof buf, "%.0f", value);
+  else if (field.decimals < 0)
+    std::snprintf(buf, sizeof buf, "%.*g", -field.decimals, value);
   else
     std::snprintf(buf, sizeof buf, "%.*f", field.decimals, value);
   return buf;

@@ -16,7 +16,7 @@ struct NumberField {
   double min = 0, max = 0;  // inclusive (integer fields: whole numbers up to 2^53 exactly)
   bool integer = true;
   std::string_view unit;  // appended to values in notes: " s", " deg"
-  int decimals = 0;       // float fields: digits shown after the point
+  int decimals = 0;       // float fields: digits shown after the point (negative: significant digits)
 };
 
 // The viewer's fields and their ranges (the scene file's where it has one).
@@ -30,6 +30,8 @@ extern const NumberField kFov;             // [1, 179] degrees
 extern const NumberField kExposure;        // [-20, 20] stops
 extern const NumberField kZoomStops;       // [-4, 4]: zoom 1/16x to 16x
 extern const NumberField kDividerPercent;  // [0, 100]
+extern const NumberField kAlpha;           // [1e-6, 1000] as a microfacet BSDF's roughness
+extern const NumberField kReflectance;     // [0, 1] as microfacet's kd
 }  // namespace fields
 
 // A count field for one of the integrator's sample counts (its own name, kShadingSamples' range).

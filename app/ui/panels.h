@@ -32,6 +32,7 @@ void drawScenePanel(ViewerController& c, PanelState& st);
 void drawIntegratorPanel(ViewerController& c, PanelState& st);
 void drawSamplerPanel(ViewerController& c, PanelState& st);
 void drawCameraPanel(ViewerController& c, PanelState& st);
+void drawMaterialsPanel(ViewerController& c, PanelState& st);  // only for scenes with glossy BSDFs
 void drawDisplayPanel(ViewerController& c, PanelState& st);
 void drawStatsPanel(ViewerController& c, PanelState& st);
 void drawConvergencePanel(ViewerController& c, PanelState& st);

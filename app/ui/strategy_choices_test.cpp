@@ -40,7 +40,7 @@ TEST(StrategyChoices, CompareNamesAMeasureWithTheLeftSidesOtherAxes) {
   } catch (const Error& e) {
     EXPECT_EQ(std::string(e.what()),
               "--compare area: expected one direct strategy that applies to this scene: uniform-hemisphere, "
-              "cosine-hemisphere");
+              "cosine-hemisphere, bsdf");
   }
   EXPECT_THROW(parseCompareStrategy("hemisphere", left, true), Error);  // two strategies
   EXPECT_THROW(parseCompareStrategy("nonsense", aoBy(HemisphereWarp::Cosine), false), Error);

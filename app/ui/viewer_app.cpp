@@ -545,15 +545,12 @@ class ViewerApp : public BenchViewer, public DrivenViewer {
     ImGui::PushItemWidth(-labelColumnWidth(sidebarWidth_));
     ImGui::PushTextWrapPos(0.f);
     const std::pair<const char*, void (*)(ViewerController&, PanelState&)> sections[] = {
-        {"Scene", drawScenePanel},
-        {"Integrator", drawIntegratorPanel},
-        {"Sampler", drawSamplerPanel},
-        {"Camera", drawCameraPanel},
-        {"Display", drawDisplayPanel},
-        {"Stats", drawStatsPanel},
-        {"Convergence", drawConvergencePanel}};
+        {"Scene", drawScenePanel},   {"Integrator", drawIntegratorPanel},  {"Sampler", drawSamplerPanel},
+        {"Camera", drawCameraPanel}, {"Materials", drawMaterialsPanel},    {"Display", drawDisplayPanel},
+        {"Stats", drawStatsPanel},   {"Convergence", drawConvergencePanel}};
     sectionTops_.clear();
     for (const auto& [name, draw] : sections) {
+      if (draw == drawMaterialsPanel && c_.glossyBsdfEntries().empty()) continue;  // diffuse scenes: none
       sectionTops_.emplace_back(name, ImGui::GetCursorScreenPos().y);
       draw(c_, st_);
     }

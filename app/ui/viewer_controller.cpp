@@ -29,6 +29,7 @@ ViewerController::~ViewerController() {
 
 void ViewerController::adoptScene(LoadedScene loaded) {
   scene_ = std::move(loaded);
+  glossy_ = glossyBsdfs(scene_.desc);
   settings_ = scene_.settings;
   limits_.reset(settings_.sampleCount);
   sceneError_.clear();
@@ -319,6 +320,28 @@ bool ViewerController::reloadScene() {
     orbit_.restore(oldOrbit);
   chooseCompareDefault();
   sceneStatus_ = reloadStatus(fs::path(path).filename().string(), merged.kept);
+  start();
+  return true;
+}
+
+bool ViewerController::setBsdfProperty(size_t index, std::string_view name, const std::string& value) {
+  LoadedScene rebuilt;
+  try {
+    SceneNode desc = scene_.desc;
+    const std::string what = index < glossy_.size() ? glossy_[index].label : "a glossy bsdf";
+    setGlossyBsdfProperty(desc, index, name, value,
+                          "the Materials panel (" + what + ": " + std::string(name) + " = " + value + ")");
+    rebuilt = buildScene(std::move(desc));
+  } catch (const std::exception& e) {
+    sceneError_ = e.what();
+    return false;
+  }
+  // Only the world changes: the file's settings, the live ones, the limits and the orbit stay.
+  scene_.desc = std::move(rebuilt.desc);
+  scene_.scene = std::move(rebuilt.scene);
+  scene_.warnings = std::move(rebuilt.warnings);
+  glossy_ = glossyBsdfs(scene_.desc);
+  sceneError_.clear();
   start();
   return true;
 }

@@ -12,6 +12,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -22,6 +23,7 @@
 #include "app/ui/scene_files.h"
 #include "app/ui/stop_rule.h"
 #include "core/render/engine.h"
+#include "core/scene/glossy_bsdfs.h"
 #include "core/scene/scene_builder.h"
 
 namespace penumbra::ui {
@@ -201,6 +203,13 @@ class ViewerController {
   // .xml files in the current scene's directory.
   std::vector<std::string> siblingScenes() const { return ui::siblingScenes(scene_.path); }
   bool sceneHasAreaLights() const { return scene_.scene && scene_.scene->hasAreaLights(); }
+  // The scene's glossy BSDFs (the Materials panel), and an edit of one: property `name` of entry
+  // `index` set to the text `value`, the scene built again from its description with everything the
+  // user set kept (camera, settings, limits), and the render restarted. A value the scene file would
+  // be refused for is refused alike: sceneError() says why and the last good scene goes on. Edits
+  // last until the file is reloaded; Save as writes them.
+  const std::vector<GlossyBsdfEntry>& glossyBsdfEntries() const { return glossy_; }
+  bool setBsdfProperty(size_t index, std::string_view name, const std::string& value);
 
   // ---- output (viewer_output.h) ----------------------------------------------------------------
   // The scene description with the live settings written into it, as XML (core/scene/scene_writer.h;
@@ -231,6 +240,7 @@ class ViewerController {
   void applyCamera(const std::optional<glm::mat4>& toWorld);
 
   LoadedScene scene_;
+  std::vector<GlossyBsdfEntry> glossy_;  // glossyBsdfs(scene_.desc)
   RenderSettings settings_;
   StopLimits limits_;
   bool lightShareView_ = false;

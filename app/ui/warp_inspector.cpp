@@ -118,7 +118,7 @@ bool WarpInspector::upToDate() const {
 }
 
 void WarpInspector::resetView() {
-  viewSpherical_ = warpIsSpherical(settings_.type);
+  viewSpherical_ = showsSphere(settings_);
   if (viewSpherical_) {
     // Looking at the sphere from above the equator, +z up on the screen.
     rot_ = glm::angleAxis(glm::radians(-62.f), glm::vec3(1, 0, 0)) *
@@ -148,11 +148,15 @@ void WarpInspector::uploadPoints() {
   sceneDirty_ = true;
 
   // Reference geometry of the domain.
-  if (!refValid_ || refType_ != p.settings.type) {
+  if (!refValid_ || refKey_ != inspectedName(p.settings)) {
     std::vector<float> ref;
-    refSpherical_ = warpIsSpherical(p.settings.type);
+    refSpherical_ = showsSphere(p.settings);
     if (refSpherical_) {
       for (int axis = 0; axis < 3; ++axis) pushCircle(ref, axis, 0.f, 1.f, 128);
+      if (p.settings.bsdf) {  // the normal and the incident direction wo, drawn past the sphere
+        pushLine(ref, glm::vec3(0.f), glm::vec3(0.f, 0.f, 1.25f));
+        pushLine(ref, glm::vec3(0.f), 1.25f * glm::vec3(bsdfWarpOf(p.settings).wo()));
+      }
     } else {
       float lo = p.settings.type == WarpType::UniformSquare ? 0.f : -1.f;
       glm::vec3 c[4] = {{lo, lo, 0}, {1, lo, 0}, {1, 1, 0}, {lo, 1, 0}};
@@ -161,7 +165,7 @@ void WarpInspector::uploadPoints() {
     }
     uploadVec4(refVao_, refVbo_, ref);
     refVertexCount_ = ref.size() / 4;
-    refType_ = p.settings.type;
+    refKey_ = inspectedName(p.settings);
     refValid_ = true;
   }
 }
@@ -216,7 +220,8 @@ void WarpInspector::renderScene(int w, int h) {
     glm::mat4 proj = glm::perspective(glm::radians(35.f), float(w) / float(h), 0.05f, 100.f);
     glm::mat4 view = glm::translate(glm::mat4(1.f), glm::vec3(0, 0, -distance_)) * glm::mat4_cast(rot_);
     glm::mat4 model(1.f);
-    if (shownPoints_->settings.type == WarpType::UniformSquare)  // [0,1]^2 shown as large as [-1,1]^2
+    if (!shownPoints_->settings.bsdf &&
+        shownPoints_->settings.type == WarpType::UniformSquare)  // [0,1]^2 shown as large as [-1,1]^2
       model = glm::scale(glm::mat4(1.f), glm::vec3(2.f)) *
               glm::translate(glm::mat4(1.f), glm::vec3(-0.5f, -0.5f, 0.f));
     glm::mat4 mvp = proj * view * model;
@@ -256,20 +261,45 @@ void WarpInspector::renderScene(int w, int h) {
 void WarpInspector::drawControls() {
   WarpInspectorSettings& s = settings_;
   ImGui::TextUnformatted("Warp");
-  int type = int(s.type);
+  // The warps, then the BSDFs' sampling (microfacet, roughconductor).
+  int type = s.bsdf ? kWarpTypeCount + (s.bsdfType == BsdfType::RoughConductor ? 1 : 0) : int(s.type);
   auto typeName = [](void*, int i, const char** out) {
-    *out = warpTypeName(static_cast<WarpType>(i));
+    *out = i < kWarpTypeCount    ? warpTypeName(static_cast<WarpType>(i))
+           : i == kWarpTypeCount ? "microfacet (BSDF)"
+                                 : "roughconductor (BSDF)";
     return true;
   };
-  if (ImGui::Combo("warp", &type, typeName, nullptr, kWarpTypeCount)) {
-    WarpType t = static_cast<WarpType>(type);
-    if (warpHasParameter(t) && t != s.type) s.param = defaultWarpParam(t);
-    s.type = t;
+  if (ImGui::Combo("warp", &type, typeName, nullptr, kWarpTypeCount + 2)) {
+    if (type < kWarpTypeCount) {
+      WarpType t = static_cast<WarpType>(type);
+      if (warpHasParameter(t) && (t != s.type || s.bsdf)) s.param = defaultWarpParam(t);
+      s.type = t;
+      s.bsdf = false;
+    } else {
+      s.bsdf = true;
+      s.bsdfType = type == kWarpTypeCount ? BsdfType::Microfacet : BsdfType::RoughConductor;
+    }
   }
   // Values typed into the controls (Ctrl+click on a slider) are checked as `penumbra warp` checks its
   // options: a refused one leaves the settings as they were, and its message shows below.
   auto entered = [this](const std::string& refusal) { refusal_ = refusal; };
-  if (warpHasParameter(s.type)) {
+  if (s.bsdf) {
+    BsdfWarpInputs in = bsdfInputsOf(s);
+    float incident = s.incidentDegrees, alpha = s.alpha, kd = s.kd;
+    if (ImGui::SliderFloat("incident", &incident, 0.f, kMaxIncidentDegrees, "%.2f deg"))
+      in.incidentDegrees = incident, entered(enterBsdf(s, in));
+    if (ImGui::SliderFloat("alpha", &alpha, 0.005f, 1.5f, "%.4f", ImGuiSliderFlags_Logarithmic))
+      in.alpha = alpha, entered(enterBsdf(s, in));
+    if (s.bsdfType == BsdfType::Microfacet) {
+      if (ImGui::SliderFloat("kd", &kd, 0.f, 1.f, "%.3f")) in.kd = kd, entered(enterBsdf(s, in));
+    } else {
+      int d = s.distribution == MicrofacetDistribution::Ggx ? 1 : 0;
+      const char* names[] = {"beckmann", "ggx"};
+      if (ImGui::Combo("distribution", &d, names, 2)) in.distribution = names[d], entered(enterBsdf(s, in));
+    }
+    hintText(
+        "wo = (sin, 0, cos) of the incident angle; rejected draws (below the surface) sit at the centre");
+  } else if (warpHasParameter(s.type)) {
     float param = s.param;
     const bool changed = s.type == WarpType::UniformCone
                              ? ImGui::SliderFloat(paramLabel(s.type), &param, -0.99f, 0.999f, "%.3f")
@@ -331,6 +361,8 @@ void WarpInspector::drawControls() {
   bool sphere = v.domain.kind == Chi2Domain::Kind::Sphere;
   ImGui::Text("grid     %d x %d %s", r.resX, r.resY, sphere ? "(phi, cos theta)" : "(x, y)");
   ImGui::Text("pooled   %d cells (expected < 5)", r.pooledCells);
+  if (v.settings.bsdf)
+    ImGui::Text("rejected %.0f draws (expected %.1f)", r.observedRejected, r.expectedRejected);
   ImGui::Text("chi2     %.2f", r.chi2);
   ImGui::Text("dof      %d", r.dof);
   ImGui::Text("p-value  %.4g", r.pValue);
@@ -402,8 +434,8 @@ float panelsCaptionHeight(bool sphere, float width) {
 
 void WarpInspector::drawPanels(float width) {
   const float spacing = ImGui::GetStyle().ItemSpacing.x;
-  bool sphere = shownVerdict_ ? shownVerdict_->domain.kind == Chi2Domain::Kind::Sphere
-                              : warpIsSpherical(settings_.type);
+  bool sphere =
+      shownVerdict_ ? shownVerdict_->domain.kind == Chi2Domain::Kind::Sphere : showsSphere(settings_);
   float aspect = sphere ? 0.5f : 1.f;  // height / width
   float slot = (width - 2 * spacing) / 3.f;
   float ph = std::min(slot * aspect, 0.36f * ImGui::GetIO().DisplaySize.y);
@@ -479,7 +511,7 @@ void WarpInspector::draw(bool* open, bool fill) {
     shownVerdict_ = ver;
     uploadPanels();
   }
-  if (!viewInit_ || viewSpherical_ != warpIsSpherical(settings_.type)) resetView();
+  if (!viewInit_ || viewSpherical_ != showsSphere(settings_)) resetView();
 
   ImGui::BeginChild("##warp-controls", ImVec2(300, 0), true);
   ImGui::PushItemWidth(-110);
@@ -489,7 +521,7 @@ void WarpInspector::draw(bool* open, bool fill) {
   ImGui::SameLine();
   ImGui::BeginGroup();
   ImVec2 avail = ImGui::GetContentRegionAvail();
-  bool sphere = warpIsSpherical(settings_.type);
+  bool sphere = showsSphere(settings_);
   float slot = (avail.x - 2 * ImGui::GetStyle().ItemSpacing.x) / 3.f;
   float ph = std::min(slot * (sphere ? 0.5f : 1.f), 0.36f * io.DisplaySize.y);
   float panelsH = ph + 2 * ImGui::GetTextLineHeightWithSpacing() + panelsCaptionHeight(sphere, avail.x) + 10 +

@@ -52,7 +52,7 @@ class WarpInspector {
   bool sceneDirty_ = true;  // the FBO is re-rendered only when the points, view or size change
   size_t pointCount_ = 0, lineVertexCount_ = 0, refVertexCount_ = 0;
   bool refSpherical_ = false;
-  WarpType refType_ = WarpType::UniformSquare;
+  std::string refKey_;  // what the reference geometry was drawn for (inspectedName)
   bool refValid_ = false;
 
   // view

@@ -81,17 +81,80 @@ std::string enterSamplerPixel(WarpInspectorSettings& s, int64_t x, int64_t y) {
   return {};
 }
 
+BsdfWarpInputs bsdfInputsOf(const WarpInspectorSettings& s) {
+  BsdfWarpInputs in;
+  in.type = s.bsdfType == BsdfType::RoughConductor ? "roughconductor" : "microfacet";
+  in.distribution = s.distribution == MicrofacetDistribution::Ggx ? "ggx" : "beckmann";
+  in.alpha = s.alpha;
+  in.kd = s.kd;
+  in.incidentDegrees = s.incidentDegrees;
+  in.intIOR = s.intIOR;
+  in.extIOR = s.extIOR;
+  return in;
+}
+
+BsdfWarp bsdfWarpOf(const WarpInspectorSettings& s) {
+  return checkedBsdfWarp(bsdfInputsOf(s));
+}
+
+std::string enterBsdf(WarpInspectorSettings& s, const BsdfWarpInputs& in) {
+  try {
+    const BsdfWarp w = checkedBsdfWarp(in);
+    s.bsdf = true;
+    s.bsdfType = w.bsdf.type;
+    s.distribution = w.bsdf.distribution;
+    s.alpha = w.bsdf.alpha;
+    s.kd = float(in.kd);
+    s.incidentDegrees = w.incidentDegrees;
+    s.intIOR = float(in.intIOR);
+    s.extIOR = float(in.extIOR);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return {};
+}
+
+bool showsSphere(const WarpInspectorSettings& s) {
+  return s.bsdf || warpIsSpherical(s.type);
+}
+
+SampleFunction inspectorSample(const WarpInspectorSettings& s) {
+  if (s.bsdf) return bsdfSampleFunction(bsdfWarpOf(s));
+  return warpSampleFunction(s.type, s.param);
+}
+
+Chi2Domain inspectorDomain(const WarpInspectorSettings& s) {
+  return s.bsdf ? bsdfChi2Domain() : chi2DomainFor(s.type, s.param);
+}
+
+std::string inspectedName(const WarpInspectorSettings& s) {
+  if (!s.bsdf) return warpTypeName(s.type);
+  char buf[96];
+  if (s.bsdfType == BsdfType::Microfacet)
+    std::snprintf(buf, sizeof buf, "microfacet alpha %.3g kd %.3g at %.3g deg", s.alpha, s.kd,
+                  s.incidentDegrees);
+  else
+    std::snprintf(buf, sizeof buf, "roughconductor %s alpha %.3g at %.3g deg",
+                  s.distribution == MicrofacetDistribution::Ggx ? "ggx" : "beckmann", s.alpha,
+                  s.incidentDegrees);
+  return buf;
+}
+
 int inspectorResolution(const WarpInspectorSettings& s) {
   if (s.resolution > 0) return s.resolution;
   // About 25 samples per cell on average (sampling noise ~20 % per cell in the panels), 4 ... 64.
   double n = std::ldexp(1.0, s.log2Points);
-  double res = warpIsSpherical(s.type) ? std::sqrt(n / 50.0) : std::sqrt(n / 25.0);
+  double res = showsSphere(s) ? std::sqrt(n / 50.0) : std::sqrt(n / 25.0);
   return std::clamp(static_cast<int>(std::lround(res)), 4, 64);
 }
 
 std::string judgeDescription(const WarpInspectorSettings& s) {
   if (!s.mismatch) return "its own pdf";
   char buf[96];
+  if (s.bsdf) {
+    std::snprintf(buf, sizeof buf, "the pdf at twice the roughness (alpha %.3g)", 2.0 * s.alpha);
+    return buf;
+  }
   switch (s.type) {
     case WarpType::UniformSquare:
       return "the tent pdf";
@@ -116,6 +179,11 @@ std::string judgeDescription(const WarpInspectorSettings& s) {
 }
 
 PdfFunction judgePdf(const WarpInspectorSettings& s) {
+  if (s.bsdf) {
+    BsdfWarp w = bsdfWarpOf(s);
+    if (s.mismatch) w.bsdf.alpha = std::min(2.f * w.bsdf.alpha, kMaxAlpha);
+    return bsdfPdfFunction(w);
+  }
   const float p = s.param;
   if (!s.mismatch) return warpPdfFunction(s.type, p);
   switch (s.type) {
@@ -185,12 +253,16 @@ std::vector<Vec2> makePointSet(PointSet set, int log2Points, uint64_t seed) {
 }
 
 std::vector<Vec3> warpedGridLines(WarpType type, float param, int lines, int segments) {
+  return warpedGridLines(warpSampleFunction(type, param), lines, segments);
+}
+
+std::vector<Vec3> warpedGridLines(const SampleFunction& sample, int lines, int segments) {
   std::vector<Vec3> out;
   out.reserve(size_t(2) * (lines + 1) * segments * 2);
   auto at = [&](float a, float b, bool vertical) {
     a = std::min(a, kOneMinusEpsilon);
     b = std::min(b, kOneMinusEpsilon);
-    return Warp::warp(type, vertical ? Vec2(a, b) : Vec2(b, a), param);
+    return sample(vertical ? Vec2(a, b) : Vec2(b, a));
   };
   for (int dir = 0; dir < 2; ++dir)
     for (int l = 0; l <= lines; ++l) {
@@ -198,8 +270,10 @@ std::vector<Vec3> warpedGridLines(WarpType type, float param, int lines, int seg
       Vec3 prev = at(a, 0.f, dir == 0);
       for (int s = 1; s <= segments; ++s) {
         Vec3 next = at(a, float(s) / segments, dir == 0);
-        out.push_back(prev);
-        out.push_back(next);
+        if (prev != Vec3(0.f) && next != Vec3(0.f)) {
+          out.push_back(prev);
+          out.push_back(next);
+        }
         prev = next;
       }
     }
@@ -347,11 +421,12 @@ void WarpInspectorWorker::run() {
       std::vector<Vec2> u = makePointSet(s);
       check();
       pts->points.resize(u.size());
+      const SampleFunction sample = inspectorSample(s);
       for (size_t i = 0; i < u.size(); ++i) {
         if ((i & 0xffff) == 0) check();
-        pts->points[i] = Warp::warp(s.type, u[i], s.param);
+        pts->points[i] = sample(u[i]);
       }
-      if (s.gridLines) pts->lines = warpedGridLines(s.type, s.param, 16, 64);
+      if (s.gridLines) pts->lines = warpedGridLines(sample, 16, 64);
       {
         std::lock_guard<std::mutex> lock(mutex_);
         points_ = pts;
@@ -360,7 +435,7 @@ void WarpInspectorWorker::run() {
       // 2. the chi-square test on the same points
       auto v = std::make_shared<WarpVerdict>();
       v->settings = s;
-      v->domain = chi2DomainFor(s.type, s.param);
+      v->domain = inspectorDomain(s);
       PdfFunction pdf = judgePdf(s);
       PdfFunction checkedPdf = [&](const Vec3& d) {
         check();
@@ -368,6 +443,7 @@ void WarpInspectorWorker::run() {
       };
       Chi2Options opt;
       opt.resolution = inspectorResolution(s);
+      opt.rejectedDraws = s.bsdf;
       v->chi2 = chi2TestPoints(v->domain, pts->points, checkedPdf, opt);
       v->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       {

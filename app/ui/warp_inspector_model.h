@@ -14,6 +14,7 @@
 #include <thread>
 #include <vector>
 
+#include "core/materials/bsdf_warp.h"
 #include "core/sampling/chi2.h"
 #include "core/sampling/sampler.h"
 #include "core/sampling/warp.h"
@@ -43,8 +44,31 @@ struct WarpInspectorSettings {
   SamplerKind sampler = SamplerKind::Sobol;
   int request = 0;
   int pixelX = 0, pixelY = 0;
+  // A BSDF's sampling instead of the warp `type` (core/materials/bsdf_warp.h): its lobe from wo at
+  // `incidentDegrees`, rejected draws (below the surface) at the origin and tested as a cell of their
+  // own. `type` and `param` are kept for going back to the warp.
+  bool bsdf = false;
+  BsdfType bsdfType = BsdfType::Microfacet;                                // Microfacet or RoughConductor
+  MicrofacetDistribution distribution = MicrofacetDistribution::Beckmann;  // roughconductor
+  float alpha = 0.1f, kd = 0.5f, incidentDegrees = 30.f;
+  float intIOR = 1.5046f, extIOR = 1.000277f;  // microfacet
   bool operator==(const WarpInspectorSettings&) const = default;
 };
+
+// The BSDF warp the settings describe (their values were checked when entered).
+BsdfWarp bsdfWarpOf(const WarpInspectorSettings& s);
+// The values as `penumbra warp microfacet|roughconductor` takes them.
+BsdfWarpInputs bsdfInputsOf(const WarpInspectorSettings& s);
+// Takes checked BSDF inputs (checkedBsdfWarp: the CLI's code and messages) into the settings; a value
+// the CLI refuses leaves them as they were and returns its message ("" when taken).
+std::string enterBsdf(WarpInspectorSettings& s, const BsdfWarpInputs& in);
+// Whether the samples lie on the sphere (spherical warps and BSDFs), what draws them, and the χ²
+// domain they are binned in.
+bool showsSphere(const WarpInspectorSettings& s);
+SampleFunction inspectorSample(const WarpInspectorSettings& s);
+Chi2Domain inspectorDomain(const WarpInspectorSettings& s);
+// A name for the panel's title: the warp's, or "roughconductor ggx alpha 0.1 at 30 deg".
+std::string inspectedName(const WarpInspectorSettings& s);
 
 using penumbra::defaultWarpParam;  // uniform-cone 0.5, beckmann 0.2
 
@@ -77,6 +101,8 @@ std::vector<Vec2> makePointSet(const WarpInspectorSettings& s);
 // Warped lines of the unit square (`lines` + 1 per direction, each cut into `segments` pieces) as
 // GL_LINES endpoint pairs.
 std::vector<Vec3> warpedGridLines(WarpType type, float param, int lines, int segments);
+// The same for any sample function; segments with a rejected end (the zero vector) are left out.
+std::vector<Vec3> warpedGridLines(const SampleFunction& sample, int lines, int segments);
 
 struct WarpPoints {
   WarpInspectorSettings settings;

@@ -172,3 +172,45 @@ TEST(WarpInspectorModel, ValuesTheCliRefusesAreRefusedWithItsMessage) {
   EXPECT_NE(enterSamplerRequest(s, 65), "");
   EXPECT_EQ(enterSamplerRequest(s, 64), "");
 }
+
+// A BSDF in the inspector: the CLI's samples for the same values and seed, its lobe accepted against
+// its own pdf with the rejected draws in their own cell, the pdf at twice the roughness rejected, and
+// values the CLI refuses refused with its message.
+TEST(WarpInspectorModel, BsdfLobesAreTestedAsTheCliTestsThem) {
+  WarpInspectorSettings s = cosine14();
+  BsdfWarpInputs in;
+  in.type = "roughconductor";
+  in.distribution = "ggx";
+  in.alpha = 0.3;
+  in.incidentDegrees = 60;
+  ASSERT_EQ(enterBsdf(s, in), "");
+  EXPECT_TRUE(s.bsdf && showsSphere(s));
+  const BsdfWarp cli = checkedBsdfWarp(in);
+  const std::vector<Vec2> u = makePointSet(s);
+  const SampleFunction sample = inspectorSample(s);
+  for (size_t i = 0; i < 64; ++i) EXPECT_EQ(sample(u[i]), cli.sample(u[i]));
+
+  auto v = verdictFor(s);
+  ASSERT_TRUE(v);
+  EXPECT_TRUE(v->chi2.accepted) << v->chi2.message;
+  EXPECT_GT(v->chi2.observedRejected, 0.0);  // GGX at 60 degrees reflects some draws below the surface
+  EXPECT_GT(v->chi2.expectedRejected, 0.0);
+  s.mismatch = true;
+  EXPECT_NE(judgeDescription(s).find("twice the roughness"), std::string::npos);
+  auto wrong = verdictFor(s);
+  ASSERT_TRUE(wrong);
+  EXPECT_FALSE(wrong->chi2.accepted);
+
+  WarpInspectorSettings before = s;
+  in.alpha = 0.0;
+  EXPECT_NE(enterBsdf(s, in).find("--param 0: must be in [1e-6, 1000]"), std::string::npos);
+  in.alpha = 0.3;
+  in.incidentDegrees = 95;
+  EXPECT_NE(enterBsdf(s, in).find("--incident 95"), std::string::npos);
+  in.incidentDegrees = 60;
+  in.distribution = "phong";
+  EXPECT_NE(enterBsdf(s, in).find("expected one of: beckmann, ggx"), std::string::npos);
+  EXPECT_EQ(s, before);
+  // The grid lines leave out segments that end in a rejected draw (the zero vector).
+  for (const Vec3& p : warpedGridLines(inspectorSample(s), 8, 16)) EXPECT_NE(p, Vec3(0.f));
+}

@@ -24,7 +24,7 @@ TEST(StrategyLists, AllIsEveryMeasureWithTheScenesAxes) {
   const IntegratorDesc base = withSamples(directByLight(LightMeasure::Area, LightSelection::Power), 2);
   const std::vector<IntegratorDesc> all = parseStrategies(base, "all");
   EXPECT_EQ(labelsOf(all),
-            (std::vector<std::string>{"direct/uniform-hemisphere", "direct/cosine-hemisphere",
+            (std::vector<std::string>{"direct/uniform-hemisphere", "direct/cosine-hemisphere", "direct/bsdf",
                                       "direct/area-power", "direct/solid-angle-power",
                                       "direct/projected-solid-angle-power", "direct/mis/solid-angle/power"}));
   for (const IntegratorDesc& d : all) EXPECT_EQ(d.samples, 2);
@@ -71,7 +71,7 @@ TEST(StrategyLists, UnknownNamesFailWithWhatIsAccepted) {
   } catch (const Error& e) {
     EXPECT_EQ(std::string(e.what()),
               "unknown strategy \"bogus\" (expected all, or a comma-separated list of: "
-              "uniform-hemisphere, cosine-hemisphere, area, solid-angle, "
+              "uniform-hemisphere, cosine-hemisphere, bsdf, area, solid-angle, "
               "projected-solid-angle, mis)");
   }
   // Values of another axis are not measures.
@@ -89,7 +89,7 @@ TEST(StrategyLists, UnknownNamesFailWithWhatIsAccepted) {
   EXPECT_THROW(parseStrategyLists(kDirect, {"mis", "", "hemisphere", ""}), Error);
   EXPECT_THROW(parseStrategies(integratorOfType(IntegratorType::Normals), "all"), Error);
   EXPECT_EQ(strategyNamesHelp(),
-            "direct: uniform-hemisphere, cosine-hemisphere, area, solid-angle, "
+            "direct: uniform-hemisphere, cosine-hemisphere, bsdf, area, solid-angle, "
             "projected-solid-angle, mis; ao: uniform-hemisphere, cosine-hemisphere");
 }
 

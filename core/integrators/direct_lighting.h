@@ -52,15 +52,16 @@ template <bool kWithFrame, class AreaEstimate>
   if (!scene.geometry.intersect(ray, hit)) return Color3(0.f);
   const SurfaceMaterial& material = scene.materials[hit.objectId];
   const Color3 L = emittedAt(scene, material, hit, ray);
-  if (!material.bsdf.reflects()) return L;
-
-  if (material.bsdf.isDiffuse()) {
+  // The diffuse path first and on its own test of the albedo: what every diffuse scene ran before.
+  if (material.bsdf.isDiffuse()) [[likely]] {
+    if (isBlack(material.bsdf.albedo)) return L;
     ShadingPoint sp(scene, ray, hit, kWithFrame);
     const DiffuseReflection diffuse;
     Color3 E = deltaIrradiance(scene, sp, diffuse);
     E += areaEstimate(sp, diffuse);
     return L + material.bsdf.albedo * kInvPi * E;
   }
+  if (!material.bsdf.reflects()) return L;
   ShadingPoint sp(scene, ray, hit);
   const GlossyReflection glossy(material.bsdf, sp, ray.d);
   return L + deltaIrradiance(scene, sp, glossy) + areaEstimate(sp, glossy);

@@ -184,7 +184,7 @@ def test_tables_are_listed():
     axes = penumbra.axes()
     assert set(axes) == {"integrator", "measure", "warp", "light_selection", "light_measure", "heuristic"}
     measures = [row["name"] for row in axes["measure"]]
-    assert measures == ["hemisphere", "area", "solid-angle", "projected-solid-angle", "mis"]
+    assert measures == ["hemisphere", "bsdf", "area", "solid-angle", "projected-solid-angle", "mis"]
     assert [row["name"] for row in axes["light_selection"]] == ["all", "uniform", "power", "bvh"]
     assert "solidAngle" in axes["light_measure"][1]["aliases"]
     for rows in axes.values():
