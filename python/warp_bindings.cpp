@@ -6,6 +6,7 @@
 #include <limits>
 #include <optional>
 
+#include "core/materials/bsdf_warp.h"
 #include "core/math/argument_checks.h"
 #include "core/math/error.h"
 #include "core/sampling/chi2.h"
@@ -180,11 +181,14 @@ struct Chi2Report {
   std::string warp;
   std::optional<float> param;
   double pValue = 0, chi2 = 0, alpha = 0;
+  double rejected = 0, expectedRejected = 0;  // a BSDF's failed draws (0 for the warps)
   int dof = 0, pooledCells = 0;
   bool accepted = false, inconclusive = false;
   std::string verdict, message;
   py::array_t<double> observed, expected;
 };
+
+Chi2Report reportOf(const Chi2Result& r);
 
 Chi2Report chi2(const std::string& name, int64_t samples, Seed seed, int64_t res, std::optional<double> param,
                 int64_t testCount) {
@@ -203,9 +207,14 @@ Chi2Report chi2(const std::string& name, int64_t samples, Seed seed, int64_t res
     return chi2Test(chi2DomainFor(w.type, w.param), warpSampleFunction(w.type, w.param),
                     warpPdfFunction(w.type, w.param), o);
   });
-  Chi2Report out;
+  Chi2Report out = reportOf(r);
   out.warp = warpTypeName(w.type);
   if (warpHasParameter(w.type)) out.param = w.param;
+  return out;
+}
+
+Chi2Report reportOf(const Chi2Result& r) {
+  Chi2Report out;
   out.pValue = r.pValue;
   out.chi2 = r.chi2;
   out.dof = r.dof;
@@ -217,7 +226,103 @@ Chi2Report chi2(const std::string& name, int64_t samples, Seed seed, int64_t res
   out.pooledCells = r.pooledCells;
   out.observed = py::array_t<double>({py::ssize_t(r.resY), py::ssize_t(r.resX)}, r.observed.data());
   out.expected = py::array_t<double>({py::ssize_t(r.resY), py::ssize_t(r.resX)}, r.expected.data());
+  out.rejected = r.observedRejected;
+  out.expectedRejected = r.expectedRejected;
   return out;
+}
+
+// ---- a BSDF's sampling at a fixed incident angle (core/materials/bsdf_warp.h) ----
+
+// The BSDF as `penumbra warp microfacet|roughconductor` takes it; errors are ValueErrors naming the
+// Python argument.
+BsdfWarp chooseBsdf(const std::string& name, double alpha, double incident, double kd,
+                    const std::string& distribution, double intIor, double extIor) {
+  checkNoNul(name, "name");
+  checkNoNul(distribution, "distribution");
+  if (!isBsdfWarpName(name))
+    throw py::value_error("name: unknown BSDF '" + quoted(name) +
+                          "' (expected one of: " + bsdfWarpTypeList() + ")");
+  BsdfWarpInputs in;
+  in.type = name;
+  in.alpha = alpha;
+  in.incidentDegrees = incident;
+  in.kd = kd;
+  in.distribution = distribution;
+  in.intIOR = intIor;
+  in.extIOR = extIor;
+  BsdfInputNames names;
+  names.alpha = "alpha";
+  names.incident = "incident";
+  names.kd = "kd";
+  names.intIOR = "int_ior";
+  names.extIOR = "ext_ior";
+  names.distribution = "distribution";
+  try {
+    return checkedBsdfWarp(in, names);
+  } catch (const Error& e) {
+    throw py::value_error(e.what());
+  }
+}
+
+py::array_t<float> bsdfSampleArray(const std::string& name, const py::handle& u, double alpha,
+                                   double incident, double kd, const std::string& distribution, double intIor,
+                                   double extIor, const py::object& out) {
+  const BsdfWarp w = chooseBsdf(name, alpha, incident, kd, distribution, intIor, extIor);
+  FloatArray in = points(u, "u", 2, 2);
+  const py::ssize_t n = in.shape(0);
+  py::array_t<float> result = outputArray(out, {n, 3}, "bsdf_sample");
+  in = separateFrom(in, result);
+  const float* src = in.data();
+  float* dst = result.mutable_data();
+  forEachChunk(n, kPointsPerChunk, [&](int64_t begin, int64_t end) {
+    warpLoop([&](Vec2 p) { return w.sample(p); }, src + 2 * begin, dst + 3 * begin, end - begin, 3);
+  });
+  return result;
+}
+
+py::array_t<float> bsdfPdfArray(const std::string& name, const py::handle& v, double alpha, double incident,
+                                double kd, const std::string& distribution, double intIor, double extIor,
+                                const py::object& out) {
+  const BsdfWarp w = chooseBsdf(name, alpha, incident, kd, distribution, intIor, extIor);
+  FloatArray in = points(v, "v", 3, 3);
+  const py::ssize_t n = in.shape(0);
+  py::array_t<float> result = outputArray(out, {n}, "bsdf_pdf");
+  in = separateFrom(in, result);
+  const float* src = in.data();
+  float* dst = result.mutable_data();
+  forEachChunk(n, kPointsPerChunk, [&](int64_t begin, int64_t end) {
+    for (int64_t i = begin; i < end; ++i) {
+      const Vec3 d(src[3 * i], src[3 * i + 1], src[3 * i + 2]);
+      dst[i] = std::isfinite(d.x) && std::isfinite(d.y) && std::isfinite(d.z)
+                   ? w.pdf(d)
+                   : std::numeric_limits<float>::quiet_NaN();
+    }
+  });
+  return result;
+}
+
+Chi2Report bsdfChi2(const std::string& name, int64_t samples, Seed seed, int64_t res, double alpha,
+                    double incident, double kd, const std::string& distribution, double intIor, double extIor,
+                    int64_t testCount) {
+  const BsdfWarp w = chooseBsdf(name, alpha, incident, kd, distribution, intIor, extIor);
+  checkedCount(samples, kMinChi2Samples, kMaxChi2Samples, "samples");
+  checkedCount(res, kMinChi2Resolution, kMaxChi2Resolution, "res");
+  checkedCount(testCount, 1, std::numeric_limits<int>::max(), "test_count");
+  Chi2Options opt;
+  opt.sampleCount = uint64_t(samples);
+  opt.resolution = int(res);
+  opt.seed = seed.value;
+  opt.testCount = int(testCount);
+  opt.rejectedDraws = true;
+  Chi2Result r = runInterruptibly([&](CancelFlag cancel) {
+    Chi2Options o = opt;
+    o.cancel = cancel;
+    return chi2Test(bsdfChi2Domain(), bsdfSampleFunction(w), bsdfPdfFunction(w), o);
+  });
+  Chi2Report report = reportOf(r);
+  report.warp = describeBsdfWarp(w);
+  report.param = w.bsdf.alpha;
+  return report;
 }
 
 py::array_t<float> samplePoints(const std::string& samplerName, int64_t n, std::pair<int64_t, int64_t> pixel,
@@ -312,6 +417,11 @@ void bindWarp(py::module_& m) {
           "message", [](const Chi2Report& r) { return text(r.message); },
           "Why it was rejected or is inconclusive ('' when accepted).")
       .def_readonly("pooled_cells", &Chi2Report::pooledCells)
+      .def_readonly(
+          "rejected", &Chi2Report::rejected,
+          "bsdf_chi2_test(): the draws the BSDF rejected (reflected below the surface); 0 for warps.")
+      .def_readonly("expected_rejected", &Chi2Report::expectedRejected,
+                    "bsdf_chi2_test(): the rejected draws the pdf's missing mass expects; 0 for warps.")
       .def_readonly("observed", &Chi2Report::observed,
                     "Observed counts per cell (rows: y or w; columns: x or phi).")
       .def_readonly("expected", &Chi2Report::expected, "Expected counts per cell.")
@@ -327,6 +437,32 @@ void bindWarp(py::module_& m) {
         "that many tests. Returns Chi2Result: verdict 'accept', 'REJECT', or 'inconclusive' when too "
         "few samples leave no two cells to compare. Ctrl-C raises KeyboardInterrupt at once.");
 
+  m.def(
+      "bsdf_names",
+      [] {
+        return std::vector<std::string>{"microfacet", "roughconductor"};
+      },
+      "The BSDFs bsdf_sample(), bsdf_pdf() and bsdf_chi2_test() accept.");
+  m.def("bsdf_sample", &bsdfSampleArray, py::arg("name"), py::arg("u"), py::arg("alpha") = 0.1,
+        py::arg("incident") = 30.0, py::arg("kd") = 0.5, py::arg("distribution") = "beckmann",
+        py::arg("int_ior") = 1.5046, py::arg("ext_ior") = 1.000277, py::arg("out") = py::none(),
+        "Directions wi (N, 3) float32 a BSDF's sampling draws from uniform points u (N, 2), with wo = "
+        "(sin, 0, cos) of `incident` degrees in the local frame (normal +z); (0, 0, 0) where the BSDF "
+        "rejects the draw (a direction below the surface), as `penumbra warp NAME --dump` prints. name: "
+        "microfacet (alpha, kd, int_ior, ext_ior) or roughconductor (alpha, distribution beckmann|ggx). "
+        "out: as for warp().");
+  m.def("bsdf_pdf", &bsdfPdfArray, py::arg("name"), py::arg("v"), py::arg("alpha") = 0.1,
+        py::arg("incident") = 30.0, py::arg("kd") = 0.5, py::arg("distribution") = "beckmann",
+        py::arg("int_ior") = 1.5046, py::arg("ext_ior") = 1.000277, py::arg("out") = py::none(),
+        "The solid-angle density with which bsdf_sample() draws each direction of v (N, 3); it integrates "
+        "to 1 minus the rejected mass. Returns float32 (N,).");
+  m.def("bsdf_chi2_test", &bsdfChi2, py::arg("name"), py::arg("samples") = 1'000'000,
+        py::arg("seed") = Seed{1}, py::arg("res") = 51, py::arg("alpha") = 0.1, py::arg("incident") = 30.0,
+        py::arg("kd") = 0.5, py::arg("distribution") = "beckmann", py::arg("int_ior") = 1.5046,
+        py::arg("ext_ior") = 1.000277, py::arg("test_count") = 1,
+        "Pearson chi-square test of a BSDF's sampling against its pdf, exactly as `penumbra warp NAME` "
+        "runs it: the upper hemisphere in (phi, cos theta), the rejected draws as a cell expecting the "
+        "mass the pdf misses. Returns Chi2Result (its rejected and expected_rejected fields filled).");
   m.def("sample_points", &samplePoints, py::arg("sampler"), py::arg("n"),
         py::arg("pixel") = std::pair<int64_t, int64_t>(0, 0),
         py::arg("dims") = std::pair<int64_t, int64_t>(0, 1), py::arg("seed") = Seed{0},

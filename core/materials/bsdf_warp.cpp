@@ -51,19 +51,19 @@ namespace {
 
 }  // namespace
 
-BsdfWarp checkedBsdfWarp(const BsdfWarpInputs& in) {
+BsdfWarp checkedBsdfWarp(const BsdfWarpInputs& in, const BsdfInputNames& names) {
   if (!isBsdfWarpName(in.type))
     throw Error("unknown BSDF \"" + in.type + "\" (expected one of: " + bsdfWarpTypeList() + ")");
   if (!(in.alpha >= kMinAlpha && in.alpha <= kMaxAlpha))
-    outOfRange("--param", in.alpha, "in [1e-6, 1000] (alpha)");
+    outOfRange(names.alpha, in.alpha, "in [1e-6, 1000] (alpha)");
   if (!(in.incidentDegrees >= 0.0 && in.incidentDegrees <= kMaxIncidentDegrees))
-    outOfRange("--incident", in.incidentDegrees, "in [0, 89.99] degrees");
+    outOfRange(names.incident, in.incidentDegrees, "in [0, 89.99] degrees");
   BsdfWarp w;
   w.incidentDegrees = float(in.incidentDegrees);
   if (in.type == "microfacet") {
-    if (!(in.kd >= 0.0 && in.kd <= 1.0)) outOfRange("--kd", in.kd, "in [0, 1]");
-    if (!(in.intIOR > 0.0 && std::isfinite(in.intIOR))) outOfRange("--int-ior", in.intIOR, "finite and > 0");
-    if (!(in.extIOR > 0.0 && std::isfinite(in.extIOR))) outOfRange("--ext-ior", in.extIOR, "finite and > 0");
+    if (!(in.kd >= 0.0 && in.kd <= 1.0)) outOfRange(names.kd, in.kd, "in [0, 1]");
+    if (!(in.intIOR > 0.0 && std::isfinite(in.intIOR))) outOfRange(names.intIOR, in.intIOR, "finite and > 0");
+    if (!(in.extIOR > 0.0 && std::isfinite(in.extIOR))) outOfRange(names.extIOR, in.extIOR, "finite and > 0");
     w.bsdf = makeMicrofacet(Color3(float(in.kd)), float(in.alpha), float(in.intIOR), float(in.extIOR));
     return w;
   }
@@ -73,7 +73,7 @@ BsdfWarp checkedBsdfWarp(const BsdfWarpInputs& in) {
   else if (in.distribution == "ggx")
     d = MicrofacetDistribution::Ggx;
   else
-    throw Error("--distribution " + in.distribution + ": expected one of: beckmann, ggx");
+    throw Error(std::string(names.distribution) + " " + in.distribution + ": expected one of: beckmann, ggx");
   w.bsdf = makeRoughConductor(d, float(in.alpha), Color3(1.f));
   return w;
 }

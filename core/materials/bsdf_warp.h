@@ -43,7 +43,16 @@ struct BsdfWarpInputs {
   double incidentDegrees = 30.0;
   double intIOR = 1.5046, extIOR = 1.000277;  // microfacet
 };
-BsdfWarp checkedBsdfWarp(const BsdfWarpInputs& in);
+// What each input is called in messages: the CLI's options by default (Python names its arguments).
+struct BsdfInputNames {
+  const char* alpha = "--param";
+  const char* incident = "--incident";
+  const char* kd = "--kd";
+  const char* intIOR = "--int-ior";
+  const char* extIOR = "--ext-ior";
+  const char* distribution = "--distribution";
+};
+BsdfWarp checkedBsdfWarp(const BsdfWarpInputs& in, const BsdfInputNames& names = {});
 // A short description: "microfacet alpha 0.1 kd 0.5 at 30°".
 std::string describeBsdfWarp(const BsdfWarp& warp);
 

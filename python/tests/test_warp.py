@@ -168,3 +168,57 @@ def test_out_arrays_are_filled_and_checked():
         penumbra.warp("uniform-sphere", u, out=np.empty((100, 2), np.float32))
     with pytest.raises(TypeError, match="out"):
         penumbra.warp("uniform-sphere", u, out=np.empty((100, 3), np.float64))
+
+
+BSDF_CASES = [("microfacet", dict(alpha=0.2, kd=0.3, incident=45.0), ["--kd", 0.3]),
+              ("roughconductor", dict(alpha=0.3, distribution="ggx", incident=60.0), ["--distribution", "ggx"]),
+              ("roughconductor", dict(alpha=0.05, incident=10.0), [])]
+
+
+def _bsdf_args(kwargs, extra):
+    return ["--param", kwargs["alpha"], "--incident", kwargs["incident"], *extra]
+
+
+@pytest.mark.parametrize("name,kwargs,extra", BSDF_CASES)
+def test_bsdf_sample_and_pdf_match_cli(cli, name, kwargs, extra):
+    n, seed = 2000, 7
+    dumped = _floats(cli("warp", name, "--dump", n, "--seed", seed, *_bsdf_args(kwargs, extra)).stdout)
+    ours = penumbra.bsdf_sample(name, penumbra.random_points(n, seed), **kwargs)
+    assert ours.dtype == np.float32 and ours.shape == (n, 3)
+    assert np.array_equal(ours, dumped.astype(np.float32))
+    rejected = ~ours.any(axis=1)  # (0, 0, 0): a draw below the surface
+    assert np.all(ours[~rejected, 2] > 0)
+    pdfs_cli = _floats(cli("warp", name, "--pdf", *_bsdf_args(kwargs, extra), stdin=
+                           "\n".join(" ".join(f"{x:.9g}" for x in row) for row in dumped)).stdout)[:, 0]
+    ours_pdf = penumbra.bsdf_pdf(name, dumped, **kwargs)
+    assert np.array_equal(ours_pdf, pdfs_cli.astype(np.float32))
+    assert np.all(ours_pdf[~rejected] > 0) and np.all(np.isfinite(ours_pdf))
+
+
+@pytest.mark.parametrize("name,kwargs,extra", BSDF_CASES)
+def test_bsdf_chi2_matches_cli(cli, name, kwargs, extra):
+    samples, seed, res = 200000, 5, 21
+    out = cli("warp", name, "--samples", samples, "--seed", seed, "--res", res, *_bsdf_args(kwargs, extra),
+              check=False).stdout
+    fields = {line.split()[0]: line.split()[1] for line in out.splitlines() if line.strip()}
+    r = penumbra.bsdf_chi2_test(name, samples=samples, seed=seed, res=res, **kwargs)
+    assert r.verdict == fields["verdict"] == "accept"
+    assert r.dof == int(fields["dof"]) and round(r.chi2, 2) == float(fields["chi2"])
+    assert r.rejected == float(fields["rejected"])
+    assert r.rejected >= 0 and r.expected_rejected >= 0
+
+
+def test_bsdf_arguments_are_checked_and_named():
+    u = penumbra.random_points(4, 1)
+    for kwargs, word in [(dict(alpha=0.0), "alpha 0"), (dict(alpha=float("nan")), "alpha nan"),
+                         (dict(incident=95.0), "incident 95"), (dict(kd=1.5), "kd 1.5"),
+                         (dict(int_ior=0.0), "int_ior 0")]:
+        with pytest.raises(ValueError, match=word):
+            penumbra.bsdf_sample("microfacet", u, **kwargs)
+    with pytest.raises(ValueError, match="distribution phong"):
+        penumbra.bsdf_pdf("roughconductor", np.zeros((1, 3)), distribution="phong")
+    with pytest.raises(ValueError, match="unknown BSDF"):
+        penumbra.bsdf_chi2_test("diffuse")
+    with pytest.raises(ValueError, match="shape"):
+        penumbra.bsdf_pdf("microfacet", np.zeros((3, 2)))
+    assert penumbra.bsdf_names() == ["microfacet", "roughconductor"]
