@@ -188,31 +188,6 @@ struct Chi2Report {
   py::array_t<double> observed, expected;
 };
 
-Chi2Report reportOf(const Chi2Result& r);
-
-Chi2Report chi2(const std::string& name, int64_t samples, Seed seed, int64_t res, std::optional<double> param,
-                int64_t testCount) {
-  WarpChoice w = choose(name, param);
-  checkedCount(samples, kMinChi2Samples, kMaxChi2Samples, "samples");
-  checkedCount(res, kMinChi2Resolution, kMaxChi2Resolution, "res");
-  checkedCount(testCount, 1, std::numeric_limits<int>::max(), "test_count");
-  Chi2Options opt;
-  opt.sampleCount = uint64_t(samples);
-  opt.resolution = int(res);
-  opt.seed = seed.value;
-  opt.testCount = int(testCount);
-  Chi2Result r = runInterruptibly([&](CancelFlag cancel) {
-    Chi2Options o = opt;
-    o.cancel = cancel;
-    return chi2Test(chi2DomainFor(w.type, w.param), warpSampleFunction(w.type, w.param),
-                    warpPdfFunction(w.type, w.param), o);
-  });
-  Chi2Report out = reportOf(r);
-  out.warp = warpTypeName(w.type);
-  if (warpHasParameter(w.type)) out.param = w.param;
-  return out;
-}
-
 Chi2Report reportOf(const Chi2Result& r) {
   Chi2Report out;
   out.pValue = r.pValue;
@@ -228,6 +203,36 @@ Chi2Report reportOf(const Chi2Result& r) {
   out.expected = py::array_t<double>({py::ssize_t(r.resY), py::ssize_t(r.resX)}, r.expected.data());
   out.rejected = r.observedRejected;
   out.expectedRejected = r.expectedRejected;
+  return out;
+}
+
+// The test as `penumbra warp` runs it, with the module's argument checks; Ctrl-C cancels it.
+Chi2Result runChi2(const Chi2Domain& domain, const SampleFunction& sample, const PdfFunction& pdf,
+                   int64_t samples, Seed seed, int64_t res, int64_t testCount, bool rejectedDraws) {
+  checkedCount(samples, kMinChi2Samples, kMaxChi2Samples, "samples");
+  checkedCount(res, kMinChi2Resolution, kMaxChi2Resolution, "res");
+  checkedCount(testCount, 1, std::numeric_limits<int>::max(), "test_count");
+  Chi2Options opt;
+  opt.sampleCount = uint64_t(samples);
+  opt.resolution = int(res);
+  opt.seed = seed.value;
+  opt.testCount = int(testCount);
+  opt.rejectedDraws = rejectedDraws;
+  return runInterruptibly([&](CancelFlag cancel) {
+    Chi2Options o = opt;
+    o.cancel = cancel;
+    return chi2Test(domain, sample, pdf, o);
+  });
+}
+
+Chi2Report chi2(const std::string& name, int64_t samples, Seed seed, int64_t res, std::optional<double> param,
+                int64_t testCount) {
+  WarpChoice w = choose(name, param);
+  Chi2Result r = runChi2(chi2DomainFor(w.type, w.param), warpSampleFunction(w.type, w.param),
+                         warpPdfFunction(w.type, w.param), samples, seed, res, testCount, false);
+  Chi2Report out = reportOf(r);
+  out.warp = warpTypeName(w.type);
+  if (warpHasParameter(w.type)) out.param = w.param;
   return out;
 }
 
@@ -305,20 +310,8 @@ Chi2Report bsdfChi2(const std::string& name, int64_t samples, Seed seed, int64_t
                     double incident, double kd, const std::string& distribution, double intIor, double extIor,
                     int64_t testCount) {
   const BsdfWarp w = chooseBsdf(name, alpha, incident, kd, distribution, intIor, extIor);
-  checkedCount(samples, kMinChi2Samples, kMaxChi2Samples, "samples");
-  checkedCount(res, kMinChi2Resolution, kMaxChi2Resolution, "res");
-  checkedCount(testCount, 1, std::numeric_limits<int>::max(), "test_count");
-  Chi2Options opt;
-  opt.sampleCount = uint64_t(samples);
-  opt.resolution = int(res);
-  opt.seed = seed.value;
-  opt.testCount = int(testCount);
-  opt.rejectedDraws = true;
-  Chi2Result r = runInterruptibly([&](CancelFlag cancel) {
-    Chi2Options o = opt;
-    o.cancel = cancel;
-    return chi2Test(bsdfChi2Domain(), bsdfSampleFunction(w), bsdfPdfFunction(w), o);
-  });
+  Chi2Result r = runChi2(bsdfChi2Domain(), bsdfSampleFunction(w), bsdfPdfFunction(w), samples, seed, res,
+                         testCount, true);
   Chi2Report report = reportOf(r);
   report.warp = describeBsdfWarp(w);
   report.param = w.bsdf.alpha;
