@@ -82,6 +82,7 @@ def main():
     out.append("")
     for c, alpha in PLATES:
         out += ['\t<shape type="rectangle">',
+                f'\t\t<string name="name" value="plate alpha {alpha}"/>',
                 '\t\t<transform name="toWorld">',
                 f'\t\t\t<matrix value="{plate_matrix(c)}"/>',
                 "\t\t</transform>",
