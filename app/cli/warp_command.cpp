@@ -297,7 +297,7 @@ void addWarpCommand(CLI::App& app, int& exitCode, WarpGuiRunner gui) {
                   "Warp: " + warpTypeList() + "; or a BSDF's sampling: " + bsdfWarpTypeList());
   cmd->add_option("--param", args->param,
                   "uniform-cone: cos(theta_max) in [-1, 1) (default 0.5); beckmann: alpha > 0 (default 0.2); "
-                  "microfacet, roughconductor: alpha in [1e-6, 1000] (default 0.1)");
+                  "microfacet, roughconductor: alpha in [0.001, 1000] (default 0.1)");
   cmd->add_option("--incident", args->bsdf.incidentDegrees,
                   "microfacet, roughconductor: the angle of wo = (sin, 0, cos) to the normal, degrees in "
                   "[0, 89.99]")

@@ -286,7 +286,7 @@ void WarpInspector::drawControls() {
   if (s.bsdf) {
     BsdfWarpInputs in = bsdfInputsOf(s);
     float incident = s.incidentDegrees, alpha = s.alpha, kd = s.kd;
-    if (ImGui::SliderFloat("incident", &incident, 0.f, kMaxIncidentDegrees, "%.2f deg"))
+    if (ImGui::SliderFloat("incident", &incident, 0.f, float(kMaxIncidentDegrees), "%.2f deg"))
       in.incidentDegrees = incident, entered(enterBsdf(s, in));
     if (ImGui::SliderFloat("alpha", &alpha, 0.005f, 1.5f, "%.4f", ImGuiSliderFlags_Logarithmic))
       in.alpha = alpha, entered(enterBsdf(s, in));

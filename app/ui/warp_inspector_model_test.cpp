@@ -203,7 +203,7 @@ TEST(WarpInspectorModel, BsdfLobesAreTestedAsTheCliTestsThem) {
 
   WarpInspectorSettings before = s;
   in.alpha = 0.0;
-  EXPECT_NE(enterBsdf(s, in).find("--param 0: must be in [1e-6, 1000]"), std::string::npos);
+  EXPECT_NE(enterBsdf(s, in).find("--param 0: must be in [0.001, 1000]"), std::string::npos);
   in.alpha = 0.3;
   in.incidentDegrees = 95;
   EXPECT_NE(enterBsdf(s, in).find("--incident 95"), std::string::npos);

@@ -16,8 +16,16 @@
 namespace penumbra {
 namespace {
 
+// Draws in a fixed order (a constructor's arguments are evaluated in an order each compiler picks:
+// GCC and clang would build different scenes from one seed).
+Vec3 randomIn(Rng& rng, const Vec3& lo, const Vec3& hi) {
+  const float x = rng.nextFloat(), y = rng.nextFloat(), z = rng.nextFloat();
+  return lo + (hi - lo) * Vec3(x, y, z);
+}
+
 Vec3 randomUnit(Rng& rng) {
-  return Warp::squareToUniformSphere(Vec2(rng.nextFloat(), rng.nextFloat()));
+  const float u = rng.nextFloat(), v = rng.nextFloat();
+  return Warp::squareToUniformSphere(Vec2(u, v));
 }
 
 // Random triangles in a box, facing every way (`spread` 0) or within ~spread radians of +z.
@@ -25,13 +33,15 @@ std::vector<PolygonLight> randomTriangles(int n, uint64_t seed, float facingSpre
   Rng rng(seed, 3);
   std::vector<PolygonLight> out;
   while (int(out.size()) < n) {
-    const Vec3 c(20.f * rng.nextFloat() - 10.f, 20.f * rng.nextFloat() - 10.f, 6.f * rng.nextFloat());
+    const Vec3 c = randomIn(rng, Vec3(-10.f, -10.f, 0.f), Vec3(10.f, 10.f, 6.f));
     Vec3 normal = randomUnit(rng);
     if (facingSpread > 0.f) normal = glm::normalize(Vec3(0, 0, 1) + facingSpread * randomUnit(rng));
     const Frame f(normal);
     const float size = 0.05f + rng.nextFloat();
-    const PolygonLight l = PolygonLight::make(c, size * f.s, size * (0.3f * f.s + f.t),
-                                              rng.nextFloat() < 0.3f, Color3(rng.nextFloat()));
+    const bool parallelogram = rng.nextFloat() < 0.3f;
+    const Color3 radiance(rng.nextFloat());
+    const PolygonLight l =
+        PolygonLight::make(c, size * f.s, size * (0.3f * f.s + f.t), parallelogram, radiance);
     if (l.valid()) out.push_back(l);
   }
   return out;
@@ -48,19 +58,20 @@ bool canLight(const PolygonLight& l, const Vec3& p, const Vec3& n) {
   return false;
 }
 
-void expectConsistent(const std::vector<PolygonLight>& polygons, uint64_t seed) {
+// Checks 300 random shading points; returns how many some light can reach (the checks that bite).
+int expectConsistent(const std::vector<PolygonLight>& polygons, uint64_t seed) {
   std::vector<LightSummary> summaries;
   for (const PolygonLight& l : polygons) summaries.push_back(summarizeLight(l));
   const LightBvh bvh = makeLightBvh(summaries);
   Rng rng(seed, 9);
   int reached = 0;
   for (int k = 0; k < 300; ++k) {
-    const Vec3 p(24.f * rng.nextFloat() - 12.f, 24.f * rng.nextFloat() - 12.f, 10.f * rng.nextFloat() - 2.f);
+    const Vec3 p = randomIn(rng, Vec3(-12.f, -12.f, -2.f), Vec3(12.f, 12.f, 8.f));
     const Vec3 n = k % 3 == 2 ? Vec3(0) : (k % 3 == 0 ? Vec3(0, 0, 1) : randomUnit(rng));
     double sum = 0;
     for (uint32_t i = 0; i < polygons.size(); ++i) {
       const double pmf = bvh.pmf(p, n, i);
-      ASSERT_TRUE(std::isfinite(pmf) && pmf >= 0.0 && pmf <= 1.0);
+      EXPECT_TRUE(std::isfinite(pmf) && pmf >= 0.0 && pmf <= 1.0);
       sum += pmf;
       if (polygonLightPower(polygons[i]) > 0.0 && canLight(polygons[i], p, n))
         EXPECT_GT(pmf, 0.0) << "light " << i << " can reach the point but is never picked";
@@ -70,18 +81,23 @@ void expectConsistent(const std::vector<PolygonLight>& polygons, uint64_t seed) 
       EXPECT_NEAR(sum, 1.0, 1e-12);
       for (int j = 0; j < 10; ++j) {
         const LightPick pick = bvh.pick(p, n, rng.nextDouble());
-        ASSERT_GT(pick.pmf, 0.0);
+        EXPECT_GT(pick.pmf, 0.0);
         EXPECT_NEAR(pick.pmf, bvh.pmf(p, n, pick.light), 1e-12 * pick.pmf);
       }
     }
   }
-  EXPECT_GT(reached, 100);
+  EXPECT_GT(reached, 0);
+  return reached;
 }
 
 TEST(LightBvhPolygons, PmfsSumToOneMatchPicksAndNeverMissALightThatCanReach) {
-  for (int n : {1, 2, 7, 100, 1000}) expectConsistent(randomTriangles(n, 40 + uint64_t(n)), uint64_t(n));
+  int reached = 0;
+  for (int n : {1, 2, 7, 100, 1000})
+    reached += expectConsistent(randomTriangles(n, 40 + uint64_t(n)), uint64_t(n));
   // All facing up: the cones stay narrow and exclude much more.
-  expectConsistent(randomTriangles(300, 77, 0.2f), 5);
+  reached += expectConsistent(randomTriangles(300, 77, 0.2f), 5);
+  // A single small triangle may face away from most of the box; together the cases reach most points.
+  EXPECT_GT(reached, 900);
 }
 
 TEST(LightBvhPolygons, LightsFacingAwayGetNothingAndOrientationShiftsTheChoice) {

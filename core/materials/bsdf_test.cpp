@@ -139,7 +139,8 @@ TEST(Bsdf, IsReciprocal) {
       const Vec3 wo = Warp::squareToUniformHemisphere(Vec2(rng.nextFloat(), rng.nextFloat()));
       const Vec3 wi = Warp::squareToUniformHemisphere(Vec2(rng.nextFloat(), rng.nextFloat()));
       const float a = evalBsdf(b, wo, wi).x, c = evalBsdf(b, wi, wo).x;
-      ASSERT_NEAR(a, c, 1e-5f * std::max(a, c) + 1e-30f) << nameOf(b);
+      // 1e-4: h·wi and h·wo, and the products, round differently in the two orders (and with FMA).
+      ASSERT_NEAR(a, c, 1e-4f * std::max(a, c) + 1e-30f) << nameOf(b);
     }
 }
 

@@ -54,8 +54,9 @@ namespace {
 BsdfWarp checkedBsdfWarp(const BsdfWarpInputs& in, const BsdfInputNames& names) {
   if (!isBsdfWarpName(in.type))
     throw Error("unknown BSDF \"" + in.type + "\" (expected one of: " + bsdfWarpTypeList() + ")");
-  if (!(in.alpha >= kMinAlpha && in.alpha <= kMaxAlpha))
-    outOfRange(names.alpha, in.alpha, "in [1e-6, 1000] (alpha)");
+  if (!(in.alpha >= kMinWarpAlpha && in.alpha <= kMaxAlpha))
+    outOfRange(names.alpha, in.alpha,
+               "in [0.001, 1000] (alpha; narrower lobes are finer than the test's histogram)");
   if (!(in.incidentDegrees >= 0.0 && in.incidentDegrees <= kMaxIncidentDegrees))
     outOfRange(names.incident, in.incidentDegrees, "in [0, 89.99] degrees");
   BsdfWarp w;

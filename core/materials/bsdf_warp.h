@@ -13,7 +13,11 @@
 namespace penumbra {
 
 // The incident angles a BSDF warp takes (90° would put wo in the surface, where f is 0).
-inline constexpr float kMaxIncidentDegrees = 89.99f;
+inline constexpr double kMaxIncidentDegrees = 89.99;
+// The roughness a BSDF warp takes: lobes narrower than α = 1e-3 are finer than the χ² test's
+// (φ, cos θ) histogram and its quadrature resolve (scenes take α down to kMinAlpha; `penumbra check`
+// covers those by the albedo identity instead).
+inline constexpr double kMinWarpAlpha = 1e-3;
 
 struct BsdfWarp {
   Bsdf bsdf;

@@ -318,8 +318,15 @@ Chi2Result chi2Run(const Chi2Domain& domain, uint64_t count, Next&& next, const 
 
   // ---- expected counts ----
   const double n = static_cast<double>(count);
-  r.expected = expectedCounts(domain, pdf, g, n, options.minExpected, r.observed, options.cancel);
-  r.expectedOutside = n * integrateOutside(domain, pdf, options.cancel);
+  // A sharp density's quadrature can take seconds inside one cell: with a cancel flag, it is checked at
+  // every evaluation, not only between blocks of cells.
+  const PdfFunction checkedPdf = options.cancel ? PdfFunction([&pdf, &options](const Vec3& v) {
+    throwIfCancelled(options.cancel);
+    return pdf(v);
+  })
+                                                : pdf;
+  r.expected = expectedCounts(domain, checkedPdf, g, n, options.minExpected, r.observed, options.cancel);
+  r.expectedOutside = n * integrateOutside(domain, checkedPdf, options.cancel);
   throwIfCancelled(options.cancel);
   if (rejectedDraws) {
     // The mass the pdf misses (negative: more than 1, beyond the quadrature's error, is rejected below).
@@ -359,7 +366,7 @@ Chi2Result chi2Run(const Chi2Domain& domain, uint64_t count, Next&& next, const 
     if (r.expected[c] != 0.0 || r.observed[c] == 0.0) continue;
     int ix = static_cast<int>(c % g.resX), iy = static_cast<int>(c / g.resX);
     throwIfCancelled(options.cancel);
-    if (refined++ < 8) r.expected[c] = n * integrateCell(domain, pdf, g, ix, iy, kRefineMinDepth);
+    if (refined++ < 8) r.expected[c] = n * integrateCell(domain, checkedPdf, g, ix, iy, kRefineMinDepth);
     if (r.expected[c] == 0.0) {
       std::snprintf(buf, sizeof buf, "%.0f samples in cell (%d, %d), where the pdf integrates to 0",
                     r.observed[c], ix, iy);

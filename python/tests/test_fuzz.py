@@ -50,6 +50,17 @@ CONFUSION = [None, "", "\x00", "x" * 5000, b"\xff\xfe", [], {}, (), object(), 1j
 INT_EDGES = [0, -1, 2**31 - 1, 2**31, -2**31, 2**32, 2**63 - 1, -2**63, 2**63, 2**64, 10**30, 1.5, "1"]
 FLOAT_EDGES = [NAN, INF, -INF, 0.0, -0.0, -1.0, 5e-324, 1e-300, 1e300, 10**400, "0.5"]
 WARPS = penumbra.warp_names()
+BSDFS = penumbra.bsdf_names()
+# The BSDFs' parameters: valid values and the edges (alpha <= 0, NaN, incident past 89.99, kd outside
+# [0, 1], IORs <= 0, unknown distributions).
+BSDF_ARGS = {
+    "alpha": Arg([0.1, 1e-3, 0.5, 1000.0], FLOAT_EDGES + [1e-6, 1001.0]),
+    "incident": Arg([0.0, 30.0, 89.99], FLOAT_EDGES + [90.0, 95.0]),
+    "kd": Arg([0.0, 0.5, 1.0], FLOAT_EDGES + [1.5]),
+    "distribution": Arg(["beckmann", "ggx"], ["", "phong", "ggx\x00", 3]),
+    "int_ior": Arg([1.5, 1.0], FLOAT_EDGES),
+    "ext_ior": Arg([1.0, 1.000277], FLOAT_EDGES),
+}
 SAMPLERS = [s["name"] for s in penumbra.samplers()]
 SMALL_SET_VALUES = [1, 2, 8, 16, 0.5, 30.0, "area", "solid-angle", "ao", "independent", "stratified", True]
 
@@ -148,6 +159,24 @@ def specs(tmp: pathlib.Path):
             "seed": Arg([0, 1], INT_EDGES),
             "res": Arg([2, 5, 20, 1000], [1, 0, 1001, -1, 2**31]),
             "param": Arg([None, 0.5, 0.2], FLOAT_EDGES),
+            "test_count": Arg([1, 5], [0, -1, 2**31, 2**64])}),
+        "bsdf_names": (penumbra.bsdf_names, {}),
+        "bsdf_sample": (penumbra.bsdf_sample, {
+            "name": Arg(BSDFS, ["", "x", "diffuse", "microfacet\x00", 3, None], False),
+            "u": Arg(POINT_ARRAYS[:2], POINT_ARRAYS, False),
+            **BSDF_ARGS,
+            "out": Arg([None], OUT_ARRAYS + ["alias"])}),
+        "bsdf_pdf": (penumbra.bsdf_pdf, {
+            "name": Arg(BSDFS, ["", "x", 3], False),
+            "v": Arg(POINT_ARRAYS[:4], POINT_ARRAYS, False),
+            **BSDF_ARGS,
+            "out": Arg([None], OUT_ARRAYS + ["alias"])}),
+        "bsdf_chi2_test": (lambda **kw: _chi2_fields(penumbra.bsdf_chi2_test(**kw)), {
+            "name": Arg(BSDFS, ["", "x", 3], False),
+            "samples": Arg([100, 300, 2000], [99, 0, -1, 10**9 + 1, 10**9] + INT_EDGES),
+            "seed": Arg([0, 1], INT_EDGES),
+            "res": Arg([2, 5, 20], [1, 0, 1001, -1, 2**31]),
+            **BSDF_ARGS,
             "test_count": Arg([1, 5], [0, -1, 2**31, 2**64])}),
         "sample_points": (penumbra.sample_points, {
             "sampler": Arg(SAMPLERS, ["", "x", "all", 3], False),

@@ -59,6 +59,9 @@ LONG_CALLS = {
     "chi2_samples": ("", "penumbra.chi2_test('beckmann', samples=10**9)"),
     "chi2_quadrature": ("", "penumbra.chi2_test('cosine-hemisphere', samples=10**7, res=1000)"),
     "sample_points": ("", "penumbra.sample_points('independent', 1 << 22, dims=(8190, 8191))"),
+    # A sharp lobe whose quadrature takes tens of seconds inside its one block of cells.
+    "bsdf_chi2_quadrature": ("", "penumbra.bsdf_chi2_test('roughconductor', samples=2000, res=2, alpha=0.001, "
+                                 "distribution='ggx', incident=80)"),
 }
 
 
