@@ -247,21 +247,19 @@ BsdfWarp chooseBsdf(const std::string& name, double alpha, double incident, doub
   if (!isBsdfWarpName(name))
     throw py::value_error("name: unknown BSDF '" + quoted(name) +
                           "' (expected one of: " + bsdfWarpTypeList() + ")");
-  BsdfWarpInputs in;
-  in.type = name;
-  in.alpha = alpha;
-  in.incidentDegrees = incident;
-  in.kd = kd;
-  in.distribution = distribution;
-  in.intIOR = intIor;
-  in.extIOR = extIor;
-  BsdfInputNames names;
-  names.alpha = "alpha";
-  names.incident = "incident";
-  names.kd = "kd";
-  names.intIOR = "int_ior";
-  names.extIOR = "ext_ior";
-  names.distribution = "distribution";
+  const BsdfWarpInputs in{.type = name,
+                          .distribution = distribution,
+                          .alpha = alpha,
+                          .kd = kd,
+                          .incidentDegrees = incident,
+                          .intIOR = intIor,
+                          .extIOR = extIor};
+  const BsdfInputNames names{.alpha = "alpha",
+                             .incident = "incident",
+                             .kd = "kd",
+                             .intIOR = "int_ior",
+                             .extIOR = "ext_ior",
+                             .distribution = "distribution"};
   try {
     return checkedBsdfWarp(in, names);
   } catch (const Error& e) {

@@ -238,25 +238,17 @@ std::vector<Case> allCases() {
   for (float alpha : {0.05f, 0.2f, 0.5f, 1.0f})
     cases.push_back(warpCase(WarpType::Beckmann, alpha, paramText(WarpType::Beckmann, alpha)));
   // The BSDFs: sharp to rough, at normal, oblique and grazing incidence.
-  struct BsdfRow {
-    const char* type;
-    const char* distribution;
-    double alpha, kd, incident;
-  };
-  for (const BsdfRow& b :
-       {BsdfRow{"microfacet", "beckmann", 0.05, 0.3, 30}, BsdfRow{"microfacet", "beckmann", 0.2, 0.0, 60},
-        BsdfRow{"microfacet", "beckmann", 0.6, 0.5, 80}, BsdfRow{"roughconductor", "beckmann", 0.05, 0, 0},
-        BsdfRow{"roughconductor", "beckmann", 0.3, 0, 45}, BsdfRow{"roughconductor", "beckmann", 1.0, 0, 85},
-        BsdfRow{"roughconductor", "ggx", 0.05, 0, 30}, BsdfRow{"roughconductor", "ggx", 0.3, 0, 60},
-        BsdfRow{"roughconductor", "ggx", 1.0, 0, 85}}) {
-    BsdfWarpInputs in;
-    in.type = b.type;
-    in.distribution = b.distribution;
-    in.alpha = b.alpha;
-    in.kd = b.kd;
-    in.incidentDegrees = b.incident;
+  for (const BsdfWarpInputs& in :
+       {BsdfWarpInputs{.type = "microfacet", .alpha = 0.05, .kd = 0.3, .incidentDegrees = 30},
+        BsdfWarpInputs{.type = "microfacet", .alpha = 0.2, .kd = 0.0, .incidentDegrees = 60},
+        BsdfWarpInputs{.type = "microfacet", .alpha = 0.6, .kd = 0.5, .incidentDegrees = 80},
+        BsdfWarpInputs{.type = "roughconductor", .alpha = 0.05, .incidentDegrees = 0},
+        BsdfWarpInputs{.type = "roughconductor", .alpha = 0.3, .incidentDegrees = 45},
+        BsdfWarpInputs{.type = "roughconductor", .alpha = 1.0, .incidentDegrees = 85},
+        BsdfWarpInputs{.type = "roughconductor", .distribution = "ggx", .alpha = 0.05, .incidentDegrees = 30},
+        BsdfWarpInputs{.type = "roughconductor", .distribution = "ggx", .alpha = 0.3, .incidentDegrees = 60},
+        BsdfWarpInputs{.type = "roughconductor", .distribution = "ggx", .alpha = 1.0, .incidentDegrees = 85}})
     cases.push_back(bsdfCase(checkedBsdfWarp(in)));
-  }
   return cases;
 }
 

@@ -17,10 +17,30 @@ Vec3 halfVector(const Vec3& wo, const Vec3& wi) {
   return glm::normalize(wo + wi);
 }
 
+MicrofacetDistribution distributionOf(const Bsdf& b) {
+  return b.type == BsdfType::Microfacet ? MicrofacetDistribution::Beckmann : b.distribution;
+}
+
+// The half vector of a direction pair and its D(h): what f and its density both need, computed once
+// when a sample needs both.
+struct HalfVectorTerms {
+  Vec3 h;
+  float D;
+};
+HalfVectorTerms halfVectorTerms(const Bsdf& b, const Vec3& wo, const Vec3& wi) {
+  const Vec3 h = halfVector(wo, wi);
+  return {h, microfacetD(distributionOf(b), h, b.alpha)};
+}
+// Whether f or its density has a specular lobe (needs HalfVectorTerms).
+bool hasSpecularLobe(const Bsdf& b) {
+  return b.type == BsdfType::RoughConductor || (b.type == BsdfType::Microfacet && b.ks > 0.f);
+}
+
 // D(h) G1(wi,h) G1(wo,h) / (4 cos θi cos θo): the specular term both microfacet models share.
 float microfacetSpecular(MicrofacetDistribution dist, float alpha, const Vec3& wo, const Vec3& wi,
-                         const Vec3& h) {
-  const float D = microfacetD(dist, h, alpha);
+                         const HalfVectorTerms& t) {
+  const Vec3& h = t.h;
+  const float D = t.D;
   if (D == 0.f) return 0.f;
   const float G = microfacetG1(dist, wi, h, alpha) * microfacetG1(dist, wo, h, alpha);
   return D * G / (4.f * wi.z * wo.z);
@@ -35,8 +55,10 @@ float reflectedPdf(float pdfH, const Vec3& wi, const Vec3& h) {
 
 // The density of the specular lobe's sampling of h seen from wo: all normals, D(h) cos θh (Beckmann),
 // or GGX's visible normals, G1(wo,h) max(0, wo·h) D(h) / cos θo.
-float normalPdf(MicrofacetDistribution dist, bool visible, float alpha, const Vec3& wo, const Vec3& h) {
-  const float D = microfacetD(dist, h, alpha);
+float normalPdf(MicrofacetDistribution dist, bool visible, float alpha, const Vec3& wo,
+                const HalfVectorTerms& t) {
+  const Vec3& h = t.h;
+  const float D = t.D;
   if (!visible) return D * h.z;
   return microfacetG1(dist, wo, h, alpha) * std::fmax(0.f, glm::dot(wo, h)) * D / wo.z;
 }
@@ -52,14 +74,48 @@ Vec3 sampleNormal(const Bsdf& b, const Vec3& wo, Vec2 u) {
   return Warp::squareToBeckmann(u, b.alpha);
 }
 
-MicrofacetDistribution distributionOf(const Bsdf& b) {
-  return b.type == BsdfType::Microfacet ? MicrofacetDistribution::Beckmann : b.distribution;
+// The density of wi through the specular lobe (its normal density reflected).
+float specularPdf(const Bsdf& b, const Vec3& wo, const Vec3& wi, const HalfVectorTerms& t) {
+  return reflectedPdf(normalPdf(distributionOf(b), samplesVisibleNormals(b), b.alpha, wo, t), wi, t.h);
 }
 
-// The density of wi through the specular lobe (its normal density reflected).
-float specularPdf(const Bsdf& b, const Vec3& wo, const Vec3& wi) {
-  const Vec3 h = halfVector(wo, wi);
-  return reflectedPdf(normalPdf(distributionOf(b), samplesVisibleNormals(b), b.alpha, wo, h), wi, h);
+// f and its density for directions above the surface; `t` is halfVectorTerms(b, wo, wi) when
+// hasSpecularLobe(b) (unread otherwise).
+Color3 evalAbove(const Bsdf& b, const Vec3& wo, const Vec3& wi, const HalfVectorTerms& t) {
+  switch (b.type) {
+    case BsdfType::Diffuse:
+      return b.albedo * kInvPi;
+    case BsdfType::Microfacet: {
+      Color3 f = b.albedo * kInvPi;
+      if (b.ks > 0.f) {
+        const float spec = microfacetSpecular(MicrofacetDistribution::Beckmann, b.alpha, wo, wi, t);
+        if (spec > 0.f) f += Color3(b.ks * spec * fresnelDielectric(glm::dot(t.h, wi), b.extIOR, b.intIOR));
+      }
+      return f;
+    }
+    case BsdfType::RoughConductor:
+      return b.specularReflectance * microfacetSpecular(b.distribution, b.alpha, wo, wi, t);
+  }
+  return Color3(0.f);
+}
+
+float pdfAbove(const Bsdf& b, const Vec3& wo, const Vec3& wi, const HalfVectorTerms& t) {
+  switch (b.type) {
+    case BsdfType::Diffuse:
+      return wi.z * kInvPi;
+    case BsdfType::Microfacet: {
+      float pdf = (1.f - b.ks) * wi.z * kInvPi;
+      if (b.ks > 0.f) pdf += b.ks * specularPdf(b, wo, wi, t);
+      return pdf;
+    }
+    case BsdfType::RoughConductor:
+      return specularPdf(b, wo, wi, t);
+  }
+  return 0.f;
+}
+
+HalfVectorTerms termsIfNeeded(const Bsdf& b, const Vec3& wo, const Vec3& wi) {
+  return hasSpecularLobe(b) ? halfVectorTerms(b, wo, wi) : HalfVectorTerms{Vec3(0.f, 0.f, 1.f), 0.f};
 }
 
 }  // namespace
@@ -93,40 +149,12 @@ Bsdf makeRoughConductor(MicrofacetDistribution distribution, float alpha, const 
 
 Color3 evalBsdf(const Bsdf& b, const Vec3& wo, const Vec3& wi) {
   if (!(wo.z > 0.f) || !(wi.z > 0.f)) return Color3(0.f);
-  switch (b.type) {
-    case BsdfType::Diffuse:
-      return b.albedo * kInvPi;
-    case BsdfType::Microfacet: {
-      Color3 f = b.albedo * kInvPi;
-      if (b.ks > 0.f) {
-        const Vec3 h = halfVector(wo, wi);
-        const float spec = microfacetSpecular(MicrofacetDistribution::Beckmann, b.alpha, wo, wi, h);
-        if (spec > 0.f) f += Color3(b.ks * spec * fresnelDielectric(glm::dot(h, wi), b.extIOR, b.intIOR));
-      }
-      return f;
-    }
-    case BsdfType::RoughConductor: {
-      const Vec3 h = halfVector(wo, wi);
-      return b.specularReflectance * microfacetSpecular(b.distribution, b.alpha, wo, wi, h);
-    }
-  }
-  return Color3(0.f);
+  return evalAbove(b, wo, wi, termsIfNeeded(b, wo, wi));
 }
 
 float pdfBsdf(const Bsdf& b, const Vec3& wo, const Vec3& wi) {
   if (!(wo.z > 0.f) || !(wi.z > 0.f)) return 0.f;
-  switch (b.type) {
-    case BsdfType::Diffuse:
-      return wi.z * kInvPi;
-    case BsdfType::Microfacet: {
-      float pdf = (1.f - b.ks) * wi.z * kInvPi;
-      if (b.ks > 0.f) pdf += b.ks * specularPdf(b, wo, wi);
-      return pdf;
-    }
-    case BsdfType::RoughConductor:
-      return specularPdf(b, wo, wi);
-  }
-  return 0.f;
+  return pdfAbove(b, wo, wi, termsIfNeeded(b, wo, wi));
 }
 
 BsdfSample sampleBsdf(const Bsdf& b, const Vec3& wo, Vec2 u) {
@@ -141,9 +169,10 @@ BsdfSample sampleBsdf(const Bsdf& b, const Vec3& wo, Vec2 u) {
   }
   s.wi = specular ? reflectAbout(wo, sampleNormal(b, wo, u)) : Warp::squareToCosineHemisphere(u);
   if (!(s.wi.z > 0.f)) return BsdfSample{};
-  s.pdf = pdfBsdf(b, wo, s.wi);
+  const HalfVectorTerms t = termsIfNeeded(b, wo, s.wi);  // shared by the density and f
+  s.pdf = pdfAbove(b, wo, s.wi, t);
   if (!(s.pdf > 0.f) || !(s.pdf < INFINITY)) return BsdfSample{};
-  s.weight = evalBsdf(b, wo, s.wi) * (s.wi.z / s.pdf);
+  s.weight = evalAbove(b, wo, s.wi, t) * (s.wi.z / s.pdf);
   if (!isValidRadiance(s.weight)) return BsdfSample{};
   return s;
 }

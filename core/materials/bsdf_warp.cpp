@@ -33,12 +33,18 @@ Chi2Domain bsdfChi2Domain() {
   return Chi2Domain::sphere(1.0);
 }
 
+// wo is fixed: computed once here rather than at every sample or density of a test.
 SampleFunction bsdfSampleFunction(const BsdfWarp& warp) {
-  return [warp](Vec2 u) { return warp.sample(u); };
+  return [bsdf = warp.bsdf, wo = warp.wo()](Vec2 u) {
+    const BsdfSample s = sampleBsdf(bsdf, wo, u);
+    return s.pdf > 0.f ? s.wi : Vec3(0.f);
+  };
 }
 
 PdfFunction bsdfPdfFunction(const BsdfWarp& warp, double scale) {
-  return [warp, scale](const Vec3& wi) { return scale * double(warp.pdf(wi)); };
+  return [bsdf = warp.bsdf, wo = warp.wo(), scale](const Vec3& wi) {
+    return scale * double(pdfBsdf(bsdf, wo, wi));
+  };
 }
 
 namespace {
