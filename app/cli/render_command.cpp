@@ -7,7 +7,6 @@
 #include <cstring>
 #include <filesystem>
 #include <optional>
-#include <thread>
 
 #include "app/cli/commands.h"
 #include "app/cli/display_server_option.h"
@@ -19,6 +18,7 @@
 #include "core/math/error.h"
 #include "core/render/engine.h"
 #include "core/render/memory_estimate.h"
+#include "core/render/publish_signal.h"
 #include "core/scene/light_selection_default.h"
 
 namespace penumbra::cli {
@@ -100,6 +100,10 @@ int runRender(const RenderOptions& o) {
   gWritten = false;
   auto previous = std::signal(SIGINT, onInterrupt);
   Engine engine;
+  // Wakes the loop below when a pass is published or the render ends, so a short render is written
+  // as soon as it finishes rather than at the next poll.
+  auto published = std::make_shared<PublishSignal>();
+  engine.setPublishSignal(published);
   engine.start(job, limits, o.threads);
   net::TevStreamOptions streamOptions;
   streamOptions.renderThreads = engine.threadCount();
@@ -112,6 +116,7 @@ int runRender(const RenderOptions& o) {
   FilmSnapshot latest;
   bool streamAsked = false;  // a snapshot the stream wanted is on its way
   auto lastRequest = std::chrono::steady_clock::now() - std::chrono::seconds(1);
+  uint64_t publications = 0;
   while (!engine.progress().finished) {
     // A pass boundary at most about half a second old stays published, so an interrupted render can
     // write whole passes; a one-pass request resolves that pass row by row and holds up no worker.
@@ -133,33 +138,40 @@ int runRender(const RenderOptions& o) {
       break;
     }
     if (tty) drawProgress(engine.progress(), limits.targetSpp, limits.seconds);
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    publications = published->wait(publications, 0.05);  // Ctrl-C and the progress bar: every 50 ms
   }
   engine.wait();
   RenderProgress p = engine.progress();
+  engine.takeSnapshot(latest);
   if (tty) {
     drawProgress(p, limits.targetSpp, limits.seconds);
     std::fprintf(stderr, "\n");
   }
-  // An interrupted render writes the last completed pass boundary: the film also holds part of the
-  // abandoned pass.
-  FilmSnapshot last;
+  // What is written: `final`, the last completed pass boundary. An interrupted render's film also
+  // holds part of the abandoned pass, so it writes the newest published snapshot; a finished render's
+  // last pass was resolved by the workers as they rendered it when its target was a pass count, and
+  // is resolved here otherwise.
+  FilmSnapshot& final = latest;
   if (interrupted) {
-    engine.takeSnapshot(latest);  // anything published since the last poll
-    last = std::move(latest);
-    p.spp = last.spp;
-    p.seconds = last.seconds;
+    p.spp = final.spp;
+    p.seconds = final.seconds;
     p.samples =
-        uint64_t(last.spp) * uint64_t(job->settings.camera.width) * uint64_t(job->settings.camera.height);
-    const bool complete = last.spp > 0 && (!o.reference || last.standardError.width > 0);
+        uint64_t(final.spp) * uint64_t(job->settings.camera.width) * uint64_t(job->settings.camera.height);
+    const bool complete = final.spp > 0 && (!o.reference || final.standardError.width > 0);
     if (!complete) {
       std::printf("%s: interrupted before %s: nothing written%s\n", output.c_str(),
-                  last.spp == 0 ? "the first pass completed" : "a pass with its standard error completed",
+                  final.spp == 0 ? "the first pass completed" : "a pass with its standard error completed",
                   std::filesystem::exists(output) ? " (the existing file is unchanged)" : "");
       if (tev) tev->finish();
       std::signal(SIGINT, previous);
       return kExitInterrupted;
     }
+  } else {
+    const bool current = final.spp == p.spp;
+    if (!current || final.mean.width == 0) final.mean = engine.film().mean(p.spp);
+    if ((o.reference || tev) && (!current || final.standardError.width == 0))
+      final.standardError = engine.film().standardError(p.spp);
+    final.spp = p.spp;
   }
 
   ImageMetadata meta;
@@ -177,13 +189,13 @@ int runRender(const RenderOptions& o) {
   if (!selection.empty()) meta.add("lightSelectionChoice", selection);
   if (o.reference) {
     meta.add("sceneHash", sceneContentHash(loaded.desc));
-    Reference ref{
-        interrupted ? last.mean : engine.film().mean(p.spp),
-        interrupted ? last.standardError : engine.film().standardError(p.spp),
-        "rendered " + strategyLabel(job->settings.integrator) + " " + std::to_string(p.spp) + " spp"};
-    writeReference(output, ref, meta);  // + <output>.stderr.exr
+    // A reference render is long: copying its two images for the Reference costs nothing in comparison.
+    const std::string source =
+        "rendered " + strategyLabel(job->settings.integrator) + " " + std::to_string(p.spp) + " spp";
+    writeReference(output, Reference{final.mean, final.standardError, source},
+                   meta);  // + <output>.stderr.exr
   } else {
-    writeImage(output, interrupted ? last.mean : engine.film().mean(p.spp), meta);
+    writeImage(output, final.mean, meta);
   }
   gWritten = true;
 
@@ -195,13 +207,8 @@ int runRender(const RenderOptions& o) {
               interrupted ? " (interrupted: the completed passes were written)" : "");
   if (!selection.empty()) std::printf("%s\n", selection.c_str());
   std::fflush(stdout);
-  if (tev) {  // at most TevStreamOptions::waitSeconds more
-    if (interrupted)
-      tev->finish(net::TevFrame{tevName, last.mean, last.standardError, true});
-    else
-      tev->finish(
-          net::TevFrame{tevName, engine.film().mean(p.spp), engine.film().standardError(p.spp), true});
-  }
+  // At most TevStreamOptions::waitSeconds more.
+  if (tev) tev->finish(net::TevFrame{tevName, final.mean, final.standardError, true});
   std::signal(SIGINT, previous);
   return interrupted ? kExitInterrupted : 0;
 }

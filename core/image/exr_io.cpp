@@ -7,11 +7,14 @@
 #include <ImfInputFile.h>
 #include <ImfOutputFile.h>
 #include <ImfStringAttribute.h>
+#include <ImfThreading.h>
 #include <half.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstdio>
 #include <exception>
+#include <thread>
 #include <vector>
 
 #include "core/image/atomic_file.h"
@@ -34,8 +37,23 @@ ImageMetadata stringAttributes(const Imf::Header& header) {
 
 }  // namespace
 
+namespace {
+
+// OpenEXR compresses and decompresses line blocks on its own thread pool, none by default: on all
+// cores a 768² image is written in about half the time.
+void useEveryCoreForExr() {
+  static const bool once = [] {
+    Imf::setGlobalThreadCount(int(std::max(1u, std::thread::hardware_concurrency())));
+    return true;
+  }();
+  (void)once;
+}
+
+}  // namespace
+
 void writeExr(const std::string& path, const Image& image, const ImageMetadata& metadata,
               ExrPixelType pixelType, ExrCompression compression) {
+  useEveryCoreForExr();
   if (image.width <= 0 || image.height <= 0 || image.rgb.size() != image.pixelCount() * 3)
     throw Error(path, 0, "cannot write an empty or inconsistent image");
   Imf::Header header(image.width, image.height);

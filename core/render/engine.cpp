@@ -53,7 +53,8 @@ void Engine::spawnWorkers(int threads, bool preview) {
   stopAll_ = false;
   nextPreviewRow_ = 0;
   try {
-    publisher_.resolveNextPassRows(preview, film_);  // an interactive start shows its first pass at once
+    // An interactive start shows its first pass at once; a one-pass render's image is resolved as it goes.
+    publisher_.resolveNextPassRows(preview || nextPassIsLast(), film_);
     if (preview) preview_ = Image(film_.width(), film_.height());
     workers_.spawn(
         threads, [this, preview] { workerLoop(preview); }, [this](std::exception_ptr e) { workerFailed(e); });
@@ -205,7 +206,7 @@ bool Engine::passBoundary() {
   const bool stop = stopRequested_ || stopNow_ || (limits_.targetSpp > 0 && spp_ >= limits_.targetSpp) ||
                     (limits_.seconds > 0 && clock_.elapsed() >= limits_.seconds);
   // The last pass is always published, so viewers see the finished image.
-  const bool published = publisher_.atPassBoundary(film_, spp_, stop);
+  const bool published = publisher_.atPassBoundary(film_, spp_, stop, !stop && nextPassIsLast());
   if (signal_ && published && !stop) signal_->notify();
   return stop;
 }

@@ -141,7 +141,8 @@ class Engine {
   void spawnWorkers(int threads, bool preview);
   void workerLoop(bool preview);
   void renderPreview(const RowRenderer& renderRow, Sampler& sampler);
-  bool passBoundary();                      // run by the last worker to finish a pass; returns true to stop
+  bool passBoundary();  // run by the last worker to finish a pass; returns true to stop
+  bool nextPassIsLast() const { return limits_.targetSpp > 0 && spp_ + 1 >= limits_.targetSpp; }
   void finish();                            // marks the accumulation finished (once) and stops its clock
   void workerFailed(std::exception_ptr e);  // on the failing worker: keep e, stop the others
 

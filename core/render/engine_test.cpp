@@ -89,6 +89,27 @@ TEST(Engine, ImageDoesNotDependOnThreadCount) {
   EXPECT_EQ(a.rgb, c.rgb);
 }
 
+// The writer of a finished render takes its image from the last snapshot (resolved row by row by the
+// workers when the pass target is known) instead of resolving the film again.
+TEST(Engine, TheLastSnapshotIsTheFinalImage) {
+  auto job = smallJob();
+  for (const uint32_t spp : {1u, 3u}) {
+    for (const bool withError : {false, true}) {
+      Engine engine;
+      engine.start(job, RenderLimits{spp, 0.0}, 2);
+      if (withError) engine.requestSnapshot(true);
+      engine.wait();
+      FilmSnapshot last;
+      ASSERT_TRUE(engine.takeSnapshot(last));
+      EXPECT_EQ(last.spp, spp);
+      EXPECT_EQ(last.mean.rgb, engine.film().mean(spp).rgb);  // bitwise
+      if (withError && spp >= 2) {
+        EXPECT_EQ(last.standardError.rgb, engine.film().standardError(spp).rgb);
+      }
+    }
+  }
+}
+
 TEST(Engine, SeedChangesTheImage) {
   auto job = smallJob();
   Image a = render(job, 4, 2);

@@ -1,5 +1,7 @@
 #include "core/render/film.h"
 
+#include <sys/mman.h>
+
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -9,10 +11,29 @@
 
 namespace penumbra {
 
+namespace {
+
+// Zeroing a fresh 768² film (28 MB) faults in 7,000 small pages, ~75 ms on a virtual machine; in
+// 2 MB pages it takes a fraction of that. Only advice: the kernel may decline, nothing changes.
+void adviseHugePages(const double* data, size_t count) {
+  if (count * sizeof(double) < (size_t(4) << 20)) return;
+  const uintptr_t begin = reinterpret_cast<uintptr_t>(data) & ~uintptr_t(4095);
+  const uintptr_t end = reinterpret_cast<uintptr_t>(data + count);
+  ::madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
+}
+
+}  // namespace
+
 void Film::reset(int width, int height) {
   width_ = width;
   height_ = height;
-  sums_.assign(size_t(width) * height * 6, 0.0);
+  const size_t count = size_t(width) * height * 6;
+  if (sums_.capacity() < count) {
+    std::vector<double>().swap(sums_);  // the old film's memory goes back before the new one is taken
+    sums_.reserve(count);
+    adviseHugePages(sums_.data(), count);
+  }
+  sums_.assign(count, 0.0);
 }
 
 Film::Film(int width, int height, std::vector<double> sums)

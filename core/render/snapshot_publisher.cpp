@@ -78,7 +78,7 @@ void SnapshotPublisher::prepareResolve(bool mean, bool error, const Film& film) 
   if (resolveError_ && (pendingError_.width != w || pendingError_.height != h)) pendingError_ = Image(w, h);
 }
 
-bool SnapshotPublisher::atPassBoundary(const Film& film, uint32_t spp, bool last) {
+bool SnapshotPublisher::atPassBoundary(const Film& film, uint32_t spp, bool last, bool nextIsLast) {
   const bool requested = requested_.exchange(false);
   const bool published = resolveMean_ || requested || last;
   if (resolveMean_)
@@ -95,6 +95,10 @@ bool SnapshotPublisher::atPassBoundary(const Film& film, uint32_t spp, bool last
   if (!last && nextPassRequested_.exchange(false)) {
     mean = true;
     error = nextPassWantsError_.exchange(false) || error;
+  }
+  if (nextIsLast) {
+    mean = true;
+    error = error || wantsError_;
   }
   prepareResolve(mean, error, film);
   return published;

@@ -52,7 +52,8 @@ class SnapshotPublisher {
 
   // While no worker runs: a new accumulation shows an empty snapshot (spp 0, a new version) at once.
   void restart();
-  // While no worker runs: whether the coming pass resolves its rows (an interactive start).
+  // While no worker runs: whether the coming pass resolves its rows (an interactive start, or a
+  // render of one pass).
   void resolveNextPassRows(bool resolve, const Film& film) { prepareResolve(resolve, false, film); }
 
   // Workers during a pass: where a finished row's mean and standard error go (nullptr: not resolved
@@ -61,8 +62,10 @@ class SnapshotPublisher {
   Image* rowErrorTarget() { return resolveError_ ? &pendingError_ : nullptr; }
 
   // The last worker at a boundary, after pass `spp` (`last`: the render stops here, which is always
-  // published). Publishes if asked to, then chooses how the next pass is resolved. True if published.
-  bool atPassBoundary(const Film& film, uint32_t spp, bool last);
+  // published). Publishes if asked to, then chooses how the next pass is resolved: row by row when
+  // asked to, and when it is known to be the render's last (`nextIsLast`), so the final image is
+  // resolved by all workers as they go instead of by one at the end. True if published.
+  bool atPassBoundary(const Film& film, uint32_t spp, bool last, bool nextIsLast = false);
   // Publishes a preview image (spp 0).
   void publishPreview(Image&& image);
   // The film at rest after `spp` passes: publishes it unless that pass, with the requested standard
