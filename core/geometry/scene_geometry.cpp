@@ -8,6 +8,7 @@
 #include <string>
 #include <utility>
 
+#include "core/geometry/embree_rays.h"
 #include "core/geometry/triangle.h"
 #include "core/math/error.h"
 
@@ -20,27 +21,6 @@ void checkEmbree(RTCDevice device, const char* what) {
     throw Error(std::string("Embree: ") + what + " failed (error " + std::to_string(static_cast<int>(err)) +
                 ")");
 }
-
-inline void setupRay(const Ray& ray, float tMax, RTCRay& r) {
-  r.org_x = ray.o.x;
-  r.org_y = ray.o.y;
-  r.org_z = ray.o.z;
-  r.dir_x = ray.d.x;
-  r.dir_y = ray.d.y;
-  r.dir_z = ray.d.z;
-  r.tnear = ray.tMin;
-  r.tfar = tMax;
-  r.time = 0.f;
-  r.mask = 0xFFFFFFFFu;
-  r.id = 0;
-  r.flags = 0;
-}
-
-// An occlusion query's context: Embree's, followed by the sphere the shadow ray must not test.
-struct OcclusionContext {
-  RTCIntersectContext base;
-  int32_t skipSphere;
-};
 
 inline Ray rayOf(RTCRayN* rays, unsigned n, unsigned i) {
   return Ray{Vec3(RTCRayN_org_x(rays, n, i), RTCRayN_org_y(rays, n, i), RTCRayN_org_z(rays, n, i)),
@@ -323,12 +303,7 @@ bool SceneGeometry::intersect(const Ray& ray, SurfaceHit& hit) const {
 }
 
 bool SceneGeometry::occluded(const Ray& ray, int32_t skipSphere) const {
-  for (size_t i = 0; i < flatSphereCount_; ++i)
-    if (static_cast<int32_t>(i) != skipSphere && spheres_[i].occludes(ray)) return true;
-  for (const Parallelogram& q : quads_) {
-    float t, u, v;
-    if (intersectParallelogram(q, ray, ray.tMax, t, u, v)) return true;
-  }
+  if (occludedByFlatShapes(ray, skipSphere)) return true;
   // An empty segment (a light closer than the origin's offset) is blocked by nothing; Embree would
   // hand back its negative tfar, which reads as a hit below.
   if (scene_ && ray.tMax > ray.tMin) {
@@ -340,6 +315,20 @@ bool SceneGeometry::occluded(const Ray& ray, int32_t skipSphere) const {
     rtcOccluded1(static_cast<RTCScene>(scene_.get()), &context.base, &r);
     if (r.tfar < 0.f) return true;  // Embree sets tfar = -inf on a hit
   }
+  return occludedByFlatTriangles(ray);
+}
+
+bool SceneGeometry::occludedByFlatShapes(const Ray& ray, int32_t skipSphere) const {
+  for (size_t i = 0; i < flatSphereCount_; ++i)
+    if (static_cast<int32_t>(i) != skipSphere && spheres_[i].occludes(ray)) return true;
+  for (const Parallelogram& q : quads_) {
+    float t, u, v;
+    if (intersectParallelogram(q, ray, ray.tMax, t, u, v)) return true;
+  }
+  return false;
+}
+
+bool SceneGeometry::occludedByFlatTriangles(const Ray& ray) const {
   if (flat_.empty()) return false;
   const TriangleRay tr(ray);
   auto loop = [&]<int KZ>() {

@@ -80,6 +80,11 @@ class SceneGeometry {
   const std::vector<TriangleMesh>& meshes() const { return meshes_; }
 
  private:
+  friend class OcclusionBatch;  // sends the BVH part of many occlusion queries to Embree at once
+  // occluded() outside the BVH: the flat loops of spheres and parallelograms, and of triangles.
+  bool occludedByFlatShapes(const Ray& ray, int32_t skipSphere) const;
+  bool occludedByFlatTriangles(const Ray& ray) const;
+
   struct FlatTriangle {
     Vec3 p0, p1, p2;
     uint32_t mesh, prim;

@@ -15,22 +15,34 @@ struct AoIntegrator {
   int samples = 1;
 
   Color3 Li(const Scene& scene, const Ray& ray, Sampler& sampler) const {
-    SurfaceHit hit;
-    if (!scene.geometry.intersect(ray, hit)) return Color3(0.f);
-    ShadingPoint sp(scene, ray, hit);
     float sum = 0.f;
+    forEachVisibilityRay(scene, ray, sampler, [&](const Ray& shadow, float contribution) {
+      if (!scene.geometry.occluded(shadow)) sum += contribution;
+    });
+    return radiance(sum);
+  }
+
+  // The estimate in two steps, so that a batch of camera samples can trace its visibility rays
+  // together (core/render/ao_batch_row_loop.h): f(ray, contribution) for each direction that needs a
+  // visibility test, in sampling order; the estimate is radiance(sum of the contributions of the
+  // rays that were not occluded), added in that order (the image is the same as Li's, bit for bit).
+  template <class F>
+  [[gnu::always_inline]] void forEachVisibilityRay(const Scene& scene, const Ray& ray, Sampler& sampler,
+                                                   F&& f) const {
+    SurfaceHit hit;
+    if (!scene.geometry.intersect(ray, hit)) return;
+    ShadingPoint sp(scene, ray, hit);
     for (int i = 0; i < samples; ++i) {
       Vec2 u = sampler.next2D(uint32_t(i), uint32_t(samples));  // one request: stratified among themselves
       Vec3 local = kWarp == HemisphereWarp::Cosine ? Warp::squareToCosineHemisphere(u)
                                                    : Warp::squareToUniformHemisphere(u);
       Vec3 w = sp.frame.toWorld(local);
       if (glm::dot(w, sp.ng) <= 0.f) continue;  // below the true surface: blocked by it
-      if (scene.geometry.occluded(sp.spawnRay(w, scene.rayLengthBound))) continue;
       // V cos / (pi pdf): 1 for cosine sampling, 2 cos for uniform sampling.
-      sum += kWarp == HemisphereWarp::Cosine ? 1.f : 2.f * local.z;
+      f(sp.spawnRay(w, scene.rayLengthBound), kWarp == HemisphereWarp::Cosine ? 1.f : 2.f * local.z);
     }
-    return Color3(sum * (1.f / float(samples)));
   }
+  Color3 radiance(float sum) const { return Color3(sum * (1.f / float(samples))); }
 };
 
 }  // namespace penumbra

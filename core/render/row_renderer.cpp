@@ -5,6 +5,7 @@
 #include "core/integrators/mis_integrator.h"
 #include "core/integrators/mis_light_share.h"
 #include "core/integrators/normals_integrator.h"
+#include "core/render/ao_batch_row_loop.h"
 #include "core/render/ray_estimator.h"
 #include "core/render/row_loop.h"
 #include "core/render/strategy_axes.h"
@@ -94,6 +95,14 @@ decltype(auto) withIntegrator(const IntegratorDesc& d, F&& f) {
 }  // namespace
 
 RowRenderer makeRowRenderer(const RenderJob& job) {
+  const IntegratorDesc& d = job.settings.integrator;
+  if (d.type == IntegratorType::Ao && job.scene->geometry.usesEmbree())
+    return withWarp(d.warp,
+                    [&](auto w) { return aoBatchRowsFor(job, AoIntegrator<decltype(w)::value>{d.samples}); });
+  return makeScalarRowRenderer(job);
+}
+
+RowRenderer makeScalarRowRenderer(const RenderJob& job) {
   const IntegratorDesc& d = job.settings.integrator;
   // A light-share job of a strategy without that output renders radiance (callers check offersLightShare).
   if (job.output == RenderOutput::MisLightShare && offersLightShare(d))

@@ -29,6 +29,12 @@ struct RowRenderer {
       preview;
 };
 
+// The row renderer of the job's strategy: ambient occlusion in a scene whose triangles are in Embree
+// traces its visibility rays in batches (ao_batch_row_loop.h); everything else renders one camera
+// sample at a time.
 RowRenderer makeRowRenderer(const RenderJob& job);
+// One camera sample at a time for every strategy: the reference the batched loops are tested against
+// (the same image, bit for bit).
+RowRenderer makeScalarRowRenderer(const RenderJob& job);
 
 }  // namespace penumbra
