@@ -20,6 +20,7 @@
 #include "core/image/atomic_file.h"
 #include "core/math/error.h"
 #include "core/render/engine.h"
+#include "core/render/row_renderer.h"
 #include "core/sampling/sampler_table.h"
 #include "core/scene/scaling_scene.h"
 #include "core/scene/xml_parser.h"
@@ -91,10 +92,13 @@ void scalingSeries(const BenchOptions& o, int threads) {
   }
 }
 
-// One timed run of `seconds`: camera samples per second.
-double timedRun(const LoadedScene& s, const RenderSettings& settings, int threads, double seconds) {
+// One timed run of `seconds`: camera samples per second. `scalar`: one camera sample at a time even
+// where the renderer batches (makeScalarRowRenderer).
+double timedRun(const LoadedScene& s, const RenderSettings& settings, int threads, double seconds,
+                bool scalar = false) {
   const RenderLimits limits{0, seconds};
   Engine engine;
+  if (scalar) engine.setRowRendererFactory(makeScalarRowRenderer);
   engine.start(std::make_shared<const RenderJob>(s.scene, settings, limits), limits, threads);
   engine.wait();
   RenderProgress p = engine.progress();
@@ -280,6 +284,22 @@ int runBench(const BenchOptions& o) {
   printRow(std::to_string(ao.scene->geometry.triangleCount()) + " triangles", m, rays * 1e-6);
   std::printf("(%s, %s, %d shading samples per camera sample; AO rays/s excludes camera rays)\n",
               aoPath.c_str(), strategyLabel(s.integrator).c_str(), s.integrator.samples);
+  if (ao.scene->geometry.usesEmbree()) {
+    // The batched row loop (the default) against one camera sample at a time, alternating at 1 thread.
+    std::vector<double> ratios, scalarRates;
+    for (int r = 0; r < o.repeats; ++r) {
+      const bool scalarFirst = r % 2 == 1;
+      const double a = timedRun(ao, s, 1, o.seconds, scalarFirst);
+      const double b = timedRun(ao, s, 1, o.seconds, !scalarFirst);
+      const double batched = scalarFirst ? b : a, scalar = scalarFirst ? a : b;
+      scalarRates.push_back(scalar);
+      ratios.push_back(batched / scalar);
+    }
+    std::printf("AO one camera sample at a time: %.2f M rays/s at 1 thread; batched %.2fx (%.2f-%.2f)\n",
+                median(scalarRates) * rays * 1e-6, median(ratios),
+                *std::min_element(ratios.begin(), ratios.end()),
+                *std::max_element(ratios.begin(), ratios.end()));
+  }
   if (o.scalingSpp > 0) scalingSeries(o, all);
   return 0;
 }
