@@ -1,7 +1,7 @@
 // Progressive renderer: whole-image passes of one sample per pixel on a pool of worker threads.
 // Pass p uses sample index p in every pixel (or the index a SampleSchedule gives it), so the image
 // depends only on (scene, settings, seed), never on thread count or scheduling. Cancellation takes effect
-// within one pixel (its samples). stopNow() ends a render as fast, keeping the rows that completed the
+// within one pixel (its samples; a batch of AO samples, about a thousand rays, in Embree scenes). stopNow() ends a render as fast, keeping the rows that completed the
 // running pass, so that every row holds whole passes (rowPasses()): a worker either finishes its row
 // or, where rows are expensive, restores the row's sums from a copy taken before the row.
 //

@@ -17,8 +17,9 @@ namespace penumbra {
 
 struct RowRenderer {
   // Row y of pass `pass` into the film. Stops between two pixels once *cancel is set (checked per
-  // pixel, so cancelling takes one pixel's time however many samples the integrator takes); the row
-  // is then incomplete and the pass must be abandoned.
+  // pixel, so cancelling takes one pixel's time however many samples the integrator takes; a batched
+  // loop checks per batch, at most ~1,000 rays); the row is then incomplete and the pass must be
+  // abandoned.
   std::function<void(int y, uint32_t pass, Sampler& sampler, Film& film, uint64_t& badSamples,
                      const std::atomic<bool>& cancel)>
       row;
