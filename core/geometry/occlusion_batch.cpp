@@ -1,46 +1,36 @@
 #include "core/geometry/occlusion_batch.h"
 
+#include <cstddef>
+
 #include "core/geometry/embree_rays.h"
 
 namespace penumbra {
 
-struct OcclusionBatch::EmbreeRays {
-  std::vector<RTCRay> rays;
-};
-
 OcclusionBatch::OcclusionBatch(const SceneGeometry& geometry)
-    : geometry_(geometry), bvhRays_(std::make_unique<EmbreeRays>()) {}
-
-OcclusionBatch::~OcclusionBatch() = default;
-
-void OcclusionBatch::clear() {
-  blocked_.clear();
-  bvhQuery_.clear();
-  bvhRays_->rays.clear();
-}
-
-void OcclusionBatch::add(const Ray& ray) {
-  const uint32_t query = uint32_t(blocked_.size());
-  // The same tests as SceneGeometry::occluded, the BVH's deferred.
-  const bool flat = geometry_.occludedByFlatShapes(ray, -1) || geometry_.occludedByFlatTriangles(ray);
-  blocked_.push_back(flat ? 1 : 0);
-  if (flat || !geometry_.scene_ || !(ray.tMax > ray.tMin)) return;
-  RTCRay& r = bvhRays_->rays.emplace_back();
-  setupRay(ray, ray.tMax, r);
-  bvhQuery_.push_back(query);
-}
+    : geometry_(geometry),
+      hasFlatGeometry_(geometry.flatSphereCount_ > 0 || !geometry.quads_.empty() || !geometry.flat_.empty()),
+      hasBvh_(geometry.scene_ != nullptr) {}
 
 void OcclusionBatch::trace() {
-  std::vector<RTCRay>& rays = bvhRays_->rays;
-  if (rays.empty()) return;
+  static_assert(sizeof(StreamRay) == sizeof(RTCRay) && alignof(StreamRay) == alignof(RTCRay));
+  static_assert(offsetof(StreamRay, orgX) == offsetof(RTCRay, org_x) &&
+                offsetof(StreamRay, tnear) == offsetof(RTCRay, tnear) &&
+                offsetof(StreamRay, dirX) == offsetof(RTCRay, dir_x) &&
+                offsetof(StreamRay, time) == offsetof(RTCRay, time) &&
+                offsetof(StreamRay, tfar) == offsetof(RTCRay, tfar) &&
+                offsetof(StreamRay, mask) == offsetof(RTCRay, mask) &&
+                offsetof(StreamRay, id) == offsetof(RTCRay, id) &&
+                offsetof(StreamRay, flags) == offsetof(RTCRay, flags));
+  if (bvhRays_.empty()) return;
   OcclusionContext context;
   rtcInitIntersectContext(&context.base);
   context.base.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
   context.skipSphere = -1;
-  rtcOccluded1M(static_cast<RTCScene>(geometry_.scene_.get()), &context.base, rays.data(),
-                unsigned(rays.size()), sizeof(RTCRay));
-  for (size_t i = 0; i < rays.size(); ++i)
-    if (rays[i].tfar < 0.f) blocked_[bvhQuery_[i]] = 1;  // Embree sets tfar = -inf on a hit
+  // Embree, a separate library, reads and writes the records as its RTCRay (the same layout).
+  rtcOccluded1M(static_cast<RTCScene>(geometry_.scene_.get()), &context.base,
+                reinterpret_cast<RTCRay*>(bvhRays_.data()), unsigned(bvhRays_.size()), sizeof(RTCRay));
+  for (size_t i = 0; i < bvhRays_.size(); ++i)
+    if (bvhRays_[i].tfar < 0.f) blocked_[bvhQuery_[i]] = 1;  // Embree sets tfar = -inf on a hit
 }
 
 }  // namespace penumbra
