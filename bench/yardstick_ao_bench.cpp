@@ -27,6 +27,8 @@
 #include <string>
 #include <vector>
 
+#include "bench/fast_rng.h"
+#include "core/geometry/embree_rays.h"
 #include "core/math/frame.h"
 #include "core/render/camera.h"
 #include "core/render/engine.h"
@@ -41,15 +43,6 @@ const LoadedScene& rockScene() {
   static const LoadedScene scene = loadScene(PENUMBRA_SOURCE_DIR "/scenes/standin/rock-ao.xml");
   return scene;
 }
-
-// xorshift-multiply generator: the cheapest stream that is good enough for a yardstick.
-struct FastRng {
-  uint64_t s;
-  float next() {
-    s ^= s >> 12, s ^= s << 25, s ^= s >> 27;
-    return float((s * 0x2545F4914F6CDD1DULL) >> 40) * 0x1p-24f;
-  }
-};
 
 // The renderer's Embree scene, built the same way from the loaded meshes.
 struct EmbreeRock {
@@ -98,10 +91,7 @@ Hit traceCameraRay(const EmbreeRock& rock, const PerspectiveCamera& camera, int 
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRayHit rh;
-  rh.ray.org_x = ray.o.x, rh.ray.org_y = ray.o.y, rh.ray.org_z = ray.o.z;
-  rh.ray.dir_x = ray.d.x, rh.ray.dir_y = ray.d.y, rh.ray.dir_z = ray.d.z;
-  rh.ray.tnear = ray.tMin, rh.ray.tfar = ray.tMax;
-  rh.ray.mask = ~0u, rh.ray.flags = 0, rh.ray.time = 0;
+  setupRay(ray, ray.tMax, rh.ray);
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(rock.scene, &context, &rh);
   Hit hit;
@@ -168,9 +158,7 @@ float rowOccluded1(const EmbreeRock& rock, const PerspectiveCamera& camera, int 
       rtcInitIntersectContext(&context);
       const Vec3 d = cosineDirection(hit.frame, rng);
       RTCRay r;
-      r.org_x = hit.p.x, r.org_y = hit.p.y, r.org_z = hit.p.z;
-      r.dir_x = d.x, r.dir_y = d.y, r.dir_z = d.z;
-      r.tnear = 0.f, r.tfar = rock.rayLength, r.mask = ~0u, r.flags = 0, r.time = 0;
+      setupRay(Ray{hit.p, d, 0.f, rock.rayLength}, rock.rayLength, r);
       rtcOccluded1(rock.scene, &context, &r);
       if (r.tfar >= 0.f) total += 1.f / kAoRays;
     }
@@ -187,9 +175,7 @@ float rowStream(const EmbreeRock& rock, const PerspectiveCamera& camera, int y, 
     for (int k = 0; k < kAoRays; ++k) {
       const Vec3 d = cosineDirection(hit.frame, rng);
       RTCRay r;
-      r.org_x = hit.p.x, r.org_y = hit.p.y, r.org_z = hit.p.z;
-      r.dir_x = d.x, r.dir_y = d.y, r.dir_z = d.z;
-      r.tnear = 0.f, r.tfar = rock.rayLength, r.mask = ~0u, r.flags = 0, r.time = 0, r.id = 0;
+      setupRay(Ray{hit.p, d, 0.f, rock.rayLength}, rock.rayLength, r);
       rays.push_back(r);
     }
   }

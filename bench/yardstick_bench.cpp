@@ -21,6 +21,7 @@
 #include <memory>
 #include <vector>
 
+#include "bench/fast_rng.h"
 #include "core/render/engine.h"
 #include "core/scene/scene_builder.h"
 
@@ -44,15 +45,6 @@ inline Float3 operator*(float s, Float3 a) {
 inline float dot(Float3 a, Float3 b) {
   return a.x * b.x + a.y * b.y + a.z * b.z;
 }
-
-// xorshift-multiply generator: the cheapest stream that is good enough for a yardstick.
-struct FastRng {
-  uint64_t s;
-  float next() {
-    s ^= s >> 12, s ^= s << 25, s ^= s >> 27;
-    return float((s * 0x2545F4914F6CDD1DULL) >> 40) * 0x1p-24f;
-  }
-};
 
 struct SphereAreaLoop {
   const Float3 eye{4, 4, 0};

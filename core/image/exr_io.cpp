@@ -35,10 +35,6 @@ ImageMetadata stringAttributes(const Imf::Header& header) {
   return meta;
 }
 
-}  // namespace
-
-namespace {
-
 // OpenEXR compresses and decompresses line blocks on its own thread pool, none by default: on all
 // cores a 768² image is written in about half the time.
 void useEveryCoreForExr() {

@@ -1,9 +1,10 @@
 // Progressive renderer: whole-image passes of one sample per pixel on a pool of worker threads.
 // Pass p uses sample index p in every pixel (or the index a SampleSchedule gives it), so the image
 // depends only on (scene, settings, seed), never on thread count or scheduling. Cancellation takes effect
-// within one pixel (its samples; a batch of AO samples, about a thousand rays, in Embree scenes). stopNow() ends a render as fast, keeping the rows that completed the
-// running pass, so that every row holds whole passes (rowPasses()): a worker either finishes its row
-// or, where rows are expensive, restores the row's sums from a copy taken before the row.
+// within one pixel (its samples; a batch of AO samples, about a thousand rays, in Embree scenes). stopNow()
+// ends a render as fast, keeping the rows that completed the running pass, so that every row holds whole
+// passes (rowPasses()): a worker either finishes its row or, where rows are expensive, restores the row's
+// sums from a copy taken before the row.
 //
 // The engine schedules passes; its parts keep the rest: WorkerPool (threads and their priority),
 // PassBarrier (the workers' meeting at each pass boundary), RenderClock (time with pauses excluded,
