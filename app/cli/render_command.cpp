@@ -19,6 +19,7 @@
 #include "core/render/engine.h"
 #include "core/render/memory_estimate.h"
 #include "core/render/publish_signal.h"
+#include "core/render/row_renderer.h"
 #include "core/scene/light_selection_default.h"
 
 namespace penumbra::cli {
@@ -206,6 +207,7 @@ int runRender(const RenderOptions& o) {
               strategyLabel(job->settings.integrator).c_str(), engine.threadCount(),
               interrupted ? " (interrupted: the completed passes were written)" : "");
   if (!selection.empty()) std::printf("%s\n", selection.c_str());
+  std::printf("row loop: %s\n", rowLoopSummary(*job).c_str());
   std::fflush(stdout);
   // At most TevStreamOptions::waitSeconds more.
   if (tev) tev->finish(net::TevFrame{tevName, final.mean, final.standardError, true});

@@ -78,6 +78,12 @@ class SceneGeometry {
   bool spheresUseBvh() const { return scene_ && spheresInEmbree_; }
   const std::vector<Sphere>& spheres() const { return spheres_; }
   const std::vector<TriangleMesh>& meshes() const { return meshes_; }
+  // The objectId given with sphere i and with mesh i.
+  uint32_t sphereObjectId(size_t i) const { return sphereIds_[i]; }
+  uint32_t meshObjectId(size_t i) const { return meshIds_[i]; }
+  // Brute-force path only: the parallelograms, and the triangles tested one by one.
+  const std::vector<Parallelogram>& parallelograms() const { return quads_; }
+  size_t flatTriangleCount() const { return flat_.size(); }
 
  private:
   friend class OcclusionBatch;  // sends the BVH part of many occlusion queries to Embree at once

@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstdint>
 
+#include "core/integrators/direct_lighting.h"
 #include "core/integrators/light_technique.h"
 #include "core/integrators/polygon_light_technique.h"
 #include "core/integrators/reflection.h"

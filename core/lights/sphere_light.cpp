@@ -9,11 +9,8 @@
 namespace penumbra {
 namespace {
 
-// Below this 1 − cos θmax the cone pdf 1 / (2π (1 − cos θmax)) would not fit in a float.
-constexpr double kMinOneMinusCos = 0x1p-120;
-// Largest density returned as a float; an area pdf beyond it (a light so small that 4π r² underflows)
-// marks the sample invalid rather than returning +inf.
-constexpr double kMaxPdf = 3.4028234663852886e38;
+constexpr double kMinOneMinusCos = SphereLight::kMinOneMinusCos;
+constexpr double kMaxPdf = SphereLight::kMaxPdf;
 // Float directions carry ~2^-24 relative error per component: a sampled direction at the cone's edge
 // may round up to a few 2^-24 outside it. pdfSolidAngle accepts sin θ up to sin θmax + 2^-22, so it
 // never returns 0 for a direction sampleSolidAngle produced (matters for cones of sin²θmax ≲ 1e-8).

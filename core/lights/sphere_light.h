@@ -14,6 +14,12 @@ struct SphereLight {
   // Index of this sphere in SceneGeometry (-1: not in it), so its own shadow rays can skip it.
   int32_t geometryIndex = -1;
 
+  // Below this 1 − cos θmax the cone pdf 1 / (2π (1 − cos θmax)) would not fit in a float.
+  static constexpr double kMinOneMinusCos = 0x1p-120;
+  // Largest density returned as a float; an area pdf beyond it (a light so small that 4π r²
+  // underflows) marks the sample invalid rather than returning +inf.
+  static constexpr double kMaxPdf = 3.4028234663852886e38;
+
   float area() const { return 4.f * kPi * sphere.radius * sphere.radius; }
   // Area density of sampleArea: 1 / (4π r²) (0 for a radius-0 light).
   float pdfArea() const;

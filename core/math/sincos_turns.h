@@ -17,13 +17,22 @@ struct SinCos {
   float sin, cos;
 };
 
-// sin and cos of |x| <= π/4: the polynomials alone (Cephes sinf / cosf minimax coefficients).
+// Cephes sinf / cosf minimax coefficients for |x| <= π/4 (the packet kernels evaluate the same
+// polynomials lane by lane).
+struct SinCosCoefficients {
+  static constexpr float kSin1 = -1.6666654611e-1f, kSin2 = 8.3321608736e-3f, kSin3 = -1.9515295891e-4f;
+  static constexpr float kCos1 = 4.166664568298827e-2f, kCos2 = -1.388731625493765e-3f,
+                         kCos3 = 2.443315711809948e-5f;
+  // Round to nearest by adding and subtracting 1.5·2^23.
+  static constexpr float kRoundingBias = 0x1.8p23f;
+};
+
+// sin and cos of |x| <= π/4: the polynomials alone.
 inline SinCos sinCosQuarterPi(float x) {
+  using K = SinCosCoefficients;
   const float x2 = x * x;
-  const float s = x + x * x2 * (-1.6666654611e-1f + x2 * (8.3321608736e-3f + x2 * -1.9515295891e-4f));
-  const float c =
-      1.f - 0.5f * x2 +
-      x2 * x2 * (4.166664568298827e-2f + x2 * (-1.388731625493765e-3f + x2 * 2.443315711809948e-5f));
+  const float s = x + x * x2 * (K::kSin1 + x2 * (K::kSin2 + x2 * K::kSin3));
+  const float c = 1.f - 0.5f * x2 + x2 * x2 * (K::kCos1 + x2 * (K::kCos2 + x2 * K::kCos3));
   return {s, c};
 }
 
@@ -31,7 +40,7 @@ inline SinCos sinCosTurns(float turns) {
   const float quarters = 4.f * turns;  // exact: a power-of-two scale
   // Round to nearest by the 1.5·2^23 trick (std::nearbyint is a libm call without SSE4.1); beyond
   // 2^22 quarters every float is already (nearly) whole and no precision is left to keep anyway.
-  constexpr float kRoundingBias = 0x1.8p23f;
+  constexpr float kRoundingBias = SinCosCoefficients::kRoundingBias;
   const float q = std::fabs(quarters) < 0x1p22f ? (quarters + kRoundingBias) - kRoundingBias : quarters;
   const SinCos r = sinCosQuarterPi((quarters - q) * kPiOver2);  // quarters − q is exact
   const float s = r.sin, c = r.cos;

@@ -6,6 +6,9 @@
 #include "core/integrators/mis_light_share.h"
 #include "core/integrators/normals_integrator.h"
 #include "core/render/ao_batch_row_loop.h"
+#include "core/render/packet_kernels.h"
+#include "core/render/packet_row_loop.h"
+#include "core/render/packet_scene.h"
 #include "core/render/ray_estimator.h"
 #include "core/render/row_loop.h"
 #include "core/render/strategy_axes.h"
@@ -99,7 +102,18 @@ RowRenderer makeRowRenderer(const RenderJob& job) {
   if (d.type == IntegratorType::Ao && job.scene->geometry.usesEmbree())
     return withWarp(d.warp,
                     [&](auto w) { return aoBatchRowsFor(job, AoIntegrator<decltype(w)::value>{d.samples}); });
+  if (packetPathEnabled() && packetUnsupportedReason(job).empty())
+    return packetRowsFor(job, makeScalarRowRenderer(job));
   return makeScalarRowRenderer(job);
+}
+
+std::string rowLoopSummary(const RenderJob& job) {
+  const std::string reason = packetPathEnabled() ? packetUnsupportedReason(job) : "PENUMBRA_SIMD=off";
+  if (reason.empty())
+    return "packets of " + std::to_string(packetLanes()) + " camera samples (" + packetTargetName() + ")";
+  if (job.settings.integrator.type == IntegratorType::Ao && job.scene->geometry.usesEmbree())
+    return "ambient occlusion rays in batches of " + std::to_string(kAoBatchRays);
+  return "one camera sample at a time: " + reason;
 }
 
 RowRenderer makeScalarRowRenderer(const RenderJob& job) {

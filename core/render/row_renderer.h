@@ -7,6 +7,7 @@
 #include <atomic>
 #include <cstdint>
 #include <functional>
+#include <string>
 
 #include "core/image/image.h"
 #include "core/render/film.h"
@@ -30,10 +31,14 @@ struct RowRenderer {
       preview;
 };
 
-// The row renderer of the job's strategy: ambient occlusion in a scene whose triangles are in Embree
-// traces its visibility rays in batches (ao_batch_row_loop.h); everything else renders one camera
-// sample at a time.
+// The row renderer of the job's strategy: packets of camera samples in SIMD lanes where the packet
+// path supports the job (packet_row_loop.h); ambient occlusion in a scene whose triangles are in
+// Embree traces its visibility rays in batches (ao_batch_row_loop.h); everything else renders one
+// camera sample at a time.
 RowRenderer makeRowRenderer(const RenderJob& job);
+// Which of those makeRowRenderer chooses for the job, in words (e.g. "packets of 8 camera samples
+// (AVX3)", or "one camera sample at a time: <why not in packets>").
+std::string rowLoopSummary(const RenderJob& job);
 // One camera sample at a time for every strategy: the reference the batched loops are tested against
 // (the same image, bit for bit).
 RowRenderer makeScalarRowRenderer(const RenderJob& job);

@@ -1,0 +1,55 @@
+// The packet kernels: the radiance of W camera rays at once, structure of arrays, one lane per camera
+// sample (W = the double lanes of the widest instruction set the CPU has: 8 on AVX-512, 4 on AVX2, 2 on
+// SSE4 and the portable fallback; the scalar code they mirror computes in double where it needs to, so
+// lanes are as wide as a double vector). Compiled once per instruction set by Highway
+// (packet_kernels.cpp) and chosen at run time. Each kernel computes, lane by lane, exactly what the
+// scalar integrator computes for that ray (same operations in the same order, no fused multiply-add),
+// so the images are the same bit for bit.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/render/packet_scene.h"
+
+namespace penumbra {
+
+inline constexpr int kMaxPacketLanes = 8;
+
+// Camera rays of one packet. Lanes beyond the packet's pixels repeat a valid ray (their results are
+// not used).
+struct alignas(64) PacketRays {
+  float o[3][kMaxPacketLanes];
+  float d[3][kMaxPacketLanes];
+  float tMin[kMaxPacketLanes];
+  float tMax[kMaxPacketLanes];
+};
+
+// The sampler's draws of the light samples of each lane: draw j (light j / samples, sample
+// j % samples) in u[j][0] and u[j][1].
+struct alignas(64) PacketDraws {
+  float u[kMaxPacketDraws][2][kMaxPacketLanes];
+};
+
+struct alignas(64) PacketRadiance {
+  float L[3][kMaxPacketLanes];
+};
+
+// Lanes per packet of the instruction set in use.
+int packetLanes();
+// The instruction set in use ("AVX3" is AVX-512), as Highway names it.
+std::string packetTargetName();
+// The instruction sets this binary has kernels for that this CPU runs, best first (Highway's names).
+std::vector<std::string> availablePacketTargets();
+// Restricts the kernels to the instruction set `name` (one of availablePacketTargets()), or lifts the
+// restriction for "" or "auto". False if `name` is not available. Not thread-safe: call before
+// rendering (tests, benchmarks, PENUMBRA_SIMD).
+bool forcePacketTarget(const std::string& name);
+
+// `direct` by light sampling of every sphere light (scene.measure: area or solid angle) on a
+// diffuse scene of spheres and parallelograms: the radiance of each lane's camera ray.
+void shadeDirectPacket(const PacketScene& scene, const PacketRays& rays, const PacketDraws& draws,
+                       PacketRadiance& out);
+
+}  // namespace penumbra

@@ -1,0 +1,208 @@
+#include "core/render/packet_row_loop.h"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <memory>
+#include <thread>
+
+#include "core/geometry/procedural_mesh.h"
+#include "core/materials/bsdf.h"
+#include "core/math/frame.h"
+#include "core/render/engine.h"
+#include "core/render/packet_kernels.h"
+#include "core/render/packet_scene.h"
+#include "core/sampling/sampler_table.h"
+
+namespace penumbra {
+namespace {
+
+// Restores the best instruction set when a test that forces one ends.
+struct ForcedTarget {
+  explicit ForcedTarget(const std::string& name) { EXPECT_TRUE(forcePacketTarget(name)) << name; }
+  ~ForcedTarget() { forcePacketTarget("auto"); }
+};
+
+struct TestScene {
+  std::shared_ptr<const Scene> scene;
+  float scale;
+};
+
+// Every case a lane can meet, all in one image (at coordinates times `scale`): the sky (lanes that miss
+// everything), a floor parallelogram and a wall seen from behind (normals flipped to the viewer), a
+// diffuse sphere, a black sphere (nothing shaded), a light seen directly that also reflects (albedo
+// 0.5, as scene files give emitters) and one that does not, a light of black radiance, a tiny distant
+// light, and a diffuse sphere that cuts into a light (shading points inside it, lit by nothing of it).
+TestScene packetTestScene(float scale) {
+  auto scene = std::make_shared<Scene>();
+  auto addObject = [&](Color3 albedo) {
+    scene->materials.push_back(SurfaceMaterial{makeDiffuse(albedo)});
+    return uint32_t(scene->materials.size() - 1);
+  };
+  auto addLight = [&](Vec3 c, float r, Color3 radiance, Color3 albedo) {
+    const uint32_t object = addObject(albedo);
+    const int32_t index = int32_t(scene->geometry.addSphere(Sphere{c * scale, r * scale}, object));
+    scene->materials[object].sphereLight = int32_t(scene->sphereLights.size());
+    SphereLight light{Sphere{c * scale, r * scale}, radiance};
+    light.geometryIndex = index;
+    scene->sphereLights.push_back(light);
+  };
+  const float s = scale;
+  scene->geometry.addMesh(makeGridPlane(Vec3(-4, -1, -4) * s, Vec3(0, 0, 8) * s, Vec3(8, 0, 0) * s, 1, 1),
+                          addObject(Color3(0.8f)));
+  // A wall whose front faces away from the camera.
+  scene->geometry.addMesh(makeGridPlane(Vec3(-3, -1, -2) * s, Vec3(0, 2, 0) * s, Vec3(2, 0, 0) * s, 1, 1),
+                          addObject(Color3(0.6f, 0.7f, 0.2f)));
+  scene->geometry.addSphere(Sphere{Vec3(0, -0.3f, 0) * s, 0.7f * s}, addObject(Color3(0.5f, 0.25f, 0.9f)));
+  scene->geometry.addSphere(Sphere{Vec3(-1.4f, -0.6f, 0.8f) * s, 0.4f * s}, addObject(Color3(0.f)));
+  addLight(Vec3(1.2f, 0.9f, 0.6f), 0.3f, Color3(6.f, 5.f, 4.f), Color3(0.5f));
+  addLight(Vec3(-0.9f, 1.1f, -0.8f), 0.2f, Color3(3.f, 9.f, 2.f), Color3(0.f));
+  addLight(Vec3(0.f, 2.f, 1.f), 0.5f, Color3(0.f), Color3(0.5f));
+  addLight(Vec3(40.f, 30.f, 20.f), 1e-3f, Color3(1e6f), Color3(0.5f));
+  scene->geometry.addSphere(Sphere{Vec3(1.5f, -0.7f, -0.6f) * s, 0.35f * s}, addObject(Color3(0.9f)));
+  addLight(Vec3(1.7f, -0.5f, -0.6f), 0.25f, Color3(2.f), Color3(0.5f));
+  scene->geometry.build(AccelMode::BruteForce, AccelMode::BruteForce);
+  scene->rayLengthBound = scene->geometry.bounds().diagonal() * 1.01f;
+  return {std::move(scene), scale};
+}
+
+std::shared_ptr<const RenderJob> directJob(const TestScene& t, LightMeasure measure, int samples,
+                                           SamplerKind sampler) {
+  RenderSettings s;
+  CameraDesc& cam = s.camera;
+  const Vec3 origin = Vec3(2.6f, 1.4f, 3.4f) * t.scale, target = Vec3(0.f, -0.2f, 0.f) * t.scale;
+  const Vec3 dir = glm::normalize(target - origin);
+  const Vec3 left = glm::normalize(glm::cross(Vec3(0, 1, 0), dir));
+  cam.toWorld = cameraToWorld(origin, left, glm::cross(dir, left), dir);
+  cam.fovDegrees = 70.f;
+  cam.width = 67;  // not a multiple of any packet width
+  cam.height = 29;
+  s.samplerKind = sampler;
+  s.sampleCount = 8;
+  s.seed = 5;
+  s.integrator.type = IntegratorType::Direct;
+  s.integrator.estimator = Estimator::Light;
+  s.integrator.lightMeasure = measure;
+  s.integrator.lightSelection = LightSelection::All;
+  s.integrator.samples = samples;
+  return std::make_shared<RenderJob>(t.scene, s, RenderLimits{});
+}
+
+RowRenderer packetRows(const RenderJob& job) {
+  return packetRowsFor(job, makeScalarRowRenderer(job));
+}
+
+// The film's sums (every pixel's sum and sum of squares, in double) after `spp` passes.
+std::vector<double> renderSums(const std::shared_ptr<const RenderJob>& job, bool packets, uint32_t spp) {
+  Engine engine;
+  engine.setRowRendererFactory(packets ? packetRows : makeScalarRowRenderer);
+  engine.start(job, RenderLimits{spp, 0.0}, 2);
+  engine.wait();
+  EXPECT_EQ(engine.progress().badSamples, 0u);
+  return engine.film().sums();
+}
+
+// Each lane computes exactly what the scalar integrator computes, so the film is the scalar loop's bit
+// for bit: on every instruction set this CPU has, for both light measures, every sampler, one and
+// several light samples, at 1e-4, 1 and 1e4 scene units.
+TEST(PacketRowLoop, EqualsTheScalarLoopBitForBit) {
+  for (const float scale : {1e-4f, 1.f, 1e4f}) {
+    const TestScene t = packetTestScene(scale);
+    for (const std::string& target : availablePacketTargets()) {
+      ForcedTarget forced(target);
+      for (const LightMeasure measure : {LightMeasure::Area, LightMeasure::SolidAngle}) {
+        for (int k = 0; k < kSamplerKindCount; ++k) {
+          const SamplerKind sampler = SamplerKind(k);
+          for (const int samples : {1, 3}) {
+            SCOPED_TRACE(target + " " + samplerKindName(sampler) + " samples " + std::to_string(samples) +
+                         (measure == LightMeasure::Area ? " area" : " solid angle") + " scale " +
+                         std::to_string(scale));
+            const auto job = directJob(t, measure, samples, sampler);
+            ASSERT_EQ(packetUnsupportedReason(*job), "");
+            const std::vector<double> packets = renderSums(job, true, 2), scalar = renderSums(job, false, 2);
+            ASSERT_EQ(packets.size(), scalar.size());
+            EXPECT_EQ(packets, scalar);
+          }
+        }
+      }
+    }
+  }
+}
+
+// The image has every kind of lane: sky pixels (0), lights seen directly (brighter than any reflection
+// here) and lit surfaces, so the comparison above exercises the masks.
+TEST(PacketRowLoop, TheTestImageHasEveryKindOfLane) {
+  const auto job = directJob(packetTestScene(1.f), LightMeasure::SolidAngle, 1, SamplerKind::Independent);
+  const std::vector<double> sums = renderSums(job, true, 1);
+  int sky = 0, light = 0, lit = 0;
+  for (size_t i = 0; i < sums.size(); i += 6) {
+    const double r = sums[i];
+    sky += r == 0.0;
+    light += r >= 2.0;
+    lit += r > 0.0 && r < 2.0;
+  }
+  EXPECT_GT(sky, 20);
+  EXPECT_GT(light, 20);
+  EXPECT_GT(lit, 200);
+}
+
+// What the packet path takes, and what it leaves to the scalar loop (with the reason).
+TEST(PacketRowLoop, SupportsLightSamplingOfSphereLightsOnFlatDiffuseScenes) {
+  const TestScene t = packetTestScene(1.f);
+  auto job = std::make_shared<RenderJob>(*directJob(t, LightMeasure::Area, 1, SamplerKind::Sobol));
+  EXPECT_EQ(packetUnsupportedReason(*job), "");
+  job->settings.integrator.lightMeasure = LightMeasure::ProjectedSolidAngle;
+  EXPECT_NE(packetUnsupportedReason(*job), "");
+  job->settings.integrator.lightMeasure = LightMeasure::Area;
+  job->settings.integrator.lightSelection = LightSelection::Power;
+  EXPECT_NE(packetUnsupportedReason(*job), "");
+  job->settings.integrator.lightSelection = LightSelection::All;
+  job->settings.integrator.samples = kMaxPacketDraws;  // 6 lights × 64 draws do not fit a packet
+  EXPECT_NE(packetUnsupportedReason(*job), "");
+  job->settings.integrator.samples = 1;
+  job->output = RenderOutput::MisLightShare;
+  EXPECT_NE(packetUnsupportedReason(*job), "");
+  auto glossy = std::make_shared<Scene>();
+  glossy->geometry.addSphere(Sphere{Vec3(0.f), 1.f}, 0);
+  glossy->materials.push_back(SurfaceMaterial{});
+  glossy->materials[0].bsdf.type = BsdfType::RoughConductor;
+  glossy->geometry.build();
+  job = std::make_shared<RenderJob>(glossy, job->settings, RenderLimits{});
+  EXPECT_NE(packetUnsupportedReason(*job), "");
+}
+
+// Every instruction set this binary has kernels for runs here and can be chosen; an unknown name
+// cannot.
+TEST(PacketRowLoop, InstructionSetsCanBeChosen) {
+  const std::vector<std::string> targets = availablePacketTargets();
+  ASSERT_FALSE(targets.empty());
+  for (const std::string& target : targets) {
+    ForcedTarget forced(target);
+    EXPECT_EQ(packetTargetName(), target);
+    EXPECT_GE(packetLanes(), 1);
+    EXPECT_LE(packetLanes(), kMaxPacketLanes);
+  }
+  EXPECT_FALSE(forcePacketTarget("NEON"));
+  EXPECT_EQ(packetTargetName(), targets.front());
+}
+
+// Cancelling stops a row between packets: a cancelled 1-spp render of a 16384 x 64 image (about a
+// second of work) ends at once with no pass completed.
+TEST(PacketRowLoop, CancelStopsBetweenPackets) {
+  auto job = std::make_shared<RenderJob>(
+      *directJob(packetTestScene(1.f), LightMeasure::Area, 8, SamplerKind::Independent));
+  job->settings.camera.width = 16384;
+  job->settings.camera.height = 64;
+  Engine engine;
+  engine.setRowRendererFactory(packetRows);
+  engine.start(job, RenderLimits{1, 0.0}, 1);
+  std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  const auto start = std::chrono::steady_clock::now();
+  engine.cancel();
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 5.0);
+  EXPECT_EQ(engine.progress().spp, 0u);
+  EXPECT_TRUE(engine.progress().finished);
+}
+
+}  // namespace
+}  // namespace penumbra

@@ -1,0 +1,64 @@
+// A scene as the packet kernels read it (packet_kernels.cpp): flat arrays of spheres, parallelograms,
+// per-object diffuse materials and sphere lights, copied once per render from a Scene the packet path
+// supports. Plain data only, so the kernels (compiled once per instruction set) include nothing that
+// another translation unit could inline with other flags.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/geometry/parallelogram.h"
+#include "core/render/render_job.h"
+
+namespace penumbra {
+
+struct PacketSphere {
+  float center[3];
+  float radius;
+  float offsetScale;  // maxAbsComponent(center) + radius: the floor of its hits' offset scale
+  uint32_t object;    // index into PacketScene::objects
+};
+
+struct PacketQuad {
+  Parallelogram shape;
+  uint32_t object;
+};
+
+// What a camera ray finds at an object: albedo/π (0 for a black albedo: nothing is shaded there) and,
+// for an emitting sphere, its radiance towards a viewer on its outer side.
+struct PacketObject {
+  float albedoOverPi[3];
+  bool shades;  // albedo not black
+  bool emits;
+  float radiance[3];
+};
+
+struct PacketLight {
+  float center[3];
+  float radius;
+  float scale;  // lightScaleOf: how far its shadow rays stop short
+  float radiance[3];
+  bool black;              // radiance 0: every sample is skipped (its draws are still consumed)
+  int32_t geometrySphere;  // its index among PacketScene::spheres (skipped by its own shadow rays)
+};
+
+struct PacketScene {
+  std::vector<PacketSphere> spheres;
+  std::vector<PacketQuad> quads;
+  std::vector<PacketObject> objects;
+  std::vector<PacketLight> lights;
+  int lightSamples = 1;  // draws per light per camera sample
+  LightMeasure measure = LightMeasure::Area;
+};
+
+// The most light draws (lights × samples) a packet carries.
+inline constexpr int kMaxPacketDraws = 64;
+
+// Empty when the packet path renders `job` exactly as the scalar row loop would; otherwise why not
+// (the job then renders one camera sample at a time).
+std::string packetUnsupportedReason(const RenderJob& job);
+// The packet scene of a job for which packetUnsupportedReason is empty.
+PacketScene makePacketScene(const RenderJob& job);
+
+}  // namespace penumbra
