@@ -19,10 +19,14 @@
 #include <cmath>
 #include <cstdint>
 #include <memory>
+#include <thread>
 #include <vector>
 
 #include "bench/fast_rng.h"
+#include "core/math/sincos_turns.h"
 #include "core/render/engine.h"
+#include "core/render/filter.h"
+#include "core/render/row_renderer.h"
 #include "core/scene/scene_builder.h"
 
 namespace penumbra {
@@ -71,15 +75,17 @@ struct SphereAreaLoop {
       for (int px = 0; px < kSize; ++px) sums[size_t(py) * kSize + px] += sample(px, py, rng);
   }
 
-  float sample(int px, int py, FastRng& rng) {
-    const float sx = (float(px) + rng.next()) * (1.f / kSize), sy = (float(py) + rng.next()) * (1.f / kSize);
+  // The unit camera ray through image position (sx, sy) in [0, 1]².
+  Float3 cameraRay(float sx, float sy) const {
     Float3 d = (1.f - 2.f * sx) * tanHalf * right + (1.f - 2.f * sy) * tanHalf * up + forward;
-    d = (1.f / std::sqrt(dot(d, d))) * d;
+    return (1.f / std::sqrt(dot(d, d))) * d;
+  }
 
-    // Unit sphere at the origin (|d| = 1), then the plane z = −1.
+  // The nearest of the unit sphere at the origin and the plane z = −1 along unit d (t = 1e30: none).
+  void nearest(Float3 d, float& t, bool& onSphere) const {
     const float b = dot(eye, d), disc = b * b - (dot(eye, eye) - 1.f);
-    float t = 1e30f;
-    bool onSphere = false;
+    t = 1e30f;
+    onSphere = false;
     if (disc > 0.f) {
       const float t0 = -b - std::sqrt(disc);
       if (t0 > 0.f) t = t0, onSphere = true;
@@ -89,28 +95,91 @@ struct SphereAreaLoop {
       const Float3 p = eye + tp * d;
       if (std::fabs(p.x) <= 100.f && std::fabs(p.y) <= 100.f) t = tp;
     }
-    // The light seen directly (it covers ~1000 pixels and most of the image's mean).
+  }
+
+  // Whether the light is seen directly along d before t (it covers ~1000 pixels and most of the
+  // image's mean).
+  bool lightFirst(Float3 d, float t) const {
     const Float3 f = eye - lightCentre;
     const float bl = dot(f, d), discL = bl * bl - (dot(f, f) - lightRadius * lightRadius);
-    if (discL > 0.f && -bl - std::sqrt(discL) < t) return 300.f;
+    return discL > 0.f && -bl - std::sqrt(discL) < t;
+  }
+
+  // Whether the unit sphere (the only thing that can shadow the plane) blocks unit w from plane point p.
+  static bool sphereBlocks(Float3 p, Float3 w) {
+    const float bb = dot(p, w), dd = bb * bb - (dot(p, p) - 1.f);
+    return dd > 0.f && -bb - std::sqrt(dd) > 0.f;
+  }
+
+  float sample(int px, int py, FastRng& rng) {
+    const float sx = (float(px) + rng.next()) * (1.f / kSize), sy = (float(py) + rng.next()) * (1.f / kSize);
+    const Float3 d = cameraRay(sx, sy);
+    float t;
+    bool onSphere;
+    nearest(d, t, onSphere);
+    if (lightFirst(d, t)) return 300.f;
     if (t == 1e30f) return 0.f;
     const Float3 p = eye + t * d;
     const Float3 n = onSphere ? p : Float3{0, 0, 1};
 
     // Uniform point on the light sphere.
     const float z = 1.f - 2.f * rng.next(), r = std::sqrt(std::fmax(0.f, 1.f - z * z));
-    const float phi = 2.f * kPi * rng.next();
-    const Float3 nl{r * std::cos(phi), r * std::sin(phi), z};
+    const SinCos phi = sinCosTurns(rng.next());
+    const Float3 nl{r * phi.cos, r * phi.sin, z};
     const Float3 toL = lightCentre + lightRadius * nl - p;
     const float dist2 = dot(toL, toL), invDist = 1.f / std::sqrt(dist2);
     const float cosS = dot(n, toL) * invDist, cosL = -dot(nl, toL) * invDist;
     if (cosS <= 0.f || cosL <= 0.f) return 0.f;
-    if (!onSphere) {  // the unit sphere is the only thing that can shadow the plane
-      const Float3 w = invDist * toL;
-      const float bb = dot(p, w), dd = bb * bb - (dot(p, p) - 1.f);
-      if (dd > 0.f && -bb - std::sqrt(dd) > 0.f) return 0.f;
-    }
+    if (!onSphere && sphereBlocks(p, invDist * toL)) return 0.f;
     return scale * cosS * cosL / dist2;
+  }
+};
+
+// The same scene with scenes/hw2/Tests/sphere-solid.xml's strategy and the renderer's own filter: the
+// gaussian of the scene, importance-sampled by the renderer's FilterSampler (so both draw the same
+// pixel footprint), and a uniform direction in the cone the light subtends, in float. Both loops take
+// their azimuths from the renderer's sinCosTurns, the cheapest sin/cos it has.
+struct SphereSolidLoop : SphereAreaLoop {
+  FilterSampler filter{FilterDesc{}};  // the scene's: gaussian, radius 2, stddev 0.5
+  const float albedoRadianceOverPi = 0.5f / kPi * 300.f;
+
+  // Rows [y0, y1) of one pass.
+  void pass(FastRng& rng, int y0, int y1) {
+    for (int py = y0; py < y1; ++py)
+      for (int px = 0; px < kSize; ++px) sums[size_t(py) * kSize + px] += sample(px, py, rng);
+  }
+
+  float sample(int px, int py, FastRng& rng) {
+    float weight;
+    const Vec2 offset = filter.sample(Vec2(rng.next(), rng.next()), weight);
+    const Float3 d = cameraRay((float(px) + 0.5f + offset.x) * (1.f / kSize),
+                               (float(py) + 0.5f + offset.y) * (1.f / kSize));
+    float t;
+    bool onSphere;
+    nearest(d, t, onSphere);
+    if (lightFirst(d, t)) return 300.f * weight;
+    if (t == 1e30f) return 0.f;
+    const Float3 p = eye + t * d;
+    const Float3 n = onSphere ? p : Float3{0, 0, 1};
+
+    // Uniform in the cone towards the light: 1 − cos θ = u (1 − cos θmax), about the axis wc.
+    const Float3 toC = lightCentre - p;
+    const float dist2 = dot(toC, toC), invDist = 1.f / std::sqrt(dist2);
+    const Float3 wc = invDist * toC;
+    const float sin2Max = lightRadius * lightRadius / dist2;
+    const float oneMinusCosMax = sin2Max / (1.f + std::sqrt(1.f - sin2Max));
+    const float oneMinusCos = rng.next() * oneMinusCosMax;
+    const float cosT = 1.f - oneMinusCos, sinT = std::sqrt(oneMinusCos * (2.f - oneMinusCos));
+    const SinCos phi = sinCosTurns(rng.next());
+    // Duff et al.'s branchless basis about wc.
+    const float sign = std::copysign(1.f, wc.z), a = -1.f / (sign + wc.z), b = wc.x * wc.y * a;
+    const Float3 s{1.f + sign * wc.x * wc.x * a, sign * b, -sign * wc.x};
+    const Float3 u{b, sign + wc.y * wc.y * a, -wc.y};
+    const Float3 w = (sinT * phi.cos) * s + (sinT * phi.sin) * u + cosT * wc;
+    const float cosS = dot(n, w);
+    if (cosS <= 0.f) return 0.f;
+    if (!onSphere && sphereBlocks(p, w)) return 0.f;
+    return albedoRadianceOverPi * cosS * (2.f * kPi * oneMinusCosMax) * weight;
   }
 };
 
@@ -128,6 +197,65 @@ void BM_Yardstick_SphereArea(benchmark::State& state) {
   state.SetItemsProcessed(int64_t(passes) * kSize * kSize);
 }
 BENCHMARK(BM_Yardstick_SphereArea)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// The sphere-solid loop over `threads` threads (rows split in two halves: the scene's cost is even
+// enough across rows), kPasses passes per iteration.
+void BM_Yardstick_SphereSolid(benchmark::State& state) {
+  constexpr int kPasses = 16;
+  const int threads = int(state.range(0));
+  SphereSolidLoop loop;
+  std::vector<FastRng> rngs;
+  for (int i = 0; i < threads; ++i) rngs.push_back(FastRng{0x9E3779B97F4A7C15ULL + uint64_t(i) * 0x1234567ULL});
+  for (auto _ : state) {
+    for (int pass = 0; pass < kPasses; ++pass) {
+      std::vector<std::thread> workers;
+      for (int i = 0; i < threads; ++i)
+        workers.emplace_back([&, i] { loop.pass(rngs[i], kSize * i / threads, kSize * (i + 1) / threads); });
+      for (std::thread& w : workers) w.join();
+    }
+  }
+  double sum = 0;
+  for (float v : loop.sums) sum += v;
+  state.counters["image_mean"] = sum / (double(state.iterations()) * kPasses * kSize * kSize);
+  state.SetItemsProcessed(int64_t(state.iterations()) * kPasses * kSize * kSize);
+}
+BENCHMARK(BM_Yardstick_SphereSolid)
+    ->ArgName("threads")
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+// The renderer on scenes/hw2/Tests/sphere-solid.xml (the built-in scene with the solid-angle measure),
+// 16 passes of 768² as `penumbra render --spp 16` renders them, in packets (simd:1) or one camera
+// sample at a time (simd:0).
+void BM_Penumbra_SphereSolid(benchmark::State& state) {
+  LoadedScene s = loadSceneFromString(defaultSceneXml(), "<built-in sphere scene>", ".");
+  RenderSettings settings = s.settings;
+  settings.integrator = withSamples(directByLight(LightMeasure::SolidAngle), 1);
+  const int threads = int(state.range(0));
+  constexpr uint32_t kPasses = 16;
+  const RenderLimits limits{kPasses, 0.0};
+  const auto job = std::make_shared<const RenderJob>(s.scene, settings, limits);
+  Engine engine;
+  if (state.range(1) == 0) engine.setRowRendererFactory(makeScalarRowRenderer);
+  for (auto _ : state) {
+    engine.start(job, limits, threads);
+    engine.wait();
+  }
+  const Image image = engine.film().mean(kPasses);
+  double sum = 0;
+  for (size_t i = 0; i < image.rgb.size(); i += 3) sum += image.rgb[i];
+  state.counters["image_mean"] = sum / double(image.pixelCount());
+  state.SetItemsProcessed(int64_t(state.iterations()) * kPasses * kSize * kSize);
+}
+BENCHMARK(BM_Penumbra_SphereSolid)
+    ->ArgNames({"threads", "simd"})
+    ->Args({1, 1})
+    ->Args({2, 1})
+    ->Args({2, 0})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 // The general renderer on the scene as shipped (gaussian filter, area measure, one shadow ray), in
 // whole passes through the progressive engine; items are camera samples.
