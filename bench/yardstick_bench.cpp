@@ -205,7 +205,8 @@ void BM_Yardstick_SphereSolid(benchmark::State& state) {
   const int threads = int(state.range(0));
   SphereSolidLoop loop;
   std::vector<FastRng> rngs;
-  for (int i = 0; i < threads; ++i) rngs.push_back(FastRng{0x9E3779B97F4A7C15ULL + uint64_t(i) * 0x1234567ULL});
+  for (int i = 0; i < threads; ++i)
+    rngs.push_back(FastRng{0x9E3779B97F4A7C15ULL + uint64_t(i) * 0x1234567ULL});
   for (auto _ : state) {
     for (int pass = 0; pass < kPasses; ++pass) {
       std::vector<std::thread> workers;

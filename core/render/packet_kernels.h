@@ -26,8 +26,9 @@ struct alignas(64) PacketRays {
   float tMax[kMaxPacketLanes];
 };
 
-// The sampler's draws of the light samples of each lane: draw j (light j / samples, sample
-// j % samples) in u[j][0] and u[j][1].
+// The sampler's draws of each lane's shading samples (PacketScene::drawCount of them), in the order
+// the scalar integrator draws them: draw j in u[j][0] and u[j][1]. For light sampling, draw j is
+// light j / samples, sample j % samples.
 struct alignas(64) PacketDraws {
   float u[kMaxPacketDraws][2][kMaxPacketLanes];
 };
@@ -47,9 +48,8 @@ std::vector<std::string> availablePacketTargets();
 // rendering (tests, benchmarks, PENUMBRA_SIMD).
 bool forcePacketTarget(const std::string& name);
 
-// `direct` by light sampling of every sphere light (scene.measure: area or solid angle) on a
-// diffuse scene of spheres and parallelograms: the radiance of each lane's camera ray.
-void shadeDirectPacket(const PacketScene& scene, const PacketRays& rays, const PacketDraws& draws,
-                       PacketRadiance& out);
+// The radiance of each lane's camera ray by the scene's kernel.
+void shadePacket(const PacketScene& scene, const PacketRays& rays, const PacketDraws& draws,
+                 PacketRadiance& out);
 
 }  // namespace penumbra

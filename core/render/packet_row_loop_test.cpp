@@ -12,6 +12,7 @@
 #include "core/render/engine.h"
 #include "core/render/packet_kernels.h"
 #include "core/render/packet_scene.h"
+#include "core/render/strategy_axes.h"
 #include "core/sampling/sampler_table.h"
 
 namespace penumbra {
@@ -66,8 +67,8 @@ TestScene packetTestScene(float scale) {
   return {std::move(scene), scale};
 }
 
-std::shared_ptr<const RenderJob> directJob(const TestScene& t, LightMeasure measure, int samples,
-                                           SamplerKind sampler) {
+std::shared_ptr<const RenderJob> jobFor(const TestScene& t, const IntegratorDesc& strategy, int samples,
+                                        SamplerKind sampler) {
   RenderSettings s;
   CameraDesc& cam = s.camera;
   const Vec3 origin = Vec3(2.6f, 1.4f, 3.4f) * t.scale, target = Vec3(0.f, -0.2f, 0.f) * t.scale;
@@ -80,11 +81,7 @@ std::shared_ptr<const RenderJob> directJob(const TestScene& t, LightMeasure meas
   s.samplerKind = sampler;
   s.sampleCount = 8;
   s.seed = 5;
-  s.integrator.type = IntegratorType::Direct;
-  s.integrator.estimator = Estimator::Light;
-  s.integrator.lightMeasure = measure;
-  s.integrator.lightSelection = LightSelection::All;
-  s.integrator.samples = samples;
+  s.integrator = withSamples(strategy, samples);
   return std::make_shared<RenderJob>(t.scene, s, RenderLimits{});
 }
 
@@ -102,22 +99,32 @@ std::vector<double> renderSums(const std::shared_ptr<const RenderJob>& job, bool
   return engine.film().sums();
 }
 
+// Every strategy a packet kernel computes.
+const IntegratorDesc kPacketStrategies[] = {
+    directByLight(LightMeasure::Area),
+    directByLight(LightMeasure::SolidAngle),
+    directByHemisphere(HemisphereWarp::Uniform),
+    directByHemisphere(HemisphereWarp::Cosine),
+    directByBsdf(),
+    aoBy(HemisphereWarp::Uniform),
+    aoBy(HemisphereWarp::Cosine),
+};
+
 // Each lane computes exactly what the scalar integrator computes, so the film is the scalar loop's bit
-// for bit: on every instruction set this CPU has, for both light measures, every sampler, one and
-// several light samples, at 1e-4, 1 and 1e4 scene units.
+// for bit: on every instruction set this CPU has, for every strategy with a kernel, every sampler,
+// one and several shading samples, at 1e-4, 1 and 1e4 scene units.
 TEST(PacketRowLoop, EqualsTheScalarLoopBitForBit) {
   for (const float scale : {1e-4f, 1.f, 1e4f}) {
     const TestScene t = packetTestScene(scale);
     for (const std::string& target : availablePacketTargets()) {
       ForcedTarget forced(target);
-      for (const LightMeasure measure : {LightMeasure::Area, LightMeasure::SolidAngle}) {
+      for (const IntegratorDesc& strategy : kPacketStrategies) {
         for (int k = 0; k < kSamplerKindCount; ++k) {
           const SamplerKind sampler = SamplerKind(k);
           for (const int samples : {1, 3}) {
             SCOPED_TRACE(target + " " + samplerKindName(sampler) + " samples " + std::to_string(samples) +
-                         (measure == LightMeasure::Area ? " area" : " solid angle") + " scale " +
-                         std::to_string(scale));
-            const auto job = directJob(t, measure, samples, sampler);
+                         " " + strategyLabel(strategy) + " scale " + std::to_string(scale));
+            const auto job = jobFor(t, strategy, samples, sampler);
             ASSERT_EQ(packetUnsupportedReason(*job), "");
             const std::vector<double> packets = renderSums(job, true, 2), scalar = renderSums(job, false, 2);
             ASSERT_EQ(packets.size(), scalar.size());
@@ -132,7 +139,8 @@ TEST(PacketRowLoop, EqualsTheScalarLoopBitForBit) {
 // The image has every kind of lane: sky pixels (0), lights seen directly (brighter than any reflection
 // here) and lit surfaces, so the comparison above exercises the masks.
 TEST(PacketRowLoop, TheTestImageHasEveryKindOfLane) {
-  const auto job = directJob(packetTestScene(1.f), LightMeasure::SolidAngle, 1, SamplerKind::Independent);
+  const auto job =
+      jobFor(packetTestScene(1.f), directByLight(LightMeasure::SolidAngle), 1, SamplerKind::Independent);
   const std::vector<double> sums = renderSums(job, true, 1);
   int sky = 0, light = 0, lit = 0;
   for (size_t i = 0; i < sums.size(); i += 6) {
@@ -147,9 +155,10 @@ TEST(PacketRowLoop, TheTestImageHasEveryKindOfLane) {
 }
 
 // What the packet path takes, and what it leaves to the scalar loop (with the reason).
-TEST(PacketRowLoop, SupportsLightSamplingOfSphereLightsOnFlatDiffuseScenes) {
+TEST(PacketRowLoop, SupportsItsStrategiesOnFlatDiffuseScenes) {
   const TestScene t = packetTestScene(1.f);
-  auto job = std::make_shared<RenderJob>(*directJob(t, LightMeasure::Area, 1, SamplerKind::Sobol));
+  auto job =
+      std::make_shared<RenderJob>(*jobFor(t, directByLight(LightMeasure::Area), 1, SamplerKind::Sobol));
   EXPECT_EQ(packetUnsupportedReason(*job), "");
   job->settings.integrator.lightMeasure = LightMeasure::ProjectedSolidAngle;
   EXPECT_NE(packetUnsupportedReason(*job), "");
@@ -157,7 +166,7 @@ TEST(PacketRowLoop, SupportsLightSamplingOfSphereLightsOnFlatDiffuseScenes) {
   job->settings.integrator.lightSelection = LightSelection::Power;
   EXPECT_NE(packetUnsupportedReason(*job), "");
   job->settings.integrator.lightSelection = LightSelection::All;
-  job->settings.integrator.samples = kMaxPacketDraws;  // 6 lights × 64 draws do not fit a packet
+  job->settings.integrator.samples = kMaxPacketDraws;  // 6 lights × 256 draws do not fit a packet
   EXPECT_NE(packetUnsupportedReason(*job), "");
   job->settings.integrator.samples = 1;
   job->output = RenderOutput::MisLightShare;
@@ -168,6 +177,11 @@ TEST(PacketRowLoop, SupportsLightSamplingOfSphereLightsOnFlatDiffuseScenes) {
   glossy->materials[0].bsdf.type = BsdfType::RoughConductor;
   glossy->geometry.build();
   job = std::make_shared<RenderJob>(glossy, job->settings, RenderLimits{});
+  EXPECT_NE(packetUnsupportedReason(*job), "");
+  // Ambient occlusion sees only the geometry.
+  job->settings.integrator = withSamples(aoBy(HemisphereWarp::Cosine), 4);
+  EXPECT_EQ(packetUnsupportedReason(*job), "");
+  job->settings.integrator = directByMis(LightMeasure::Area, MisHeuristic::Power);
   EXPECT_NE(packetUnsupportedReason(*job), "");
 }
 
@@ -190,7 +204,7 @@ TEST(PacketRowLoop, InstructionSetsCanBeChosen) {
 // second of work) ends at once with no pass completed.
 TEST(PacketRowLoop, CancelStopsBetweenPackets) {
   auto job = std::make_shared<RenderJob>(
-      *directJob(packetTestScene(1.f), LightMeasure::Area, 8, SamplerKind::Independent));
+      *jobFor(packetTestScene(1.f), directByLight(LightMeasure::Area), 8, SamplerKind::Independent));
   job->settings.camera.width = 16384;
   job->settings.camera.height = 64;
   Engine engine;

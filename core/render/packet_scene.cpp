@@ -2,27 +2,72 @@
 
 #include "core/integrators/sampling_loops.h"
 #include "core/math/vec.h"
+#include "core/render/strategy_axes.h"
 
 namespace penumbra {
+
+namespace {
+
+// The kernel of the job's strategy, or false when no kernel computes it.
+bool kernelOf(const IntegratorDesc& d, PacketKernel& kernel) {
+  const bool cosine = d.warp == HemisphereWarp::Cosine;
+  if (d.type == IntegratorType::Ao) {
+    kernel = cosine ? PacketKernel::AoCosine : PacketKernel::AoUniform;
+    return true;
+  }
+  if (d.type != IntegratorType::Direct) return false;
+  switch (d.estimator) {
+    case Estimator::Hemisphere:
+      kernel = cosine ? PacketKernel::HemisphereCosine : PacketKernel::HemisphereUniform;
+      return true;
+    case Estimator::Bsdf:  // the cosine warp on diffuse surfaces (the only ones the kernels shade)
+      kernel = PacketKernel::HemisphereCosine;
+      return true;
+    case Estimator::Light:
+      if (d.lightSelection != LightSelection::All) return false;
+      if (d.lightMeasure == LightMeasure::Area)
+        kernel = PacketKernel::LightArea;
+      else if (d.lightMeasure == LightMeasure::SolidAngle)
+        kernel = PacketKernel::LightSolidAngle;
+      else
+        return false;
+      return true;
+    case Estimator::Mis:
+      return false;
+  }
+  return false;
+}
+
+}  // namespace
+
+int PacketScene::drawCount() const {
+  const bool perLight = kernel == PacketKernel::LightArea || kernel == PacketKernel::LightSolidAngle;
+  return perLight ? samples * int(lights.size()) : samples;
+}
 
 std::string packetUnsupportedReason(const RenderJob& job) {
   const IntegratorDesc& d = job.settings.integrator;
   if (job.output != RenderOutput::Radiance) return "the job renders an output other than radiance";
-  if (d.type != IntegratorType::Direct || d.estimator != Estimator::Light)
-    return "the strategy is not light sampling";
-  if (d.lightSelection != LightSelection::All) return "the light selection is not `all`";
-  if (d.lightMeasure != LightMeasure::Area && d.lightMeasure != LightMeasure::SolidAngle)
-    return "the light measure is not area or solid angle";
+  PacketKernel kernel;
+  if (!kernelOf(d, kernel))
+    return "no packet kernel for " + strategyLabel(d) +
+           " (kernels: ao, direct by hemisphere or bsdf, light sampling of every light by area or solid "
+           "angle)";
   const Scene& scene = *job.scene;
   const SceneGeometry& g = scene.geometry;
   if (g.usesEmbree() || g.spheresUseBvh()) return "the scene's geometry is in a BVH";
   if (g.flatTriangleCount() != 0) return "the scene has triangles outside parallelograms";
+  const size_t draws =
+      size_t(std::max(d.samples, 1)) *
+      (d.estimator == Estimator::Light && d.type == IntegratorType::Direct ? scene.sphereLights.size() : 1);
+  if (draws > size_t(kMaxPacketDraws))
+    return "more shading samples per camera sample than a packet carries (" +
+           std::to_string(kMaxPacketDraws) + ")";
+  if (d.type == IntegratorType::Ao) return {};  // ambient occlusion sees only the geometry
   if (scene.hasDeltaLights()) return "the scene has point or directional lights";
   if (!scene.polygonLights.empty()) return "the scene has polygon lights";
   for (const SurfaceMaterial& m : scene.materials)
     if (!m.bsdf.isDiffuse()) return "the scene has a glossy material";
-  if (scene.sphereLights.size() * size_t(std::max(d.samples, 1)) > size_t(kMaxPacketDraws))
-    return "the scene has more light draws per camera sample than a packet carries";
   return {};
 }
 
@@ -30,8 +75,9 @@ PacketScene makePacketScene(const RenderJob& job) {
   const Scene& scene = *job.scene;
   const SceneGeometry& g = scene.geometry;
   PacketScene p;
-  p.lightSamples = job.settings.integrator.samples;
-  p.measure = job.settings.integrator.lightMeasure;
+  kernelOf(job.settings.integrator, p.kernel);
+  p.samples = job.settings.integrator.samples;
+  p.rayLengthBound = scene.rayLengthBound;
   for (size_t i = 0; i < g.spheres().size(); ++i) {
     const Sphere& s = g.spheres()[i];
     p.spheres.push_back({{s.center.x, s.center.y, s.center.z},
@@ -49,6 +95,7 @@ PacketScene makePacketScene(const RenderJob& job) {
     if (o.emits) {
       const Color3& Le = scene.sphereLights[m.sphereLight].radiance;
       o.radiance[0] = Le.x, o.radiance[1] = Le.y, o.radiance[2] = Le.z;
+      o.radianceNonBlack = !isBlack(Le);
     }
     p.objects.push_back(o);
   }

@@ -31,6 +31,7 @@ struct PacketObject {
   float albedoOverPi[3];
   bool shades;  // albedo not black
   bool emits;
+  bool radianceNonBlack;
   float radiance[3];
 };
 
@@ -43,17 +44,31 @@ struct PacketLight {
   int32_t geometrySphere;  // its index among PacketScene::spheres (skipped by its own shadow rays)
 };
 
+// The strategies the packet kernels compute (one kernel each, chosen per render).
+enum class PacketKernel : uint8_t {
+  LightArea,          // direct by light sampling, area measure, every light
+  LightSolidAngle,    // direct by light sampling, solid-angle measure, every light
+  HemisphereUniform,  // direct by uniform hemisphere directions
+  HemisphereCosine,   // direct by cosine hemisphere directions (also `bsdf` on diffuse surfaces)
+  AoUniform,          // ambient occlusion, uniform hemisphere
+  AoCosine,           // ambient occlusion, cosine hemisphere
+};
+
 struct PacketScene {
+  PacketKernel kernel = PacketKernel::LightArea;
   std::vector<PacketSphere> spheres;
   std::vector<PacketQuad> quads;
   std::vector<PacketObject> objects;
   std::vector<PacketLight> lights;
-  int lightSamples = 1;  // draws per light per camera sample
-  LightMeasure measure = LightMeasure::Area;
+  int samples = 1;           // shading samples per camera sample (per light, for light sampling)
+  float rayLengthBound = 0;  // how far ambient occlusion looks
+  // The sampler draws of one camera sample after the filter's: samples per light for light sampling,
+  // samples otherwise.
+  int drawCount() const;
 };
 
 // The most light draws (lights × samples) a packet carries.
-inline constexpr int kMaxPacketDraws = 64;
+inline constexpr int kMaxPacketDraws = 256;
 
 // Empty when the packet path renders `job` exactly as the scalar row loop would; otherwise why not
 // (the job then renders one camera sample at a time).

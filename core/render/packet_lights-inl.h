@@ -1,0 +1,119 @@
+// Sphere-light sampling of the packet kernels (area and solid angle), lane by lane as SphereLight
+// computes it.
+// Part of the packet kernels: included by packet_kernels.cpp once per instruction set (Highway's
+// re-inclusion toggle below), inside that set's namespace.
+#if defined(PENUMBRA_PACKET_LIGHTS_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef PENUMBRA_PACKET_LIGHTS_INL_H_
+#undef PENUMBRA_PACKET_LIGHTS_INL_H_
+#else
+#define PENUMBRA_PACKET_LIGHTS_INL_H_
+#endif
+
+#include <hwy/highway.h>
+#include "core/lights/sphere_light.h"
+#include "core/render/packet_math-inl.h"
+#include "core/render/packet_scene.h"
+
+HWY_BEFORE_NAMESPACE();
+namespace penumbra {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+// A light sample for every lane: the lanes where it is valid with a positive pdf and radiance.
+struct PacketLightSample {
+  MF valid;
+  V3F wi;
+  VF dist, pdf;
+};
+
+// SphereLight::sampleArea (with Warp::squareToUniformSphere).
+HWY_INLINE PacketLightSample sampleArea(const PacketLight& light, const V3F& x, VF u0, VF u1) {
+  const DF df;
+  const DD dd;
+  const VF w = setF(2.f) * u0;
+  const VF s2 = w * (setF(2.f) - w);
+  const VF sinTheta = hn::Sqrt(hn::IfThenElse(s2 < hn::Zero(df), hn::Zero(df), s2));
+  VF sinPhi, cosPhi;
+  sinCosTurns(u1, sinPhi, cosPhi);
+  const V3F n{sinTheta * cosPhi, sinTheta * sinPhi, setF(1.f) - w};
+  const VF r = setF(light.radius);
+  const V3F p{setF(light.center[0]) + r * n.x, setF(light.center[1]) + r * n.y,
+              setF(light.center[2]) + r * n.z};
+  const V3D xD = promote(x), pD = promote(p);
+  const V3D toP{pD.x - xD.x, pD.y - xD.y, pD.z - xD.z};
+  const VD dist2 = dot(toP, toP);
+  const VD nDotToP = dot(promote(n), toP);
+  const VD zero = hn::Zero(dd);
+  const VD dist = hn::Sqrt(dist2);
+  const VD invDist = setD(1.0) / dist;
+  const double fourPiR2 = 4.0 * kPiD * double(light.radius) * light.radius;
+  const VD pdf = dist2 * dist / (setD(fourPiR2) * hn::Abs(nDotToP));
+  // Far-side points (n·toP ≥ 0) have Le = 0: skipped as the scalar loop skips black samples.
+  const MD valid = hn::And(hn::And(dist2 > zero, nDotToP < zero), pdf <= setD(SphereLight::kMaxPdf));
+  PacketLightSample s;
+  s.pdf = demote(pdf);
+  s.valid = hn::And(toF(valid), s.pdf > hn::Zero(df));
+  s.wi = demote(V3D{toP.x * invDist, toP.y * invDist, toP.z * invDist});
+  s.dist = demote(dist);
+  return s;
+}
+
+// SphereLight::sampleSolidAngle (with subtendedCone and orthonormalBasis).
+HWY_INLINE PacketLightSample sampleSolidAngle(const PacketLight& light, const V3F& x, VF u0, VF u1) {
+  const DD dd;
+  const double r = light.radius;
+  const V3D xD = promote(x);
+  const V3D dc{setD(double(light.center[0])) - xD.x, setD(double(light.center[1])) - xD.y,
+               setD(double(light.center[2])) - xD.z};
+  const VD d = hn::Sqrt(dot(dc, dc));
+  const VD invD = setD(1.0) / d;
+  const V3D wc{dc.x * invD, dc.y * invD, dc.z * invD};
+  const VD sinMax = setD(r) * invD;
+  const VD sin2Max = sinMax * sinMax;
+  const VD cosMax = hn::Sqrt((d - setD(r)) * (d + setD(r))) * invD;
+  const VD oneMinusCos = sin2Max / (setD(1.0) + cosMax);
+  // subtendedCone's tests: outside the sphere, a finite distance, a cone whose pdf fits a float.
+  MD valid = hn::And(d >= setD(r), d < setD(INFINITY));
+  valid = hn::And(valid, oneMinusCos >= setD(SphereLight::kMinOneMinusCos));
+
+  const VD oneMinusCosT = promote(u0) * oneMinusCos;
+  const VD cosT = setD(1.0) - oneMinusCosT;
+  const VD sin2T = oneMinusCosT * (setD(2.0) - oneMinusCosT);
+  const VD sinT = hn::Sqrt(sin2T);
+  VF sinPhiF, cosPhiF;
+  sinCosTurns(u1, sinPhiF, cosPhiF);
+  const VD cosPhi = promote(cosPhiF), sinPhi = promote(sinPhiF);
+  const VD invSinMax = d / setD(r);
+  const VD ratio = sin2T * invSinMax;
+  const VD zero = hn::Zero(dd);
+  // std::max(0.0, v): NaN goes to 0 as there.
+  auto clampPositive = [&](VD v) { return hn::IfThenElse(zero < v, v, zero); };
+  const VD cosA = ratio + cosT * hn::Sqrt(clampPositive(setD(1.0) - ratio * invSinMax));
+  const VD sinA = hn::Sqrt(clampPositive(setD(1.0) - cosA * cosA));
+  // orthonormalBasis(wc, s, t).
+  const VD sign = hn::CopySign(setD(1.0), wc.z);
+  const VD a = setD(-1.0) / (sign + wc.z);
+  const VD b = wc.x * wc.y * a;
+  const V3D s{setD(1.0) + sign * wc.x * wc.x * a, sign * b, hn::Neg(sign) * wc.x};
+  const V3D t{b, sign + wc.y * wc.y * a, hn::Neg(wc.y)};
+  const V3D lateral{cosPhi * s.x + sinPhi * t.x, cosPhi * s.y + sinPhi * t.y, cosPhi * s.z + sinPhi * t.z};
+  const V3D wi{sinT * lateral.x + cosT * wc.x, sinT * lateral.y + cosT * wc.y,
+               sinT * lateral.z + cosT * wc.z};
+  const V3D n{sinA * lateral.x - cosA * wc.x, sinA * lateral.y - cosA * wc.y, sinA * lateral.z - cosA * wc.z};
+  const VD rD = setD(r);
+  const V3D p{setD(double(light.center[0])) + rD * n.x, setD(double(light.center[1])) + rD * n.y,
+              setD(double(light.center[2])) + rD * n.z};
+  const V3D toP{p.x - xD.x, p.y - xD.y, p.z - xD.z};
+  PacketLightSample out;
+  out.wi = demote(wi);
+  out.dist = demote(hn::Sqrt(dot(toP, toP)));
+  out.pdf = demote(setD(1.0) / (setD(2.0 * kPiD) * oneMinusCos));
+  out.valid = hn::And(toF(valid), out.pdf > hn::Zero(DF()));
+  return out;
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace penumbra
+HWY_AFTER_NAMESPACE();
+
+#endif
