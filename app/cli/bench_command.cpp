@@ -2,6 +2,8 @@
 //   * camera samples/s for every direct-illumination strategy on the sphere scene
 //   (scenes/hw2/Tests/sphere-area.xml);
 //   * camera samples/s for every sampler on the same scene, at 1 thread, interleaved run by run;
+//   * SIMD packets against one camera sample at a time, per strategy, at 1 thread, on the best
+//     instruction set and with AVX2 forced;
 //   * AO rays/s on the stand-in rock mesh (1.3 M triangles, Embree);
 //   * a scaling series: 10 to 10,000 sphere lights over a floor (core/scene/scaling_scene.h), camera
 //     samples/s of each light selection at a fixed spp;
@@ -20,6 +22,9 @@
 #include "core/image/atomic_file.h"
 #include "core/math/error.h"
 #include "core/render/engine.h"
+#include "core/render/packet_kernels.h"
+#include "core/render/packet_row_loop.h"
+#include "core/render/packet_scene.h"
 #include "core/render/row_renderer.h"
 #include "core/sampling/sampler_table.h"
 #include "core/scene/scaling_scene.h"
@@ -40,6 +45,7 @@ struct BenchOptions {
   int threads = 0;
   int scalingSpp = 2;  // samples per pixel of each render of the scaling series (0: no series)
   bool scalingOnly = false;
+  bool simdOnly = false;
   std::string writeScalingScene;  // write the scaling scene with `scalingLights` lights here and exit
   int scalingLights = 1000;
 };
@@ -197,6 +203,61 @@ void printRow(const std::string& label, const Scaling& m, double scale) {
               m.all * scale, range, 100 * m.coresGot, steal);
 }
 
+// Packets against one camera sample at a time for every strategy of every integrator type on the
+// sphere scene, at 1 thread, on each instruction set of `targets` (forced in turn): packet M samples/s
+// and the median ratio of runs alternating packet/scalar, with its range. Strategies without a packet
+// kernel say why.
+void simdTable(const LoadedScene& sphere, const BenchOptions& o, const std::vector<std::string>& targets) {
+  std::printf("\n%-*s", labelWidth(), "SIMD packets vs one sample at a time");
+  for (const std::string& t : targets) std::printf(" %12s %20s", (t + " M/s").c_str(), "speed-up (range)");
+  std::printf("\n");
+  for (const IntegratorDesc& strategy : everyStrategy()) {
+    if (strategy.usesLightSelection() && strategy.lightSelection != LightSelection::All) continue;
+    RenderSettings settings = sphere.settings;
+    settings.integrator = withCountsOf(strategy, sphere.settings.integrator);
+    const RenderJob job(sphere.scene, settings, RenderLimits{});
+    std::printf("%-*s", labelWidth(), strategyLabel(strategy).c_str());
+    const std::string reason = packetUnsupportedReason(job);
+    if (!reason.empty()) {
+      std::printf(" scalar only: %s\n", reason.c_str());
+      continue;
+    }
+    for (const std::string& target : targets) {
+      forcePacketTarget(target);
+      std::vector<double> rates, ratios;
+      for (int r = 0; r < o.repeats; ++r) {
+        const bool scalarFirst = r % 2 == 1;
+        const double a = timedRun(sphere, settings, 1, o.seconds, scalarFirst);
+        const double b = timedRun(sphere, settings, 1, o.seconds, !scalarFirst);
+        const double packets = scalarFirst ? b : a, scalar = scalarFirst ? a : b;
+        rates.push_back(packets);
+        ratios.push_back(packets / scalar);
+      }
+      char range[40];
+      std::snprintf(range, sizeof range, "%.2fx (%.2f-%.2f)", median(ratios),
+                    *std::min_element(ratios.begin(), ratios.end()),
+                    *std::max_element(ratios.begin(), ratios.end()));
+      std::printf(" %12.2f %20s", median(rates) * 1e-6, range);
+      std::fflush(stdout);
+    }
+    forcePacketTarget("auto");
+    std::printf("\n");
+  }
+}
+
+// The SIMD table on the best instruction set, and with AVX2 forced when the CPU has something better.
+void simdSection(const LoadedScene& sphere, const BenchOptions& o) {
+  if (!packetPathEnabled()) {
+    std::printf("\n(SIMD packets off: PENUMBRA_SIMD=off)\n");
+    return;
+  }
+  std::vector<std::string> targets{packetTargetName()};
+  for (const std::string& t : availablePacketTargets())
+    if (t == "AVX2" && targets.front() != "AVX2") targets.push_back(t);
+  simdTable(sphere, o, targets);
+  std::printf("(1 thread; packet and scalar runs alternate, the ratio is per pair, then the median)\n");
+}
+
 std::string locateScene(const std::string& given, const std::string& repoRelative) {
   if (!given.empty()) return given;
   // Works from the repository root and from build/.
@@ -244,6 +305,10 @@ int runBench(const BenchOptions& o) {
   LoadedScene sphere = o.sphereScene.empty()
                            ? loadSceneFromString(defaultSceneXml(), "<built-in sphere scene>", ".")
                            : loadScene(o.sphereScene);
+  if (o.simdOnly) {
+    simdSection(sphere, o);
+    return 0;
+  }
   // Every strategy of the scene's integrator type (the built-in scene: direct), in table order.
   const std::string_view type = nameOf(sphere.settings.integrator.type);
   std::string header = std::string(type) + " strategy (" + std::to_string(sphere.settings.camera.width) +
@@ -268,6 +333,8 @@ int runBench(const BenchOptions& o) {
                 1.0 / samplers[i].ratioMin);
   std::printf(
       "(runs of all samplers alternate forward and backward; ratios are per round, then the median)\n");
+
+  simdSection(sphere, o);
 
   std::string aoPath = locateScene(o.aoScene, "scenes/standin/rock-ao.xml");
   if (aoPath.empty()) {
@@ -326,6 +393,8 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
       ->check(CLI::Range(0, 1024))
       ->capture_default_str();
   cmd->add_flag("--scaling-only", o->scalingOnly, "Run only the scaling series");
+  cmd->add_flag("--simd-only", o->simdOnly,
+                "Run only the table of SIMD packets against one sample at a time");
   cmd->add_option(
       "--write-scaling-scene", o->writeScalingScene,
       "Write the scaling series' scene (--lights sphere lights, 128x128, 16 spp) to this file and exit");

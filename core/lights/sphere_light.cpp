@@ -11,10 +11,7 @@ namespace {
 
 constexpr double kMinOneMinusCos = SphereLight::kMinOneMinusCos;
 constexpr double kMaxPdf = SphereLight::kMaxPdf;
-// Float directions carry ~2^-24 relative error per component: a sampled direction at the cone's edge
-// may round up to a few 2^-24 outside it. pdfSolidAngle accepts sin θ up to sin θmax + 2^-22, so it
-// never returns 0 for a direction sampleSolidAngle produced (matters for cones of sin²θmax ≲ 1e-8).
-constexpr double kDirectionSlack = 0x1p-22;
+constexpr double kDirectionSlack = SphereLight::kDirectionSlack;
 
 // The cone subtended by the sphere at x; false if x is inside or the cone is degenerate.
 struct Cone {

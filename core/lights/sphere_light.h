@@ -19,6 +19,11 @@ struct SphereLight {
   // Largest density returned as a float; an area pdf beyond it (a light so small that 4π r²
   // underflows) marks the sample invalid rather than returning +inf.
   static constexpr double kMaxPdf = 3.4028234663852886e38;
+  // Float directions carry ~2^-24 relative error per component: a sampled direction at the cone's
+  // edge may round up to a few 2^-24 outside it. pdfSolidAngle accepts sin θ up to sin θmax + 2^-22,
+  // so it never returns 0 for a direction sampleSolidAngle produced (matters for cones of
+  // sin²θmax ≲ 1e-8).
+  static constexpr double kDirectionSlack = 0x1p-22;
 
   float area() const { return 4.f * kPi * sphere.radius * sphere.radius; }
   // Area density of sampleArea: 1 / (4π r²) (0 for a radius-0 light).

@@ -221,15 +221,15 @@ HWY_INLINE PacketHit fillHit(const PacketScene& scene, const Nearest& n, const V
   return h;
 }
 
-// addEmitterAlong: the radiance each lane's ray (from o along unit w, tMin 0, no tMax) receives from
-// the front of the emitting sphere it reaches first, 0 where it reaches none; `emitting` says which
-// lanes got some (emitters of black radiance are none).
-HWY_INLINE V3F emitterAlong(const PacketScene& scene, const V3F& o, const V3F& w, MF active, MF& emitting) {
+// addEmitterAlong: for each lane of `active` whose ray (from o along unit w, tMin 0, no tMax) first
+// reaches the front of an emitting sphere of non-black radiance, add(object, lanes, p, ng) with that
+// sphere's object, those lanes, and the hit's point and (outward) normal there.
+template <class Add>
+HWY_INLINE void forEachEmitterAlong(const PacketScene& scene, const V3F& o, const V3F& w, MF active,
+                                    const Add& add) {
   const DF df;
   const VF zero = hn::Zero(df);
   const Nearest n = nearest(scene, o, w, zero, setF(INFINITY));
-  V3F Le{zero, zero, zero};
-  emitting = hn::FirstN(df, 0);
   const V3D along = pointAlong(o, w, n.t);
   for (size_t i = 0; i < scene.spheres.size(); ++i) {
     const PacketObject& object = scene.objects[scene.spheres[i].object];
@@ -239,10 +239,8 @@ HWY_INLINE V3F emitterAlong(const PacketScene& scene, const V3F& o, const V3F& w
     V3F p, ng;
     sphereHitPoint(scene.spheres[i], along, p, ng);
     const MF facing = hn::And(m, dot(ng, w) < zero);
-    Le = select(facing, setF3(object.radiance), Le);
-    emitting = hn::Or(emitting, facing);
+    if (!hn::AllFalse(df, facing)) add(object, facing, p, ng);
   }
-  return Le;
 }
 
 }  // namespace HWY_NAMESPACE

@@ -51,6 +51,31 @@ HWY_INLINE void storeRadiance(MF shaded, const PacketHit& h, const V3F& E, Packe
   hn::StoreU(hn::IfThenElse(shaded, h.emitted.z + h.albedoOverPi.z * E.z, h.emitted.z), df, out.L[2]);
 }
 
+// E += Le · factor in the lanes of m (E unchanged elsewhere).
+HWY_INLINE void addRadiance(MF m, const float (&Le)[3], VF factor, V3F& E) {
+  E = select(m, V3F{E.x + setF(Le[0]) * factor, E.y + setF(Le[1]) * factor, E.z + setF(Le[2]) * factor}, E);
+}
+
+// unoccludedLightSample: light-sampling draw j towards `light` from each shaded lane's point: the
+// lanes it lights (a valid sample above the surface, not blocked), with the sample and its cos θ.
+template <LightMeasure kMeasure>
+HWY_INLINE MF unoccludedLightSample(const PacketScene& scene, const PacketLight& light, const PacketHit& h,
+                                    MF shaded, const PacketDraws& draws, size_t j, PacketLightSample& s,
+                                    VF& cosTheta) {
+  const DF df;
+  const VF zero = hn::Zero(df);
+  const VF u0 = hn::LoadU(df, draws.u[j][0]), u1 = hn::LoadU(df, draws.u[j][1]);
+  s = kMeasure == LightMeasure::Area ? sampleArea(light, h.p, u0, u1) : sampleSolidAngle(light, h.p, u0, u1);
+  cosTheta = dot(h.ns, s.wi);
+  // leavesSurface, then the shadow ray (ShadingPoint::spawnShadowRayAlong).
+  const MF lit = hn::And(hn::And(shaded, s.valid), hn::And(cosTheta > zero, dot(s.wi, h.ng) > zero));
+  if (hn::AllFalse(df, lit)) return lit;
+  const V3F origin = offsetRayOrigin(h.p, h.ng, h.offsetScale, s.wi);
+  const VF tMax =
+      s.dist - setF(kRayOffsetScale) * (setF(2.f) * maxOf(setF(light.scale), h.offsetScale) + h.offsetScale);
+  return hn::AndNot(occluded(scene, origin, s.wi, tMax, light.geometrySphere, lit), lit);
+}
+
 // LightDirectIntegrator<measure, All> through directRadiance: every light, every sample, shadow
 // tested; the mean over the samples, times albedo/π, plus the emission at the hit.
 template <LightMeasure kMeasure>
@@ -68,26 +93,13 @@ HWY_INLINE void shadeDirect(const PacketScene& scene, const PacketRays& rays, co
     for (size_t l = 0; l < scene.lights.size(); ++l) {
       const PacketLight& light = scene.lights[l];
       if (light.black || !(light.radius > 0.f)) continue;
-      const VF lightScale = setF(light.scale);
       for (int i = 0; i < samples; ++i) {
         const size_t j = l * size_t(samples) + size_t(i);
-        const VF u0 = hn::LoadU(df, draws.u[j][0]), u1 = hn::LoadU(df, draws.u[j][1]);
-        const PacketLightSample s = kMeasure == LightMeasure::Area ? sampleArea(light, h.p, u0, u1)
-                                                                   : sampleSolidAngle(light, h.p, u0, u1);
-        // unoccludedLightSample: above the surface (leavesSurface), then the shadow ray.
-        const VF cosTheta = dot(h.ns, s.wi);
-        const VF wiDotNg = dot(s.wi, h.ng);
-        MF lit = hn::And(hn::And(shaded, s.valid), hn::And(cosTheta > zero, wiDotNg > zero));
+        VF cosTheta;
+        PacketLightSample s;
+        const MF lit = unoccludedLightSample<kMeasure>(scene, light, h, shaded, draws, j, s, cosTheta);
         if (hn::AllFalse(df, lit)) continue;
-        // ShadingPoint::spawnShadowRayAlong.
-        const V3F origin = offsetRayOrigin(h.p, h.ng, h.offsetScale, s.wi);
-        const VF larger = maxOf(lightScale, h.offsetScale);
-        const VF tMax = s.dist - setF(kRayOffsetScale) * (setF(2.f) * larger + h.offsetScale);
-        lit = hn::AndNot(occluded(scene, origin, s.wi, tMax, light.geometrySphere, lit), lit);
-        const VF cosOverPdf = cosTheta / s.pdf;
-        E.x = hn::IfThenElse(lit, E.x + setF(light.radiance[0]) * cosOverPdf, E.x);
-        E.y = hn::IfThenElse(lit, E.y + setF(light.radiance[1]) * cosOverPdf, E.y);
-        E.z = hn::IfThenElse(lit, E.z + setF(light.radiance[2]) * cosOverPdf, E.z);
+        addRadiance(lit, light.radiance, cosTheta / s.pdf, E);
       }
     }
     const VF invSamples = setF(1.f / float(samples));
@@ -128,13 +140,81 @@ HWY_INLINE void shadeHemisphere(const PacketScene& scene, const PacketRays& rays
       // leavesSurface(sp, w, cos θ) (which also drops the cosine warp's local.z <= 0).
       const MF active = hn::And(shaded, hn::And(local.z > zero, dot(w, h.ng) > zero));
       if (hn::AllFalse(df, active)) continue;
-      MF emitting;
-      const V3F Le = emitterAlong(scene, offsetRayOrigin(h.p, h.ng, h.offsetScale, w), w, active, emitting);
-      const MF add = hn::And(active, emitting);
-      E = select(add, V3F{E.x + Le.x * cosOverPdf, E.y + Le.y * cosOverPdf, E.z + Le.z * cosOverPdf}, E);
+      forEachEmitterAlong(scene, offsetRayOrigin(h.p, h.ng, h.offsetScale, w), w, active,
+                          [&](const PacketObject& emitter, MF lanes, const V3F&, const V3F&) {
+                            addRadiance(lanes, emitter.radiance, cosOverPdf, E);
+                          });
     }
     const VF invSamples = setF(1.f / float(samples));
     E = {zero + E.x * invSamples, zero + E.y * invSamples, zero + E.z * invSamples};
+  }
+  storeRadiance(shaded, h, E, out);
+}
+
+// misWeight (mis_weight.h): 1 / (1 + r), r = b / a (squared for the power heuristic).
+template <MisHeuristic kHeuristic>
+HWY_INLINE VF misWeight(VF a, VF b) {
+  const VF r = b / a;
+  const VF one = setF(1.f);
+  return kHeuristic == MisHeuristic::Balance ? one / (one + r) : one / (one + r * r);
+}
+
+// MisIntegrator<measure, heuristic> on a diffuse surface through directRadiance: every light sampled
+// by the measure and the cosine hemisphere (the diffuse BSDF's sampling), each sample weighted by the
+// heuristic of the two densities.
+template <LightMeasure kMeasure, MisHeuristic kHeuristic>
+HWY_INLINE void shadeMis(const PacketScene& scene, const PacketRays& rays, const PacketDraws& draws,
+                         PacketRadiance& out) {
+  const DF df;
+  const V3F o = loadF3(rays.o), d = loadF3(rays.d);
+  const PacketHit h =
+      fillHit(scene, nearest(scene, o, d, hn::LoadU(df, rays.tMin), hn::LoadU(df, rays.tMax)), o, d);
+  const VF zero = hn::Zero(df);
+  V3F E{zero, zero, zero};
+  const MF shaded = hn::And(h.hit, h.shades);
+  if (!hn::AllFalse(df, shaded) && !scene.lights.empty()) {
+    const VF nL = setF(float(scene.lightSamples)), nB = setF(float(scene.bsdfSamples));
+    V3F lightPart{zero, zero, zero}, bsdfPart{zero, zero, zero};
+    size_t j = 0;
+    if (scene.lightSamples > 0) {
+      for (const PacketLight& light : scene.lights)
+        for (int i = 0; i < scene.lightSamples; ++i, ++j) {
+          if (light.black || !(light.radius > 0.f)) continue;
+          VF cosTheta;
+          PacketLightSample s;
+          const MF lit = unoccludedLightSample<kMeasure>(scene, light, h, shaded, draws, j, s, cosTheta);
+          if (hn::AllFalse(df, lit)) continue;
+          const VF weight = misWeight<kHeuristic>(nL * s.pdf, nB * (cosTheta * setF(kInvPi)));
+          addRadiance(lit, light.radiance, cosTheta / s.pdf * weight, lightPart);
+        }
+      const VF inv = setF(1.f / float(scene.lightSamples));
+      lightPart = {lightPart.x * inv, lightPart.y * inv, lightPart.z * inv};
+    }
+    if (scene.bsdfSamples > 0) {
+      const FrameF frame = frameAbout(h.ns);
+      for (int i = 0; i < scene.bsdfSamples; ++i, ++j) {
+        const VF u0 = hn::LoadU(df, draws.u[j][0]), u1 = hn::LoadU(df, draws.u[j][1]);
+        const V3F local = squareToCosineHemisphere(u0, u1);
+        const V3F w = toWorld(frame, local);
+        const MF active = hn::And(shaded, hn::And(local.z > zero, dot(w, h.ng) > zero));
+        if (hn::AllFalse(df, active)) continue;
+        const VF pdf = local.z * setF(kInvPi);
+        forEachEmitterAlong(scene, offsetRayOrigin(h.p, h.ng, h.offsetScale, w), w, active,
+                            [&](const PacketObject& emitter, MF lanes, const V3F& p, const V3F& n) {
+                              const PacketLight& light = scene.lights[size_t(emitter.light)];
+                              VF pL = zero;
+                              if (scene.lightSamples > 0 && light.radius > 0.f)
+                                pL = kMeasure == LightMeasure::Area ? pdfAreaAsSolidAngle(light, h.p, p, n)
+                                                                    : pdfSolidAngle(light, h.p, w);
+                              const VF weight = misWeight<kHeuristic>(nB * pdf, nL * pL);
+                              addRadiance(lanes, emitter.radiance, setF(kPi) * weight, bsdfPart);
+                            });
+      }
+      const VF inv = setF(1.f / float(scene.bsdfSamples));
+      bsdfPart = {bsdfPart.x * inv, bsdfPart.y * inv, bsdfPart.z * inv};
+    }
+    E = {zero + (lightPart.x + bsdfPart.x), zero + (lightPart.y + bsdfPart.y),
+         zero + (lightPart.z + bsdfPart.z)};
   }
   storeRadiance(shaded, h, E, out);
 }
@@ -187,6 +267,14 @@ void ShadePacket(const PacketScene& scene, const PacketRays& rays, const PacketD
       return shadeHemisphere<HemisphereWarp::Uniform>(scene, rays, draws, out);
     case PacketKernel::HemisphereCosine:
       return shadeHemisphere<HemisphereWarp::Cosine>(scene, rays, draws, out);
+    case PacketKernel::MisAreaBalance:
+      return shadeMis<LightMeasure::Area, MisHeuristic::Balance>(scene, rays, draws, out);
+    case PacketKernel::MisAreaPower:
+      return shadeMis<LightMeasure::Area, MisHeuristic::Power>(scene, rays, draws, out);
+    case PacketKernel::MisSolidAngleBalance:
+      return shadeMis<LightMeasure::SolidAngle, MisHeuristic::Balance>(scene, rays, draws, out);
+    case PacketKernel::MisSolidAnglePower:
+      return shadeMis<LightMeasure::SolidAngle, MisHeuristic::Power>(scene, rays, draws, out);
     case PacketKernel::AoUniform:
       return shadeAo<HemisphereWarp::Uniform>(scene, rays, draws, out);
     case PacketKernel::AoCosine:

@@ -58,23 +58,40 @@ HWY_INLINE PacketLightSample sampleArea(const PacketLight& light, const V3F& x, 
   return s;
 }
 
-// SphereLight::sampleSolidAngle (with subtendedCone and orthonormalBasis).
+// subtendedCone (sphere_light.cpp): the cone the light subtends at x, valid where x is outside the
+// sphere at a finite distance and the cone's pdf fits a float.
+struct ConeD {
+  V3D wc;
+  VD d, sin2Max, oneMinusCos;
+  MD valid;
+};
+HWY_INLINE ConeD subtendedCone(const PacketLight& light, const V3D& x) {
+  const double r = light.radius;
+  const V3D dc{setD(double(light.center[0])) - x.x, setD(double(light.center[1])) - x.y,
+               setD(double(light.center[2])) - x.z};
+  ConeD c;
+  c.d = hn::Sqrt(dot(dc, dc));
+  const VD invD = setD(1.0) / c.d;
+  c.wc = {dc.x * invD, dc.y * invD, dc.z * invD};
+  const VD sinMax = setD(r) * invD;
+  c.sin2Max = sinMax * sinMax;
+  const VD cosMax = hn::Sqrt((c.d - setD(r)) * (c.d + setD(r))) * invD;
+  c.oneMinusCos = c.sin2Max / (setD(1.0) + cosMax);
+  c.valid = hn::And(hn::And(c.d >= setD(r), c.d < setD(INFINITY)),
+                    c.oneMinusCos >= setD(SphereLight::kMinOneMinusCos));
+  return c;
+}
+
+// SphereLight::sampleSolidAngle (with orthonormalBasis).
 HWY_INLINE PacketLightSample sampleSolidAngle(const PacketLight& light, const V3F& x, VF u0, VF u1) {
   const DD dd;
   const double r = light.radius;
   const V3D xD = promote(x);
-  const V3D dc{setD(double(light.center[0])) - xD.x, setD(double(light.center[1])) - xD.y,
-               setD(double(light.center[2])) - xD.z};
-  const VD d = hn::Sqrt(dot(dc, dc));
-  const VD invD = setD(1.0) / d;
-  const V3D wc{dc.x * invD, dc.y * invD, dc.z * invD};
-  const VD sinMax = setD(r) * invD;
-  const VD sin2Max = sinMax * sinMax;
-  const VD cosMax = hn::Sqrt((d - setD(r)) * (d + setD(r))) * invD;
-  const VD oneMinusCos = sin2Max / (setD(1.0) + cosMax);
-  // subtendedCone's tests: outside the sphere, a finite distance, a cone whose pdf fits a float.
-  MD valid = hn::And(d >= setD(r), d < setD(INFINITY));
-  valid = hn::And(valid, oneMinusCos >= setD(SphereLight::kMinOneMinusCos));
+  const ConeD cone = subtendedCone(light, xD);
+  const V3D& wc = cone.wc;
+  const VD& d = cone.d;
+  const VD& oneMinusCos = cone.oneMinusCos;
+  const MD valid = cone.valid;
 
   const VD oneMinusCosT = promote(u0) * oneMinusCos;
   const VD cosT = setD(1.0) - oneMinusCosT;
@@ -110,6 +127,35 @@ HWY_INLINE PacketLightSample sampleSolidAngle(const PacketLight& light, const V3
   out.pdf = demote(setD(1.0) / (setD(2.0 * kPiD) * oneMinusCos));
   out.valid = hn::And(toF(valid), out.pdf > hn::Zero(DF()));
   return out;
+}
+
+// SphereLight::pdfAreaAsSolidAngle: the density of area sampling reaching point p (normal n) from x.
+HWY_INLINE VF pdfAreaAsSolidAngle(const PacketLight& light, const V3F& x, const V3F& p, const V3F& n) {
+  const DD dd;
+  const V3D xD = promote(x), pD = promote(p);
+  const V3D toX{xD.x - pD.x, xD.y - pD.y, xD.z - pD.z};
+  const VD d2 = dot(toX, toX);
+  const VD zero = hn::Zero(dd);
+  const VD cosP = dot(promote(n), toX) / hn::Sqrt(d2);
+  const double fourPiR2 = 4.0 * kPiD * double(light.radius) * light.radius;
+  const VD pdf = d2 / (setD(fourPiR2) * hn::Abs(cosP));
+  const MD valid = hn::And(hn::And(d2 > zero, cosP != zero), pdf <= setD(SphereLight::kMaxPdf));
+  return demote(hn::IfThenElseZero(valid, pdf));
+}
+
+// SphereLight::pdfSolidAngle: the density of cone sampling producing unit direction w at x.
+HWY_INLINE VF pdfSolidAngle(const PacketLight& light, const V3F& x, const V3F& wF) {
+  const ConeD cone = subtendedCone(light, promote(x));
+  const V3D w = promote(wF);
+  const VD zero = hn::Zero(DD());
+  const VD cosW = dot(w, cone.wc);
+  const V3D c{w.y * cone.wc.z - w.z * cone.wc.y, w.z * cone.wc.x - w.x * cone.wc.z,
+              w.x * cone.wc.y - w.y * cone.wc.x};  // glm::cross(w, wc)
+  const VD sin2W = dot(c, c) / dot(w, w);
+  // Inside the cone up to the rounding of a float direction (kDirectionSlack).
+  const VD sinMax = hn::Sqrt(cone.sin2Max) + setD(SphereLight::kDirectionSlack);
+  const MD inside = hn::And(hn::AndNot(cosW <= zero, cone.valid), hn::Not(sin2W > sinMax * sinMax));
+  return demote(hn::IfThenElseZero(inside, setD(1.0) / (setD(2.0 * kPiD) * cone.oneMinusCos)));
 }
 
 }  // namespace HWY_NAMESPACE

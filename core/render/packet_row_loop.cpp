@@ -53,8 +53,6 @@ RowRenderer packetRowsFor(const RenderJob& job, RowRenderer scalar) {
                                                   uint64_t& badSamples, const std::atomic<bool>& cancel) {
     PacketBuffers& b = *buffers;
     const int width = camera.width();
-    const uint32_t samples = uint32_t(std::max(scene->samples, 1));
-    const int draws = scene->drawCount();
     for (int x0 = 0; x0 < width; x0 += lanes) {
       if (cancel.load(std::memory_order_relaxed)) return;
       const int count = std::min(lanes, width - x0);
@@ -68,14 +66,16 @@ RowRenderer packetRowsFor(const RenderJob& job, RowRenderer scalar) {
         }
         b.rays.tMin[k] = ray.tMin;
         b.rays.tMax[k] = ray.tMax;
-        // The integrator's draws in its order: `samples` stratified draws (per light for light
-        // sampling), drawn whatever the ray hits: each pixel sample restarts its stream, so draws a
-        // lane does not use change nothing.
-        for (int j = 0; j < draws; ++j) {
-          const Vec2 u = sampler.next2D(uint32_t(j) % samples, samples);
-          b.draws.u[j][0][k] = u.x;
-          b.draws.u[j][1][k] = u.y;
-        }
+        // The integrator's draws in its order, drawn whatever the ray hits: each pixel sample
+        // restarts its stream, so draws a lane does not use change nothing.
+        int j = 0;
+        for (const DrawRequests& r : scene->draws)
+          for (int rep = 0; rep < r.repeats; ++rep)
+            for (int i = 0; i < r.n; ++i, ++j) {
+              const Vec2 u = sampler.next2D(uint32_t(i), uint32_t(r.n));
+              b.draws.u[j][0][k] = u.x;
+              b.draws.u[j][1][k] = u.y;
+            }
       }
       shadePacket(*scene, b.rays, b.draws, b.radiance);
       for (int k = 0; k < count; ++k) {

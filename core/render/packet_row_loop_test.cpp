@@ -82,6 +82,8 @@ std::shared_ptr<const RenderJob> jobFor(const TestScene& t, const IntegratorDesc
   s.sampleCount = 8;
   s.seed = 5;
   s.integrator = withSamples(strategy, samples);
+  s.integrator.lightSamples = samples;     // MIS: `samples` of each light,
+  s.integrator.bsdfSamples = samples % 3;  // and 1 or 0 (the light technique alone) of the surface's
   return std::make_shared<RenderJob>(t.scene, s, RenderLimits{});
 }
 
@@ -108,11 +110,16 @@ const IntegratorDesc kPacketStrategies[] = {
     directByBsdf(),
     aoBy(HemisphereWarp::Uniform),
     aoBy(HemisphereWarp::Cosine),
+    directByMis(LightMeasure::Area, MisHeuristic::Balance),
+    directByMis(LightMeasure::Area, MisHeuristic::Power),
+    directByMis(LightMeasure::SolidAngle, MisHeuristic::Balance),
+    directByMis(LightMeasure::SolidAngle, MisHeuristic::Power),
 };
 
 // Each lane computes exactly what the scalar integrator computes, so the film is the scalar loop's bit
 // for bit: on every instruction set this CPU has, for every strategy with a kernel, every sampler,
-// one and several shading samples, at 1e-4, 1 and 1e4 scene units.
+// one and several shading samples (MIS: 1 and 3 per light with 1 and 0 of the surface's), at 1e-4, 1
+// and 1e4 scene units.
 TEST(PacketRowLoop, EqualsTheScalarLoopBitForBit) {
   for (const float scale : {1e-4f, 1.f, 1e4f}) {
     const TestScene t = packetTestScene(scale);
@@ -181,7 +188,7 @@ TEST(PacketRowLoop, SupportsItsStrategiesOnFlatDiffuseScenes) {
   // Ambient occlusion sees only the geometry.
   job->settings.integrator = withSamples(aoBy(HemisphereWarp::Cosine), 4);
   EXPECT_EQ(packetUnsupportedReason(*job), "");
-  job->settings.integrator = directByMis(LightMeasure::Area, MisHeuristic::Power);
+  job->settings.integrator = directByMis(LightMeasure::ProjectedSolidAngle, MisHeuristic::Power);
   EXPECT_NE(packetUnsupportedReason(*job), "");
 }
 

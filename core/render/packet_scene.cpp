@@ -33,7 +33,14 @@ bool kernelOf(const IntegratorDesc& d, PacketKernel& kernel) {
         return false;
       return true;
     case Estimator::Mis:
-      return false;
+      if (d.lightMeasure == LightMeasure::ProjectedSolidAngle) return false;
+      if (d.lightMeasure == LightMeasure::Area)
+        kernel =
+            d.heuristic == MisHeuristic::Balance ? PacketKernel::MisAreaBalance : PacketKernel::MisAreaPower;
+      else
+        kernel = d.heuristic == MisHeuristic::Balance ? PacketKernel::MisSolidAngleBalance
+                                                      : PacketKernel::MisSolidAnglePower;
+      return true;
   }
   return false;
 }
@@ -41,26 +48,37 @@ bool kernelOf(const IntegratorDesc& d, PacketKernel& kernel) {
 }  // namespace
 
 int PacketScene::drawCount() const {
-  const bool perLight = kernel == PacketKernel::LightArea || kernel == PacketKernel::LightSolidAngle;
-  return perLight ? samples * int(lights.size()) : samples;
+  int count = 0;
+  for (const DrawRequests& r : draws) count += r.repeats * r.n;
+  return count;
 }
+
+namespace {
+
+// The integrator's sampler requests after the filter's: per light for light sampling, the lights'
+// then the surface's for MIS, one request otherwise.
+std::vector<DrawRequests> drawRequestsOf(const IntegratorDesc& d, int lights) {
+  if (d.type == IntegratorType::Direct && d.estimator == Estimator::Light) return {{lights, d.samples}};
+  if (d.type == IntegratorType::Direct && d.estimator == Estimator::Mis)
+    return {{lights, d.lightSamples}, {1, d.bsdfSamples}};
+  return {{1, d.samples}};
+}
+
+}  // namespace
 
 std::string packetUnsupportedReason(const RenderJob& job) {
   const IntegratorDesc& d = job.settings.integrator;
   if (job.output != RenderOutput::Radiance) return "the job renders an output other than radiance";
   PacketKernel kernel;
-  if (!kernelOf(d, kernel))
-    return "no packet kernel for " + strategyLabel(d) +
-           " (kernels: ao, direct by hemisphere or bsdf, light sampling of every light by area or solid "
-           "angle)";
+  if (!kernelOf(d, kernel)) return "no packet kernel for " + strategyLabel(d);
   const Scene& scene = *job.scene;
   const SceneGeometry& g = scene.geometry;
   if (g.usesEmbree() || g.spheresUseBvh()) return "the scene's geometry is in a BVH";
   if (g.flatTriangleCount() != 0) return "the scene has triangles outside parallelograms";
-  const size_t draws =
-      size_t(std::max(d.samples, 1)) *
-      (d.estimator == Estimator::Light && d.type == IntegratorType::Direct ? scene.sphereLights.size() : 1);
-  if (draws > size_t(kMaxPacketDraws))
+  int draws = 0;
+  for (const DrawRequests& r : drawRequestsOf(d, int(scene.sphereLights.size())))
+    draws += std::max(r.repeats, 0) * std::max(r.n, 0);
+  if (draws > kMaxPacketDraws)
     return "more shading samples per camera sample than a packet carries (" +
            std::to_string(kMaxPacketDraws) + ")";
   if (d.type == IntegratorType::Ao) return {};  // ambient occlusion sees only the geometry
@@ -77,6 +95,9 @@ PacketScene makePacketScene(const RenderJob& job) {
   PacketScene p;
   kernelOf(job.settings.integrator, p.kernel);
   p.samples = job.settings.integrator.samples;
+  p.lightSamples = job.settings.integrator.lightSamples;
+  p.bsdfSamples = job.settings.integrator.bsdfSamples;
+  p.draws = drawRequestsOf(job.settings.integrator, int(scene.sphereLights.size()));
   p.rayLengthBound = scene.rayLengthBound;
   for (size_t i = 0; i < g.spheres().size(); ++i) {
     const Sphere& s = g.spheres()[i];
@@ -92,6 +113,7 @@ PacketScene makePacketScene(const RenderJob& job) {
     o.albedoOverPi[0] = a.x, o.albedoOverPi[1] = a.y, o.albedoOverPi[2] = a.z;
     o.shades = !isBlack(m.bsdf.albedo);
     o.emits = m.sphereLight >= 0;
+    o.light = m.sphereLight;
     if (o.emits) {
       const Color3& Le = scene.sphereLights[m.sphereLight].radiance;
       o.radiance[0] = Le.x, o.radiance[1] = Le.y, o.radiance[2] = Le.z;

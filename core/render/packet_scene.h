@@ -33,6 +33,7 @@ struct PacketObject {
   bool emits;
   bool radianceNonBlack;
   float radiance[3];
+  int32_t light;  // its index in PacketScene::lights when it emits, else -1
 };
 
 struct PacketLight {
@@ -46,12 +47,21 @@ struct PacketLight {
 
 // The strategies the packet kernels compute (one kernel each, chosen per render).
 enum class PacketKernel : uint8_t {
-  LightArea,          // direct by light sampling, area measure, every light
-  LightSolidAngle,    // direct by light sampling, solid-angle measure, every light
-  HemisphereUniform,  // direct by uniform hemisphere directions
-  HemisphereCosine,   // direct by cosine hemisphere directions (also `bsdf` on diffuse surfaces)
-  AoUniform,          // ambient occlusion, uniform hemisphere
-  AoCosine,           // ambient occlusion, cosine hemisphere
+  LightArea,             // direct by light sampling, area measure, every light
+  LightSolidAngle,       // direct by light sampling, solid-angle measure, every light
+  HemisphereUniform,     // direct by uniform hemisphere directions
+  HemisphereCosine,      // direct by cosine hemisphere directions (also `bsdf` on diffuse surfaces)
+  MisAreaBalance,        // MIS of area light sampling and the cosine hemisphere, balance heuristic
+  MisAreaPower,          // ... power heuristic
+  MisSolidAngleBalance,  // MIS of solid-angle light sampling and the cosine hemisphere, balance
+  MisSolidAnglePower,    // ... power heuristic
+  AoUniform,             // ambient occlusion, uniform hemisphere
+  AoCosine,              // ambient occlusion, cosine hemisphere
+};
+
+// `repeats` sampler requests of `n` stratified draws each (next2D(i, n) for i < n).
+struct DrawRequests {
+  int repeats, n;
 };
 
 struct PacketScene {
@@ -61,9 +71,11 @@ struct PacketScene {
   std::vector<PacketObject> objects;
   std::vector<PacketLight> lights;
   int samples = 1;           // shading samples per camera sample (per light, for light sampling)
+  int lightSamples = 0;      // MIS: per light
+  int bsdfSamples = 0;       // MIS
   float rayLengthBound = 0;  // how far ambient occlusion looks
-  // The sampler draws of one camera sample after the filter's: samples per light for light sampling,
-  // samples otherwise.
+  // The sampler draws of one camera sample after the filter's, in the integrator's order.
+  std::vector<DrawRequests> draws;
   int drawCount() const;
 };
 
