@@ -43,17 +43,75 @@ HWY_INLINE V3F loadF3(const float (&v)[3][kMaxPacketLanes]) {
   return {hn::LoadU(df, v[0]), hn::LoadU(df, v[1]), hn::LoadU(df, v[2])};
 }
 
-// directRadiance's result: the emission at the hit, plus albedo/π times the estimate E where shaded.
-HWY_INLINE void storeRadiance(MF shaded, const PacketHit& h, const V3F& E, PacketRadiance& out) {
+// E += Le · factor in the lanes of m (E unchanged elsewhere).
+HWY_INLINE void addRadiance(MF m, const float (&Le)[3], VF factor, V3F& E) {
+  E = select(m, V3F{E.x + setF(Le[0]) * factor, E.y + setF(Le[1]) * factor, E.z + setF(Le[2]) * factor}, E);
+}
+
+// deltaIrradiance (direct_lighting.h) on a diffuse surface: each point and directional light traced
+// once, Li cos θ where it reaches the shaded lanes.
+HWY_INLINE V3F deltaIrradiance(const PacketScene& scene, const PacketHit& h, MF shaded) {
   const DF df;
+  const VF zero = hn::Zero(df);
+  V3F E{zero, zero, zero};
+  for (const PacketPointLight& light : scene.pointLights) {
+    // PointLight::sample: Li = I / d² towards the light (none from the light's own position).
+    const V3F toL{setF(light.position[0]) - h.p.x, setF(light.position[1]) - h.p.y,
+                  setF(light.position[2]) - h.p.z};
+    const VF d2 = dot(toL, toL);
+    const VF dist = hn::Sqrt(d2);
+    const V3F wi{toL.x / dist, toL.y / dist, toL.z / dist};
+    const V3F Li{setF(light.intensity[0]) / d2, setF(light.intensity[1]) / d2, setF(light.intensity[2]) / d2};
+    const MF valid = hn::And(d2 > zero, d2 < setF(INFINITY));
+    const MF black = hn::And(hn::And(Li.x == zero, Li.y == zero), Li.z == zero);
+    const VF cosTheta = dot(h.ns, wi);
+    MF lit =
+        hn::AndNot(black, hn::And(hn::And(shaded, valid), hn::And(cosTheta > zero, dot(wi, h.ng) > zero)));
+    if (hn::AllFalse(df, lit)) continue;
+    // ShadingPoint::spawnShadowRayToPoint: direction and length from the offset origin.
+    const V3F target = setF3(light.position);
+    const V3F origin = offsetRayOrigin(h.p, h.ng, h.offsetScale, toL);
+    const V3F toTarget{target.x - origin.x, target.y - origin.y, target.z - origin.z};
+    const VF length = hn::Sqrt(dot(toTarget, toTarget));
+    const VF inv = setF(1.f) / length;
+    const V3F w{toTarget.x * inv, toTarget.y * inv, toTarget.z * inv};
+    const VF tMax = length - setF(2.f * kRayOffsetScale) * maxOf(setF(light.scale), h.offsetScale);
+    lit = hn::AndNot(occluded(scene, origin, w, tMax, -1, lit), lit);
+    E = select(lit, V3F{E.x + Li.x * cosTheta, E.y + Li.y * cosTheta, E.z + Li.z * cosTheta}, E);
+  }
+  for (const PacketDirectionalLight& light : scene.directionalLights) {
+    if (light.black) continue;
+    const V3F wi = setF3(light.direction);
+    const VF cosTheta = dot(h.ns, wi);
+    MF lit = hn::And(shaded, hn::And(cosTheta > zero, dot(wi, h.ng) > zero));
+    if (hn::AllFalse(df, lit)) continue;
+    const V3F origin = offsetRayOrigin(h.p, h.ng, h.offsetScale, wi);
+    lit = hn::AndNot(occluded(scene, origin, wi, setF(scene.rayLengthBound), -1, lit), lit);
+    addRadiance(lit, light.irradiance, cosTheta, E);
+  }
+  return E;
+}
+
+// directRadiance's result: the emission at the hit, plus albedo/π times (the delta lights' irradiance
+// plus the strategy's estimate E) where shaded.
+HWY_INLINE void storeRadiance(const PacketScene& scene, MF shaded, const PacketHit& h, const V3F& area,
+                              PacketRadiance& out) {
+  const DF df;
+  const V3F delta = deltaIrradiance(scene, h, shaded);
+  const V3F E{delta.x + area.x, delta.y + area.y, delta.z + area.z};
   hn::StoreU(hn::IfThenElse(shaded, h.emitted.x + h.albedoOverPi.x * E.x, h.emitted.x), df, out.L[0]);
   hn::StoreU(hn::IfThenElse(shaded, h.emitted.y + h.albedoOverPi.y * E.y, h.emitted.y), df, out.L[1]);
   hn::StoreU(hn::IfThenElse(shaded, h.emitted.z + h.albedoOverPi.z * E.z, h.emitted.z), df, out.L[2]);
 }
 
-// E += Le · factor in the lanes of m (E unchanged elsewhere).
-HWY_INLINE void addRadiance(MF m, const float (&Le)[3], VF factor, V3F& E) {
-  E = select(m, V3F{E.x + setF(Le[0]) * factor, E.y + setF(Le[1]) * factor, E.z + setF(Le[2]) * factor}, E);
+// SimpleIntegrator: the delta lights alone.
+HWY_INLINE void shadeSimple(const PacketScene& scene, const PacketRays& rays, PacketRadiance& out) {
+  const DF df;
+  const V3F o = loadF3(rays.o), d = loadF3(rays.d);
+  const PacketHit h =
+      fillHit(scene, nearest(scene, o, d, hn::LoadU(df, rays.tMin), hn::LoadU(df, rays.tMax)), o, d);
+  const VF zero = hn::Zero(df);
+  storeRadiance(scene, hn::And(h.hit, h.shades), h, V3F{zero, zero, zero}, out);
 }
 
 // unoccludedLightSample: light-sampling draw j towards `light` from each shaded lane's point: the
@@ -104,9 +162,9 @@ HWY_INLINE void shadeDirect(const PacketScene& scene, const PacketRays& rays, co
     }
     const VF invSamples = setF(1.f / float(samples));
     // directRadiance: L + albedo/π · (delta lights' 0 + the estimate).
-    E = {zero + E.x * invSamples, zero + E.y * invSamples, zero + E.z * invSamples};
+    E = {E.x * invSamples, E.y * invSamples, E.z * invSamples};
   }
-  storeRadiance(shaded, h, E, out);
+  storeRadiance(scene, shaded, h, E, out);
 }
 
 // HemisphereDirectIntegrator<kWarp> through directRadiance (and BsdfDirectIntegrator: on a diffuse
@@ -146,9 +204,9 @@ HWY_INLINE void shadeHemisphere(const PacketScene& scene, const PacketRays& rays
                           });
     }
     const VF invSamples = setF(1.f / float(samples));
-    E = {zero + E.x * invSamples, zero + E.y * invSamples, zero + E.z * invSamples};
+    E = {E.x * invSamples, E.y * invSamples, E.z * invSamples};
   }
-  storeRadiance(shaded, h, E, out);
+  storeRadiance(scene, shaded, h, E, out);
 }
 
 // misWeight (mis_weight.h): 1 / (1 + r), r = b / a (squared for the power heuristic).
@@ -213,10 +271,9 @@ HWY_INLINE void shadeMis(const PacketScene& scene, const PacketRays& rays, const
       const VF inv = setF(1.f / float(scene.bsdfSamples));
       bsdfPart = {bsdfPart.x * inv, bsdfPart.y * inv, bsdfPart.z * inv};
     }
-    E = {zero + (lightPart.x + bsdfPart.x), zero + (lightPart.y + bsdfPart.y),
-         zero + (lightPart.z + bsdfPart.z)};
+    E = {lightPart.x + bsdfPart.x, lightPart.y + bsdfPart.y, lightPart.z + bsdfPart.z};
   }
-  storeRadiance(shaded, h, E, out);
+  storeRadiance(scene, shaded, h, E, out);
 }
 
 // AoIntegrator<kWarp>: hemisphere directions about the shading normal, each tested for occlusion up
@@ -275,6 +332,8 @@ void ShadePacket(const PacketScene& scene, const PacketRays& rays, const PacketD
       return shadeMis<LightMeasure::SolidAngle, MisHeuristic::Balance>(scene, rays, draws, out);
     case PacketKernel::MisSolidAnglePower:
       return shadeMis<LightMeasure::SolidAngle, MisHeuristic::Power>(scene, rays, draws, out);
+    case PacketKernel::Simple:
+      return shadeSimple(scene, rays, out);
     case PacketKernel::AoUniform:
       return shadeAo<HemisphereWarp::Uniform>(scene, rays, draws, out);
     case PacketKernel::AoCosine:

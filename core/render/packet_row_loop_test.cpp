@@ -34,7 +34,7 @@ struct TestScene {
 // diffuse sphere, a black sphere (nothing shaded), a light seen directly that also reflects (albedo
 // 0.5, as scene files give emitters) and one that does not, a light of black radiance, a tiny distant
 // light, and a diffuse sphere that cuts into a light (shading points inside it, lit by nothing of it).
-TestScene packetTestScene(float scale) {
+TestScene packetTestScene(float scale, bool deltaLights = false) {
   auto scene = std::make_shared<Scene>();
   auto addObject = [&](Color3 albedo) {
     scene->materials.push_back(SurfaceMaterial{makeDiffuse(albedo)});
@@ -62,6 +62,15 @@ TestScene packetTestScene(float scale) {
   addLight(Vec3(40.f, 30.f, 20.f), 1e-3f, Color3(1e6f), Color3(0.5f));
   scene->geometry.addSphere(Sphere{Vec3(1.5f, -0.7f, -0.6f) * s, 0.35f * s}, addObject(Color3(0.9f)));
   addLight(Vec3(1.7f, -0.5f, -0.6f), 0.25f, Color3(2.f), Color3(0.5f));
+  if (deltaLights) {
+    // A point light above, one at a shading point's place on the floor (no direction there), a black
+    // one, and two directional lights (one from below the floor).
+    scene->pointLights.push_back(PointLight{Vec3(0.3f, 1.8f, 0.9f) * s, Color3(4.f, 3.f, 2.f)});
+    scene->pointLights.push_back(PointLight{Vec3(0.5f, -1.f, 1.2f) * s, Color3(1.f)});
+    scene->pointLights.push_back(PointLight{Vec3(-1.f, 1.f, 0.f) * s, Color3(0.f)});
+    scene->directionalLights.push_back(DirectionalLight::make(Vec3(-0.4f, 1.f, 0.3f), Color3(0.7f)));
+    scene->directionalLights.push_back(DirectionalLight::make(Vec3(0.f, -1.f, 0.2f), Color3(5.f)));
+  }
   scene->geometry.build(AccelMode::BruteForce, AccelMode::BruteForce);
   scene->rayLengthBound = scene->geometry.bounds().diagonal() * 1.01f;
   return {std::move(scene), scale};
@@ -114,33 +123,35 @@ const IntegratorDesc kPacketStrategies[] = {
     directByMis(LightMeasure::Area, MisHeuristic::Power),
     directByMis(LightMeasure::SolidAngle, MisHeuristic::Balance),
     directByMis(LightMeasure::SolidAngle, MisHeuristic::Power),
+    integratorOfType(IntegratorType::Simple),
 };
 
 // Each lane computes exactly what the scalar integrator computes, so the film is the scalar loop's bit
 // for bit: on every instruction set this CPU has, for every strategy with a kernel, every sampler,
-// one and several shading samples (MIS: 1 and 3 per light with 1 and 0 of the surface's), at 1e-4, 1
-// and 1e4 scene units.
+// one and several shading samples (MIS: 1 and 3 per light with 1 and 0 of the surface's), with and
+// without point and directional lights, at 1e-4, 1 and 1e4 scene units.
 TEST(PacketRowLoop, EqualsTheScalarLoopBitForBit) {
-  for (const float scale : {1e-4f, 1.f, 1e4f}) {
-    const TestScene t = packetTestScene(scale);
-    for (const std::string& target : availablePacketTargets()) {
-      ForcedTarget forced(target);
-      for (const IntegratorDesc& strategy : kPacketStrategies) {
-        for (int k = 0; k < kSamplerKindCount; ++k) {
-          const SamplerKind sampler = SamplerKind(k);
-          for (const int samples : {1, 3}) {
-            SCOPED_TRACE(target + " " + samplerKindName(sampler) + " samples " + std::to_string(samples) +
-                         " " + strategyLabel(strategy) + " scale " + std::to_string(scale));
-            const auto job = jobFor(t, strategy, samples, sampler);
-            ASSERT_EQ(packetUnsupportedReason(*job), "");
-            const std::vector<double> packets = renderSums(job, true, 2), scalar = renderSums(job, false, 2);
-            ASSERT_EQ(packets.size(), scalar.size());
-            EXPECT_EQ(packets, scalar);
-          }
-        }
+  for (const float scale : {1e-4f, 1.f, 1e4f})
+    for (const bool deltaLights : {false, true}) {
+      const TestScene t = packetTestScene(scale, deltaLights);
+      for (const std::string& target : availablePacketTargets()) {
+        ForcedTarget forced(target);
+        for (const IntegratorDesc& strategy : kPacketStrategies)
+          for (int k = 0; k < kSamplerKindCount; ++k)
+            for (const int samples : {1, 3}) {
+              const SamplerKind sampler = SamplerKind(k);
+              SCOPED_TRACE(target + " " + samplerKindName(sampler) + " samples " + std::to_string(samples) +
+                           " " + strategyLabel(strategy) + " scale " + std::to_string(scale) +
+                           (deltaLights ? " with point and directional lights" : ""));
+              const auto job = jobFor(t, strategy, samples, sampler);
+              ASSERT_EQ(packetUnsupportedReason(*job), "");
+              const std::vector<double> packets = renderSums(job, true, 2),
+                                        scalar = renderSums(job, false, 2);
+              ASSERT_EQ(packets.size(), scalar.size());
+              EXPECT_EQ(packets, scalar);
+            }
       }
     }
-  }
 }
 
 // The image has every kind of lane: sky pixels (0), lights seen directly (brighter than any reflection

@@ -15,6 +15,10 @@ bool kernelOf(const IntegratorDesc& d, PacketKernel& kernel) {
     kernel = cosine ? PacketKernel::AoCosine : PacketKernel::AoUniform;
     return true;
   }
+  if (d.type == IntegratorType::Simple) {
+    kernel = PacketKernel::Simple;
+    return true;
+  }
   if (d.type != IntegratorType::Direct) return false;
   switch (d.estimator) {
     case Estimator::Hemisphere:
@@ -58,6 +62,7 @@ namespace {
 // The integrator's sampler requests after the filter's: per light for light sampling, the lights'
 // then the surface's for MIS, one request otherwise.
 std::vector<DrawRequests> drawRequestsOf(const IntegratorDesc& d, int lights) {
+  if (d.type == IntegratorType::Simple) return {};
   if (d.type == IntegratorType::Direct && d.estimator == Estimator::Light) return {{lights, d.samples}};
   if (d.type == IntegratorType::Direct && d.estimator == Estimator::Mis)
     return {{lights, d.lightSamples}, {1, d.bsdfSamples}};
@@ -82,7 +87,6 @@ std::string packetUnsupportedReason(const RenderJob& job) {
     return "more shading samples per camera sample than a packet carries (" +
            std::to_string(kMaxPacketDraws) + ")";
   if (d.type == IntegratorType::Ao) return {};  // ambient occlusion sees only the geometry
-  if (scene.hasDeltaLights()) return "the scene has point or directional lights";
   if (!scene.polygonLights.empty()) return "the scene has polygon lights";
   for (const SurfaceMaterial& m : scene.materials)
     if (!m.bsdf.isDiffuse()) return "the scene has a glossy material";
@@ -121,6 +125,14 @@ PacketScene makePacketScene(const RenderJob& job) {
     }
     p.objects.push_back(o);
   }
+  for (const PointLight& l : scene.pointLights)
+    p.pointLights.push_back({{l.position.x, l.position.y, l.position.z},
+                             {l.intensity.x, l.intensity.y, l.intensity.z},
+                             maxAbsComponent(l.position)});
+  for (const DirectionalLight& l : scene.directionalLights)
+    p.directionalLights.push_back({{l.direction.x, l.direction.y, l.direction.z},
+                                   {l.irradiance.x, l.irradiance.y, l.irradiance.z},
+                                   isBlack(l.irradiance)});
   for (const SphereLight& l : scene.sphereLights) {
     PacketLight pl{};
     pl.center[0] = l.sphere.center.x, pl.center[1] = l.sphere.center.y, pl.center[2] = l.sphere.center.z;

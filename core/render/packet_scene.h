@@ -45,6 +45,18 @@ struct PacketLight {
   int32_t geometrySphere;  // its index among PacketScene::spheres (skipped by its own shadow rays)
 };
 
+struct PacketPointLight {
+  float position[3];
+  float intensity[3];
+  float scale;  // maxAbsComponent(position): how far its shadow rays stop short
+};
+
+struct PacketDirectionalLight {
+  float direction[3];  // unit, towards the light
+  float irradiance[3];
+  bool black;
+};
+
 // The strategies the packet kernels compute (one kernel each, chosen per render).
 enum class PacketKernel : uint8_t {
   LightArea,             // direct by light sampling, area measure, every light
@@ -55,6 +67,7 @@ enum class PacketKernel : uint8_t {
   MisAreaPower,          // ... power heuristic
   MisSolidAngleBalance,  // MIS of solid-angle light sampling and the cosine hemisphere, balance
   MisSolidAnglePower,    // ... power heuristic
+  Simple,                // point and directional lights only
   AoUniform,             // ambient occlusion, uniform hemisphere
   AoCosine,              // ambient occlusion, cosine hemisphere
 };
@@ -69,7 +82,9 @@ struct PacketScene {
   std::vector<PacketSphere> spheres;
   std::vector<PacketQuad> quads;
   std::vector<PacketObject> objects;
-  std::vector<PacketLight> lights;
+  std::vector<PacketLight> lights;  // sphere lights
+  std::vector<PacketPointLight> pointLights;
+  std::vector<PacketDirectionalLight> directionalLights;
   int samples = 1;           // shading samples per camera sample (per light, for light sampling)
   int lightSamples = 0;      // MIS: per light
   int bsdfSamples = 0;       // MIS
