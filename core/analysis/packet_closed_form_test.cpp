@@ -1,0 +1,117 @@
+// The closed forms through the packet path: whole images rendered by the engine (camera samples in
+// SIMD lanes), each pixel's mean against the closed form at the point its centre sees, within five of
+// the film's standard errors; on every instruction set this CPU has, for every strategy with a packet
+// kernel and every sampler.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <sstream>
+#include <string>
+
+#include "core/analysis/closed_forms.h"
+#include "core/math/frame.h"
+#include "core/render/camera.h"
+#include "core/render/engine.h"
+#include "core/render/packet_kernels.h"
+#include "core/render/packet_row_loop.h"
+#include "core/render/packet_scene.h"
+#include "core/render/strategy_axes.h"
+#include "core/sampling/sampler_table.h"
+#include "core/scene/scene_builder.h"
+
+namespace penumbra {
+namespace {
+
+constexpr int kSize = 8;
+constexpr uint32_t kSpp = 64;
+
+// The plane z = 0 (albedo 1, half-size 10) under one sphere, an emitter of radiance `Le` or (Le = 0)
+// a diffuse occluder; a camera 3 units above looking straight down with a 2° field of view, so each
+// pixel's footprint is ~0.01 units and the closed form at its centre is its expectation to ~1e-5.
+LoadedScene planeScene(const Vec3& c, float r, float Le) {
+  std::ostringstream xml;
+  xml.precision(9);
+  xml << "<scene><integrator type=\"direct\"/>"
+      << "<shape type=\"plane\"><bsdf type=\"diffuse\"><color name=\"albedo\" value=\"1\"/></bsdf>"
+      << "<transform name=\"toWorld\"><scale value=\"10,1,10\"/><rotate axis=\"1,0,0\" angle=\"90\"/>"
+      << "</transform></shape><shape type=\"sphere\"><point name=\"center\" value=\"" << c.x << "," << c.y
+      << "," << c.z << "\"/><float name=\"radius\" value=\"" << r << "\"/>";
+  if (Le > 0.f) xml << "<emitter type=\"area\"><color name=\"radiance\" value=\"" << Le << "\"/></emitter>";
+  xml << "</shape></scene>";
+  LoadedScene s = loadSceneFromString(xml.str(), "packet-closed-form.xml", ".");
+  CameraDesc& cam = s.settings.camera;
+  const Vec3 origin(0.4f, -0.3f, 3.f), dir(0.f, 0.f, -1.f), left(-1.f, 0.f, 0.f);
+  cam.toWorld = cameraToWorld(origin, left, glm::cross(dir, left), dir);
+  cam.fovDegrees = 2.f;
+  cam.width = cam.height = kSize;
+  return s;
+}
+
+// Every pixel of the packet path's image of `strategy` against truth(x) at the plane point x its
+// centre sees.
+template <class Truth>
+void expectClosedForm(const LoadedScene& s, const IntegratorDesc& strategy, const Truth& truth) {
+  for (const std::string& target : availablePacketTargets()) {
+    ASSERT_TRUE(forcePacketTarget(target));
+    for (const SamplerRow& row : samplerTable()) {
+      SCOPED_TRACE(target + " " + strategyLabel(strategy) + " " + std::string(row.label));
+      RenderSettings settings = s.settings;
+      settings.integrator = withSamples(strategy, 2);
+      settings.integrator.lightSamples = settings.integrator.bsdfSamples = 2;
+      settings.samplerKind = row.kind;
+      settings.seed = 3;
+      auto job = std::make_shared<const RenderJob>(s.scene, settings, RenderLimits{kSpp, 0.0});
+      ASSERT_EQ(packetUnsupportedReason(*job), "");
+      Engine engine;
+      engine.setRowRendererFactory(
+          [](const RenderJob& j) { return packetRowsFor(j, makeScalarRowRenderer(j)); });
+      engine.start(job, RenderLimits{kSpp, 0.0}, 2);
+      engine.wait();
+      EXPECT_EQ(engine.progress().badSamples, 0u);
+      const PerspectiveCamera camera(settings.camera);
+      for (int y = 0; y < kSize; ++y)
+        for (int x = 0; x < kSize; ++x) {
+          const Ray ray = camera.generateRay(Vec2(float(x) + 0.5f, float(y) + 0.5f));
+          const Vec3 p = ray.o + (-ray.o.z / ray.d.z) * ray.d;
+          const double expected = truth(glm::dvec3(p));
+          Color3 mean, se;
+          engine.film().pixelStatistics(kSpp, x, y, mean, se);
+          EXPECT_NEAR(mean.y, expected, 5.0 * se.y + 1e-4 * expected) << "pixel " << x << "," << y;
+        }
+    }
+  }
+  forcePacketTarget("auto");
+}
+
+// Direct light from a sphere light fully above the plane: L = (albedo/π) Le I(θ, α).
+TEST(PacketClosedForm, ThePlaneUnderASphereLightForEveryDirectKernel) {
+  const Vec3 c(0.9f, -0.2f, 1.1f);
+  const float r = 0.35f, Le = 20.f;
+  const LoadedScene s = planeScene(c, r, Le);
+  auto truth = [&](const glm::dvec3& x) {
+    return double(Le) / kPiD * sphereLightIrradianceFactor(x, glm::dvec3(0, 0, 1), glm::dvec3(c), double(r));
+  };
+  for (const IntegratorDesc& strategy :
+       {directByLight(LightMeasure::Area), directByLight(LightMeasure::SolidAngle),
+        directByHemisphere(HemisphereWarp::Uniform), directByHemisphere(HemisphereWarp::Cosine),
+        directByBsdf(), directByMis(LightMeasure::Area, MisHeuristic::Balance),
+        directByMis(LightMeasure::Area, MisHeuristic::Power),
+        directByMis(LightMeasure::SolidAngle, MisHeuristic::Balance),
+        directByMis(LightMeasure::SolidAngle, MisHeuristic::Power)})
+    expectClosedForm(s, strategy, truth);
+}
+
+// Ambient occlusion of the plane beside a sphere floating above it: 1 − I(θ, α)/π.
+TEST(PacketClosedForm, ThePlaneBesideAnOccludingSphereForBothAoKernels) {
+  const Vec3 c(0.8f, -0.1f, 0.5f);
+  const float r = 0.3f;
+  const LoadedScene s = planeScene(c, r, 0.f);
+  auto truth = [&](const glm::dvec3& x) {
+    return aoPlaneWithSphere(x, glm::dvec3(0, 0, 1), glm::dvec3(c), r);
+  };
+  for (const IntegratorDesc& strategy : {aoBy(HemisphereWarp::Uniform), aoBy(HemisphereWarp::Cosine)})
+    expectClosedForm(s, strategy, truth);
+}
+
+}  // namespace
+}  // namespace penumbra
