@@ -1,9 +1,14 @@
 // The packet kernels, compiled by Highway once per instruction set (this file includes itself through
-// hwy/foreach_target.h) and chosen at run time (HWY_DYNAMIC_DISPATCH). Each function mirrors, lane by
+// hwy/foreach_target.h) and chosen at run time by the CPU's features (at the end of this file; not by
+// Highway's HWY_DYNAMIC_DISPATCH, whose library libhwy.so calibrates a timer with RDTSCP when it is
+// loaded, an instruction valgrind cannot run, and valgrind is how this project counts instructions). Each function mirrors, lane by
 // lane, the scalar function its comment names: the same float and double operations in the same
 // order, branches as masks. The file is compiled without floating-point contraction, so no
 // multiply-add is fused where the scalar code rounds twice.
 
+#include <cpuid.h>
+
+#include <atomic>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -343,9 +348,6 @@ void ShadePacket(const PacketScene& scene, const PacketRays& rays, const PacketD
 int Lanes() {
   return static_cast<int>(hn::Lanes(DD()));
 }
-const char* TargetName() {
-  return hwy::TargetName(HWY_TARGET);
-}
 
 }  // namespace HWY_NAMESPACE
 }  // namespace penumbra
@@ -353,31 +355,95 @@ HWY_AFTER_NAMESPACE();
 
 #if HWY_ONCE
 namespace penumbra {
+namespace {
 
-HWY_EXPORT(ShadePacket);
-HWY_EXPORT(Lanes);
-HWY_EXPORT(TargetName);
+// One instruction set's kernels.
+struct PacketTarget {
+  int64_t target;  // Highway's bit for it
+  void (*shade)(const PacketScene&, const PacketRays&, const PacketDraws&, PacketRadiance&);
+  int (*lanes)();
+};
+
+// The sets this file was compiled for, best first.
+constexpr PacketTarget kTargets[] = {
+#if HWY_TARGETS & HWY_AVX3
+    {HWY_AVX3, &N_AVX3::ShadePacket, &N_AVX3::Lanes},
+#endif
+#if HWY_TARGETS & HWY_AVX2
+    {HWY_AVX2, &N_AVX2::ShadePacket, &N_AVX2::Lanes},
+#endif
+#if HWY_TARGETS & HWY_SSE4
+    {HWY_SSE4, &N_SSE4::ShadePacket, &N_SSE4::Lanes},
+#endif
+#if HWY_TARGETS & HWY_EMU128
+    {HWY_EMU128, &N_EMU128::ShadePacket, &N_EMU128::Lanes},
+#endif
+#if HWY_TARGETS & HWY_SCALAR
+    {HWY_SCALAR, &N_SCALAR::ShadePacket, &N_SCALAR::Lanes},
+#endif
+};
+
+// Whether this CPU (and its OS, for the AVX registers) runs Highway's code for `target`: every
+// feature Highway compiles that target with (HWY_TARGET_STR in hwy/ops/set_macros-inl.h).
+bool runsHere(int64_t target) {
+  __builtin_cpu_init();
+  const bool sse4 = __builtin_cpu_supports("ssse3") && __builtin_cpu_supports("sse4.1") &&
+                    __builtin_cpu_supports("sse4.2") && __builtin_cpu_supports("pclmul") &&
+                    __builtin_cpu_supports("aes");
+  unsigned eax = 0, ebx = 0, ecx = 0, edx = 0;
+  const bool f16c = __get_cpuid(1, &eax, &ebx, &ecx, &edx) && (ecx & bit_F16C) != 0;  // not every compiler's
+                                                                                      // builtin names it
+  const bool avx2 = sse4 && __builtin_cpu_supports("avx") && __builtin_cpu_supports("avx2") &&
+                    __builtin_cpu_supports("bmi") && __builtin_cpu_supports("bmi2") &&
+                    __builtin_cpu_supports("fma") && f16c;
+  const bool avx3 = avx2 && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
+                    __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512bw");
+  if (target == HWY_AVX3) return avx3;
+  if (target == HWY_AVX2) return avx2;
+  if (target == HWY_SSE4) return sse4;
+  return true;  // the portable fallback
+}
+
+// The sets this CPU runs, best first (never empty: the fallback runs everywhere).
+const std::vector<const PacketTarget*>& runnableTargets() {
+  static const std::vector<const PacketTarget*> targets = [] {
+    std::vector<const PacketTarget*> t;
+    for (const PacketTarget& target : kTargets)
+      if (runsHere(target.target)) t.push_back(&target);
+    return t;
+  }();
+  return targets;
+}
+
+std::atomic<const PacketTarget*> gForced{nullptr};
+
+const PacketTarget& currentTarget() {
+  const PacketTarget* forced = gForced.load(std::memory_order_relaxed);
+  return forced ? *forced : *runnableTargets().front();
+}
+
+}  // namespace
 
 int packetLanes() {
-  return HWY_DYNAMIC_DISPATCH(Lanes)();
+  return currentTarget().lanes();
 }
 
 std::string packetTargetName() {
-  return HWY_DYNAMIC_DISPATCH(TargetName)();
+  return hwy::TargetName(currentTarget().target);
 }
 
 std::vector<std::string> availablePacketTargets() {
   std::vector<std::string> names;
-  for (int64_t target : hwy::SupportedAndGeneratedTargets()) names.push_back(hwy::TargetName(target));
+  for (const PacketTarget* target : runnableTargets()) names.push_back(hwy::TargetName(target->target));
   return names;
 }
 
 bool forcePacketTarget(const std::string& name) {
-  hwy::SetSupportedTargetsForTest(0);
+  gForced.store(nullptr);
   if (name.empty() || name == "auto") return true;
-  for (int64_t target : hwy::SupportedAndGeneratedTargets())
-    if (name == hwy::TargetName(target)) {
-      hwy::SetSupportedTargetsForTest(target);
+  for (const PacketTarget* target : runnableTargets())
+    if (name == hwy::TargetName(target->target)) {
+      gForced.store(target);
       return true;
     }
   return false;
@@ -385,7 +451,7 @@ bool forcePacketTarget(const std::string& name) {
 
 void shadePacket(const PacketScene& scene, const PacketRays& rays, const PacketDraws& draws,
                  PacketRadiance& out) {
-  HWY_DYNAMIC_DISPATCH(ShadePacket)(scene, rays, draws, out);
+  currentTarget().shade(scene, rays, draws, out);
 }
 
 }  // namespace penumbra
