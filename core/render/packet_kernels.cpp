@@ -1,9 +1,9 @@
 // The packet kernels, compiled by Highway once per instruction set (this file includes itself through
 // hwy/foreach_target.h) and chosen at run time by the CPU's features (at the end of this file; not by
 // Highway's HWY_DYNAMIC_DISPATCH, whose library libhwy.so calibrates a timer with RDTSCP when it is
-// loaded, an instruction valgrind cannot run, and valgrind is how this project counts instructions). Each function mirrors, lane by
-// lane, the scalar function its comment names: the same float and double operations in the same
-// order, branches as masks. The file is compiled without floating-point contraction, so no
+// loaded, an instruction valgrind cannot run, and valgrind is how this project counts instructions). Each
+// function mirrors, lane by lane, the scalar function its comment names: the same float and double operations
+// in the same order, branches as masks. The file is compiled without floating-point contraction, so no
 // multiply-add is fused where the scalar code rounds twice.
 
 #include <cpuid.h>
