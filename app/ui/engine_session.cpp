@@ -34,7 +34,14 @@ void EngineSession::setProbePixel(int x, int y) {
 }
 
 bool EngineSession::poll(bool wantStandardError, bool requestNext) {
-  if (requestNext) engine_.requestSnapshot(wantStandardError);
+  // Once a pass is done, the pass after the running one is resolved by the workers as they render it
+  // (no worker waits for a serial resolve at a boundary); the first pass is wanted at once.
+  if (requestNext) {
+    if (engine_.progress().spp >= 1)
+      engine_.requestNextPassSnapshot(wantStandardError);
+    else
+      engine_.requestSnapshot(wantStandardError);
+  }
   // Paused where no snapshot was requested: publish the pass the film holds.
   if (engine_.paused()) engine_.publishAtRest();
   bool changed = engine_.takeSnapshot(snapshot_);  // the session is its engine's only reader

@@ -42,8 +42,9 @@ namespace {
 constexpr double kFrameIntervalMs = 1000.0 / 60.0;     // at most one frame per 60 Hz display refresh
 constexpr double kSnapshotIntervalMs = 1000.0 / 30.0;  // new passes alone: at most 30 frames a second
 // On software GL a frame's CPU time comes out of the render threads' cores (llvmpipe rasterises on
-// them): frames that only show a new pass are spaced so that they take at most this share of all
-// cores (~10 ms frames on 2 cores: ~8 a second). Input, restarts and display changes still draw at once.
+// them): frames that only show a new pass are spaced so that they, with the workers' resolving of the
+// passes they show, take at most this share of all cores (~10 ms frames on 2 cores: ~8 a second).
+// Input, restarts and display changes still draw at once.
 constexpr double kPassFramesCpuShare = 0.04;
 constexpr double kLongestPassIntervalMs = 250;  // but never fewer than 4 new passes shown a second
 constexpr double kIdleWaitSeconds = 0.25;       // longest sleep (paces the scene file's check)
@@ -165,6 +166,14 @@ class ViewerApp : public BenchViewer, public DrivenViewer {
     lastFrameMs_ = msSince(t0);
     st_.frameMs = lastFrameMs_;
     frameCostMs_ = framesDrawn_ == 0 ? lastFrameMs_ : 0.8 * frameCostMs_ + 0.2 * lastFrameMs_;
+    // The workers' resolving since the last frame that saw some: the cost of the pass this one shows.
+    const double resolved = c_.progress().resolveSeconds;
+    if (resolved < resolvedSeconds_) resolvedSeconds_ = resolved;  // another engine (a new scene)
+    if (resolved > resolvedSeconds_) {
+      const double ms = 1e3 * (resolved - resolvedSeconds_);
+      resolveCostMs_ = resolveCostMs_ == 0 ? ms : 0.8 * resolveCostMs_ + 0.2 * ms;
+      resolvedSeconds_ = resolved;
+    }
     ++framesDrawn_;
     shownRestart_ = c_.snapshot().mean.empty() ? 0 : c_.snapshotRestart();
     if (st_.requestSavePng) {
@@ -184,7 +193,7 @@ class ViewerApp : public BenchViewer, public DrivenViewer {
   double passFrameIntervalMs() const {
     if (display_.tonemapper() != Tonemapper::Cpu) return kSnapshotIntervalMs;  // hardware GL
     const double cores = std::max(1u, std::thread::hardware_concurrency());
-    return std::clamp(frameCostMs_ / (kPassFramesCpuShare * cores), kSnapshotIntervalMs,
+    return std::clamp((frameCostMs_ + resolveCostMs_) / (kPassFramesCpuShare * cores), kSnapshotIntervalMs,
                       kLongestPassIntervalMs);
   }
 
@@ -216,8 +225,8 @@ class ViewerApp : public BenchViewer, public DrivenViewer {
       const RenderProgress progress = c_.progress();
       const double passMs = progress.spp > 0 ? 1e3 * progress.seconds / progress.spp : 0.0;
       // Since the last frame; right after a restart the first pass is wanted at once.
-      const double requestAtMs = progress.spp <= 1 ? 0.0 : passInterval - 1.5 * passMs;
-      if (update(pending > 0 || since >= requestAtMs)) snapshotDue = true;
+      const double requestAtMs = progress.spp <= 1 ? 0.0 : passInterval - 2.5 * passMs;
+      if (update(pending > 0 || (since >= requestAtMs && !snapshotDue))) snapshotDue = true;
       // Slow passes (big images, heavy scenes): refresh the elapsed time and rates now and then.
       if (c_.rendering() && since >= kStatsRefreshMs) pending = std::max(pending, 1);
       // New passes of the same accumulation are shown at most every passInterval; the first images of
@@ -585,7 +594,9 @@ class ViewerApp : public BenchViewer, public DrivenViewer {
   uint64_t seenSerial_ = ~0ull, seenCompareSerial_ = ~0ull, seenEvents_ = ~0ull;
   Clock::time_point lastFrameStart_{};
   double lastFrameMs_ = 0;
-  double frameCostMs_ = 0;  // running average of lastFrameMs_ (paces pass-only frames)
+  double frameCostMs_ = 0;      // running average of lastFrameMs_ (paces pass-only frames)
+  double resolveCostMs_ = 0;    // running average of the workers' resolving per shown pass (paces them too)
+  double resolvedSeconds_ = 0;  // RenderProgress::resolveSeconds at the last frame that saw it grow
   uint64_t framesDrawn_ = 0;
   uint64_t shownRestart_ = 0;
   FrameStageTimer* stageTimer_ = nullptr;  // the bench's (and runDriven's) frame breakdown

@@ -1,6 +1,7 @@
 #include "core/render/engine.h"
 
 #include <algorithm>
+#include <chrono>
 #include <system_error>
 #include <thread>
 
@@ -162,6 +163,7 @@ RenderProgress Engine::progress() const {
   p.seconds = p.finished ? clock_.stoppedSeconds() : clock_.elapsed();
   p.samples = uint64_t(p.spp) * uint64_t(std::max(film_.width(), 0)) * uint64_t(std::max(film_.height(), 0));
   p.badSamples = badSamples_;
+  p.resolveSeconds = double(resolveNanos_.load(std::memory_order_relaxed)) * 1e-9;
   p.rows = uint32_t(std::max(film_.height(), 0));
   p.passRows = p.finished ? 0u : std::min(uint32_t(std::max(passRowsDone_.load(), 0)), p.rows);
   return p;
@@ -264,8 +266,15 @@ void Engine::workerLoop(bool preview) {
       rowPasses_[size_t(y)] = pass + 1;
       passRowsDone_.fetch_add(1, std::memory_order_relaxed);
       // This worker owns row y until the pass ends: resolve it now, from sums still in cache.
-      if (meanRows) film_.resolveMean(pass + 1, *meanRows, y, y + 1);
-      if (errorRows) film_.resolveStandardError(pass + 1, *errorRows, y, y + 1);
+      if (meanRows || errorRows) {
+        const auto resolveStart = std::chrono::steady_clock::now();
+        if (meanRows) film_.resolveMean(pass + 1, *meanRows, y, y + 1);
+        if (errorRows) film_.resolveStandardError(pass + 1, *errorRows, y, y + 1);
+        resolveNanos_.fetch_add(uint64_t(std::chrono::duration_cast<std::chrono::nanoseconds>(
+                                             std::chrono::steady_clock::now() - resolveStart)
+                                             .count()),
+                                std::memory_order_relaxed);
+      }
     }
     if (bad) badSamples_ += bad;
 

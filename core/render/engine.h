@@ -42,6 +42,9 @@ struct RenderProgress {
   // spp + 1 so far, of `rows`. 0 once finished.
   uint32_t passRows = 0;
   uint32_t rows = 0;
+  // Worker time spent resolving rows for snapshots over the engine's life (what showing passes costs
+  // the workers; a viewer budgets it with its own frames).
+  double resolveSeconds = 0.0;
 };
 
 class Engine {
@@ -161,7 +164,8 @@ class Engine {
 
   // Pass state.
   std::atomic<int> nextRow_{0};
-  std::atomic<int> passRowsDone_{0};  // rows completed in the running pass (progress() reports them)
+  std::atomic<int> passRowsDone_{0};       // rows completed in the running pass (progress() reports them)
+  std::atomic<uint64_t> resolveNanos_{0};  // worker time resolving rows for snapshots, ever
   std::atomic<bool> cancel_{false};
   std::atomic<bool> stopRequested_{false};
   std::atomic<bool> stopNow_{false};
