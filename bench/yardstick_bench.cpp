@@ -198,6 +198,29 @@ void BM_Yardstick_SphereArea(benchmark::State& state) {
 }
 BENCHMARK(BM_Yardstick_SphereArea)->Unit(benchmark::kMillisecond)->UseRealTime();
 
+// The built-in sphere scene by light sampling of `measure`, `passes` whole passes per iteration
+// through the progressive engine on state.range(0) threads (`scalar`: one camera sample at a time);
+// items are camera samples, and the image mean is reported beside them.
+void renderSphereScene(benchmark::State& state, LightMeasure measure, uint32_t passes, bool scalar) {
+  LoadedScene s = loadSceneFromString(defaultSceneXml(), "<built-in sphere scene>", ".");
+  RenderSettings settings = s.settings;
+  settings.integrator = withSamples(directByLight(measure), 1);
+  const int threads = int(state.range(0));
+  const RenderLimits limits{passes, 0.0};
+  const auto job = std::make_shared<const RenderJob>(s.scene, settings, limits);
+  Engine engine;
+  if (scalar) engine.setRowRendererFactory(makeScalarRowRenderer);
+  for (auto _ : state) {
+    engine.start(job, limits, threads);
+    engine.wait();
+  }
+  const Image image = engine.film().mean(passes);
+  double sum = 0;
+  for (size_t i = 0; i < image.rgb.size(); i += 3) sum += image.rgb[i];
+  state.counters["image_mean"] = sum / double(image.pixelCount());
+  state.SetItemsProcessed(int64_t(state.iterations()) * passes * kSize * kSize);
+}
+
 // The sphere-solid loop over `threads` threads (rows split in two halves: the scene's cost is even
 // enough across rows), kPasses passes per iteration.
 void BM_Yardstick_SphereSolid(benchmark::State& state) {
@@ -231,24 +254,7 @@ BENCHMARK(BM_Yardstick_SphereSolid)
 // 16 passes of 768² as `penumbra render --spp 16` renders them, in packets (simd:1) or one camera
 // sample at a time (simd:0).
 void BM_Penumbra_SphereSolid(benchmark::State& state) {
-  LoadedScene s = loadSceneFromString(defaultSceneXml(), "<built-in sphere scene>", ".");
-  RenderSettings settings = s.settings;
-  settings.integrator = withSamples(directByLight(LightMeasure::SolidAngle), 1);
-  const int threads = int(state.range(0));
-  constexpr uint32_t kPasses = 16;
-  const RenderLimits limits{kPasses, 0.0};
-  const auto job = std::make_shared<const RenderJob>(s.scene, settings, limits);
-  Engine engine;
-  if (state.range(1) == 0) engine.setRowRendererFactory(makeScalarRowRenderer);
-  for (auto _ : state) {
-    engine.start(job, limits, threads);
-    engine.wait();
-  }
-  const Image image = engine.film().mean(kPasses);
-  double sum = 0;
-  for (size_t i = 0; i < image.rgb.size(); i += 3) sum += image.rgb[i];
-  state.counters["image_mean"] = sum / double(image.pixelCount());
-  state.SetItemsProcessed(int64_t(state.iterations()) * kPasses * kSize * kSize);
+  renderSphereScene(state, LightMeasure::SolidAngle, 16, /*scalar=*/state.range(1) == 0);
 }
 BENCHMARK(BM_Penumbra_SphereSolid)
     ->ArgNames({"threads", "simd"})
@@ -261,23 +267,7 @@ BENCHMARK(BM_Penumbra_SphereSolid)
 // The general renderer on the scene as shipped (gaussian filter, area measure, one shadow ray), in
 // whole passes through the progressive engine; items are camera samples.
 void BM_Penumbra_SphereArea(benchmark::State& state) {
-  LoadedScene s = loadSceneFromString(defaultSceneXml(), "<built-in sphere scene>", ".");
-  RenderSettings settings = s.settings;
-  settings.integrator = withSamples(directByLight(LightMeasure::Area), 1);
-  const int threads = int(state.range(0));
-  constexpr uint32_t kPasses = 8;
-  const RenderLimits limits{kPasses, 0.0};
-  const auto job = std::make_shared<const RenderJob>(s.scene, settings, limits);
-  Engine engine;
-  for (auto _ : state) {
-    engine.start(job, limits, threads);
-    engine.wait();
-  }
-  const Image image = engine.film().mean(kPasses);
-  double sum = 0;
-  for (size_t i = 0; i < image.rgb.size(); i += 3) sum += image.rgb[i];
-  state.counters["image_mean"] = sum / double(image.pixelCount());
-  state.SetItemsProcessed(int64_t(state.iterations()) * kPasses * kSize * kSize);
+  renderSphereScene(state, LightMeasure::Area, 8, /*scalar=*/false);
 }
 BENCHMARK(BM_Penumbra_SphereArea)
     ->ArgName("threads")

@@ -111,6 +111,27 @@ double timedRun(const LoadedScene& s, const RenderSettings& settings, int thread
   return double(p.samples) / p.seconds;
 }
 
+// The renderer's default row loop (packets, batches) against one camera sample at a time at 1 thread,
+// the two alternating run by run (which goes first alternates too): each one's median rate, and the
+// median and range of the pairs' ratios.
+struct AgainstScalar {
+  double rate = 0, scalarRate = 0, ratio = 0, ratioMin = 0, ratioMax = 0;
+};
+AgainstScalar againstScalar(const LoadedScene& s, const RenderSettings& settings, const BenchOptions& o) {
+  std::vector<double> rates, scalarRates, ratios;
+  for (int r = 0; r < o.repeats; ++r) {
+    const bool scalarFirst = r % 2 == 1;
+    const double a = timedRun(s, settings, 1, o.seconds, scalarFirst);
+    const double b = timedRun(s, settings, 1, o.seconds, !scalarFirst);
+    const double rate = scalarFirst ? b : a, scalar = scalarFirst ? a : b;
+    rates.push_back(rate);
+    scalarRates.push_back(scalar);
+    ratios.push_back(rate / scalar);
+  }
+  return {median(rates), median(scalarRates), median(ratios), *std::min_element(ratios.begin(), ratios.end()),
+          *std::max_element(ratios.begin(), ratios.end())};
+}
+
 // Camera samples per second at 1 thread and at `all`, and the speed-up. The two thread counts
 // alternate run by run in the order 1,N, N,1, 1,N, ... (a linear drift of the machine's speed
 // cancels), and the speed-up is the median of each pair's ratio: on a shared machine whose speed
@@ -224,20 +245,10 @@ void simdTable(const LoadedScene& sphere, const BenchOptions& o, const std::vect
     }
     for (const std::string& target : targets) {
       forcePacketTarget(target);
-      std::vector<double> rates, ratios;
-      for (int r = 0; r < o.repeats; ++r) {
-        const bool scalarFirst = r % 2 == 1;
-        const double a = timedRun(sphere, settings, 1, o.seconds, scalarFirst);
-        const double b = timedRun(sphere, settings, 1, o.seconds, !scalarFirst);
-        const double packets = scalarFirst ? b : a, scalar = scalarFirst ? a : b;
-        rates.push_back(packets);
-        ratios.push_back(packets / scalar);
-      }
+      const AgainstScalar m = againstScalar(sphere, settings, o);
       char range[40];
-      std::snprintf(range, sizeof range, "%.2fx (%.2f-%.2f)", median(ratios),
-                    *std::min_element(ratios.begin(), ratios.end()),
-                    *std::max_element(ratios.begin(), ratios.end()));
-      std::printf(" %12.2f %20s", median(rates) * 1e-6, range);
+      std::snprintf(range, sizeof range, "%.2fx (%.2f-%.2f)", m.ratio, m.ratioMin, m.ratioMax);
+      std::printf(" %12.2f %20s", m.rate * 1e-6, range);
       std::fflush(stdout);
     }
     forcePacketTarget("auto");
@@ -353,19 +364,9 @@ int runBench(const BenchOptions& o) {
               aoPath.c_str(), strategyLabel(s.integrator).c_str(), s.integrator.samples);
   if (ao.scene->geometry.usesEmbree()) {
     // The batched row loop (the default) against one camera sample at a time, alternating at 1 thread.
-    std::vector<double> ratios, scalarRates;
-    for (int r = 0; r < o.repeats; ++r) {
-      const bool scalarFirst = r % 2 == 1;
-      const double a = timedRun(ao, s, 1, o.seconds, scalarFirst);
-      const double b = timedRun(ao, s, 1, o.seconds, !scalarFirst);
-      const double batched = scalarFirst ? b : a, scalar = scalarFirst ? a : b;
-      scalarRates.push_back(scalar);
-      ratios.push_back(batched / scalar);
-    }
+    const AgainstScalar m = againstScalar(ao, s, o);
     std::printf("AO one camera sample at a time: %.2f M rays/s at 1 thread; batched %.2fx (%.2f-%.2f)\n",
-                median(scalarRates) * rays * 1e-6, median(ratios),
-                *std::min_element(ratios.begin(), ratios.end()),
-                *std::max_element(ratios.begin(), ratios.end()));
+                m.scalarRate * rays * 1e-6, m.ratio, m.ratioMin, m.ratioMax);
   }
   if (o.scalingSpp > 0) scalingSeries(o, all);
   return 0;

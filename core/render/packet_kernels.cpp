@@ -48,6 +48,32 @@ HWY_INLINE V3F loadF3(const float (&v)[3][kMaxPacketLanes]) {
   return {hn::LoadU(df, v[0]), hn::LoadU(df, v[1]), hn::LoadU(df, v[2])};
 }
 
+// What each lane's camera ray hits (SceneGeometry::intersect and the ShadingPoint).
+HWY_INLINE PacketHit cameraHit(const PacketScene& scene, const PacketRays& rays) {
+  const DF df;
+  const V3F o = loadF3(rays.o), d = loadF3(rays.d);
+  return fillHit(scene, nearest(scene, o, d, hn::LoadU(df, rays.tMin), hn::LoadU(df, rays.tMax)), o, d);
+}
+
+// Sampler draw j of every lane.
+HWY_INLINE void loadDraw(const PacketDraws& draws, size_t j, VF& u0, VF& u1) {
+  const DF df;
+  u0 = hn::LoadU(df, draws.u[j][0]);
+  u1 = hn::LoadU(df, draws.u[j][1]);
+}
+
+// v · f per component.
+HWY_INLINE V3F scaled(const V3F& v, VF f) {
+  return {v.x * f, v.y * f, v.z * f};
+}
+
+// A direction about +z by warp kWarp (Warp::squareToCosineHemisphere or squareToUniformHemisphere).
+template <HemisphereWarp kWarp>
+HWY_INLINE V3F hemisphereDirection(VF u0, VF u1) {
+  return kWarp == HemisphereWarp::Cosine ? squareToCosineHemisphere(u0, u1)
+                                         : directionFromOneMinusCos(u0, u1);
+}
+
 // E += Le · factor in the lanes of m (E unchanged elsewhere).
 HWY_INLINE void addRadiance(MF m, const float (&Le)[3], VF factor, V3F& E) {
   E = select(m, V3F{E.x + setF(Le[0]) * factor, E.y + setF(Le[1]) * factor, E.z + setF(Le[2]) * factor}, E);
@@ -79,7 +105,7 @@ HWY_INLINE V3F deltaIrradiance(const PacketScene& scene, const PacketHit& h, MF 
     const V3F toTarget{target.x - origin.x, target.y - origin.y, target.z - origin.z};
     const VF length = hn::Sqrt(dot(toTarget, toTarget));
     const VF inv = setF(1.f) / length;
-    const V3F w{toTarget.x * inv, toTarget.y * inv, toTarget.z * inv};
+    const V3F w = scaled(toTarget, inv);
     const VF tMax = length - setF(2.f * kRayOffsetScale) * maxOf(setF(light.scale), h.offsetScale);
     lit = hn::AndNot(occluded(scene, origin, w, tMax, -1, lit), lit);
     E = select(lit, V3F{E.x + Li.x * cosTheta, E.y + Li.y * cosTheta, E.z + Li.z * cosTheta}, E);
@@ -112,9 +138,7 @@ HWY_INLINE void storeRadiance(const PacketScene& scene, MF shaded, const PacketH
 // SimpleIntegrator: the delta lights alone.
 HWY_INLINE void shadeSimple(const PacketScene& scene, const PacketRays& rays, PacketRadiance& out) {
   const DF df;
-  const V3F o = loadF3(rays.o), d = loadF3(rays.d);
-  const PacketHit h =
-      fillHit(scene, nearest(scene, o, d, hn::LoadU(df, rays.tMin), hn::LoadU(df, rays.tMax)), o, d);
+  const PacketHit h = cameraHit(scene, rays);
   const VF zero = hn::Zero(df);
   storeRadiance(scene, hn::And(h.hit, h.shades), h, V3F{zero, zero, zero}, out);
 }
@@ -127,7 +151,8 @@ HWY_INLINE MF unoccludedLightSample(const PacketScene& scene, const PacketLight&
                                     VF& cosTheta) {
   const DF df;
   const VF zero = hn::Zero(df);
-  const VF u0 = hn::LoadU(df, draws.u[j][0]), u1 = hn::LoadU(df, draws.u[j][1]);
+  VF u0, u1;
+  loadDraw(draws, j, u0, u1);
   s = kMeasure == LightMeasure::Area ? sampleArea(light, h.p, u0, u1) : sampleSolidAngle(light, h.p, u0, u1);
   cosTheta = dot(h.ns, s.wi);
   // leavesSurface, then the shadow ray (ShadingPoint::spawnShadowRayAlong).
@@ -145,9 +170,7 @@ template <LightMeasure kMeasure>
 HWY_INLINE void shadeDirect(const PacketScene& scene, const PacketRays& rays, const PacketDraws& draws,
                             PacketRadiance& out) {
   const DF df;
-  const V3F o = loadF3(rays.o), d = loadF3(rays.d);
-  const PacketHit h =
-      fillHit(scene, nearest(scene, o, d, hn::LoadU(df, rays.tMin), hn::LoadU(df, rays.tMax)), o, d);
+  const PacketHit h = cameraHit(scene, rays);
   const VF zero = hn::Zero(df);
   V3F E{zero, zero, zero};
   const MF shaded = hn::And(h.hit, h.shades);
@@ -167,7 +190,7 @@ HWY_INLINE void shadeDirect(const PacketScene& scene, const PacketRays& rays, co
     }
     const VF invSamples = setF(1.f / float(samples));
     // directRadiance: L + albedo/π · (delta lights' 0 + the estimate).
-    E = {E.x * invSamples, E.y * invSamples, E.z * invSamples};
+    E = scaled(E, invSamples);
   }
   storeRadiance(scene, shaded, h, E, out);
 }
@@ -179,9 +202,7 @@ template <HemisphereWarp kWarp>
 HWY_INLINE void shadeHemisphere(const PacketScene& scene, const PacketRays& rays, const PacketDraws& draws,
                                 PacketRadiance& out) {
   const DF df;
-  const V3F o = loadF3(rays.o), d = loadF3(rays.d);
-  const PacketHit h =
-      fillHit(scene, nearest(scene, o, d, hn::LoadU(df, rays.tMin), hn::LoadU(df, rays.tMax)), o, d);
+  const PacketHit h = cameraHit(scene, rays);
   const VF zero = hn::Zero(df);
   V3F E{zero, zero, zero};
   const MF shaded = hn::And(h.hit, h.shades);
@@ -189,16 +210,11 @@ HWY_INLINE void shadeHemisphere(const PacketScene& scene, const PacketRays& rays
     const FrameF frame = frameAbout(h.ns);
     const int samples = scene.samples;
     for (int i = 0; i < samples; ++i) {
-      const VF u0 = hn::LoadU(df, draws.u[i][0]), u1 = hn::LoadU(df, draws.u[i][1]);
-      V3F local;
-      VF cosOverPdf;
-      if constexpr (kWarp == HemisphereWarp::Cosine) {
-        local = squareToCosineHemisphere(u0, u1);
-        cosOverPdf = setF(kPi);
-      } else {
-        local = directionFromOneMinusCos(u0, u1);
-        cosOverPdf = setF(2.f * kPi) * local.z;
-      }
+      VF u0, u1;
+      loadDraw(draws, i, u0, u1);
+      const V3F local = hemisphereDirection<kWarp>(u0, u1);
+      // cos θ / pdf in closed form: π for the cosine warp, 2π cos θ for the uniform one.
+      const VF cosOverPdf = kWarp == HemisphereWarp::Cosine ? setF(kPi) : setF(2.f * kPi) * local.z;
       const V3F w = toWorld(frame, local);
       // leavesSurface(sp, w, cos θ) (which also drops the cosine warp's local.z <= 0).
       const MF active = hn::And(shaded, hn::And(local.z > zero, dot(w, h.ng) > zero));
@@ -209,7 +225,7 @@ HWY_INLINE void shadeHemisphere(const PacketScene& scene, const PacketRays& rays
                           });
     }
     const VF invSamples = setF(1.f / float(samples));
-    E = {E.x * invSamples, E.y * invSamples, E.z * invSamples};
+    E = scaled(E, invSamples);
   }
   storeRadiance(scene, shaded, h, E, out);
 }
@@ -229,9 +245,7 @@ template <LightMeasure kMeasure, MisHeuristic kHeuristic>
 HWY_INLINE void shadeMis(const PacketScene& scene, const PacketRays& rays, const PacketDraws& draws,
                          PacketRadiance& out) {
   const DF df;
-  const V3F o = loadF3(rays.o), d = loadF3(rays.d);
-  const PacketHit h =
-      fillHit(scene, nearest(scene, o, d, hn::LoadU(df, rays.tMin), hn::LoadU(df, rays.tMax)), o, d);
+  const PacketHit h = cameraHit(scene, rays);
   const VF zero = hn::Zero(df);
   V3F E{zero, zero, zero};
   const MF shaded = hn::And(h.hit, h.shades);
@@ -251,13 +265,14 @@ HWY_INLINE void shadeMis(const PacketScene& scene, const PacketRays& rays, const
           addRadiance(lit, light.radiance, cosTheta / s.pdf * weight, lightPart);
         }
       const VF inv = setF(1.f / float(scene.lightSamples));
-      lightPart = {lightPart.x * inv, lightPart.y * inv, lightPart.z * inv};
+      lightPart = scaled(lightPart, inv);
     }
     if (scene.bsdfSamples > 0) {
       const FrameF frame = frameAbout(h.ns);
       for (int i = 0; i < scene.bsdfSamples; ++i, ++j) {
-        const VF u0 = hn::LoadU(df, draws.u[j][0]), u1 = hn::LoadU(df, draws.u[j][1]);
-        const V3F local = squareToCosineHemisphere(u0, u1);
+        VF u0, u1;
+        loadDraw(draws, j, u0, u1);
+        const V3F local = hemisphereDirection<HemisphereWarp::Cosine>(u0, u1);
         const V3F w = toWorld(frame, local);
         const MF active = hn::And(shaded, hn::And(local.z > zero, dot(w, h.ng) > zero));
         if (hn::AllFalse(df, active)) continue;
@@ -274,7 +289,7 @@ HWY_INLINE void shadeMis(const PacketScene& scene, const PacketRays& rays, const
                             });
       }
       const VF inv = setF(1.f / float(scene.bsdfSamples));
-      bsdfPart = {bsdfPart.x * inv, bsdfPart.y * inv, bsdfPart.z * inv};
+      bsdfPart = scaled(bsdfPart, inv);
     }
     E = {lightPart.x + bsdfPart.x, lightPart.y + bsdfPart.y, lightPart.z + bsdfPart.z};
   }
@@ -288,18 +303,16 @@ template <HemisphereWarp kWarp>
 HWY_INLINE void shadeAo(const PacketScene& scene, const PacketRays& rays, const PacketDraws& draws,
                         PacketRadiance& out) {
   const DF df;
-  const V3F o = loadF3(rays.o), d = loadF3(rays.d);
-  const PacketHit h =
-      fillHit(scene, nearest(scene, o, d, hn::LoadU(df, rays.tMin), hn::LoadU(df, rays.tMax)), o, d);
+  const PacketHit h = cameraHit(scene, rays);
   const VF zero = hn::Zero(df);
   VF sum = zero;
   if (!hn::AllFalse(df, h.hit)) {
     const FrameF frame = frameAbout(h.ns);
     const VF tMax = setF(scene.rayLengthBound);
     for (int i = 0; i < scene.samples; ++i) {
-      const VF u0 = hn::LoadU(df, draws.u[i][0]), u1 = hn::LoadU(df, draws.u[i][1]);
-      const V3F local = kWarp == HemisphereWarp::Cosine ? squareToCosineHemisphere(u0, u1)
-                                                        : directionFromOneMinusCos(u0, u1);
+      VF u0, u1;
+      loadDraw(draws, i, u0, u1);
+      const V3F local = hemisphereDirection<kWarp>(u0, u1);
       const V3F w = toWorld(frame, local);
       // Below the true surface: blocked by it (a NaN direction is traced, as there).
       MF active = hn::AndNot(dot(w, h.ng) <= zero, h.hit);
@@ -360,7 +373,7 @@ namespace {
 // One instruction set's kernels.
 struct PacketTarget {
   int64_t target;  // Highway's bit for it
-  void (*shade)(const PacketScene&, const PacketRays&, const PacketDraws&, PacketRadiance&);
+  PacketShader shade;
   int (*lanes)();
 };
 
@@ -449,9 +462,8 @@ bool forcePacketTarget(const std::string& name) {
   return false;
 }
 
-void shadePacket(const PacketScene& scene, const PacketRays& rays, const PacketDraws& draws,
-                 PacketRadiance& out) {
-  currentTarget().shade(scene, rays, draws, out);
+PacketShader packetShader() {
+  return currentTarget().shade;
 }
 
 }  // namespace penumbra

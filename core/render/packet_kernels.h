@@ -48,8 +48,10 @@ std::vector<std::string> availablePacketTargets();
 // rendering (tests, benchmarks, PENUMBRA_SIMD).
 bool forcePacketTarget(const std::string& name);
 
-// The radiance of each lane's camera ray by the scene's kernel.
-void shadePacket(const PacketScene& scene, const PacketRays& rays, const PacketDraws& draws,
-                 PacketRadiance& out);
+// The radiance of each lane's camera ray by the scene's kernel, on the instruction set in use when
+// packetShader() was called (a row renderer takes it once, not per packet).
+using PacketShader = void (*)(const PacketScene& scene, const PacketRays& rays, const PacketDraws& draws,
+                              PacketRadiance& out);
+PacketShader packetShader();
 
 }  // namespace penumbra

@@ -48,9 +48,11 @@ RowRenderer packetRowsFor(const RenderJob& job, RowRenderer scalar) {
   auto scene = std::make_shared<const PacketScene>(makePacketScene(job));
   auto buffers = std::make_shared<PacketBuffers>();
   const int lanes = std::min(packetLanes(), kMaxPacketLanes);
+  const PacketShader shade = packetShader();
   RowRenderer r;
-  r.row = [camera, filter, scene, buffers, lanes](int y, uint32_t pass, Sampler& sampler, Film& film,
-                                                  uint64_t& badSamples, const std::atomic<bool>& cancel) {
+  r.row = [camera, filter, scene, buffers, lanes, shade](int y, uint32_t pass, Sampler& sampler, Film& film,
+                                                         uint64_t& badSamples,
+                                                         const std::atomic<bool>& cancel) {
     PacketBuffers& b = *buffers;
     const int width = camera.width();
     for (int x0 = 0; x0 < width; x0 += lanes) {
@@ -77,7 +79,7 @@ RowRenderer packetRowsFor(const RenderJob& job, RowRenderer scalar) {
               b.draws.u[j][1][k] = u.y;
             }
       }
-      shadePacket(*scene, b.rays, b.draws, b.radiance);
+      shade(*scene, b.rays, b.draws, b.radiance);
       for (int k = 0; k < count; ++k) {
         const Color3 L(b.radiance.L[0][k], b.radiance.L[1][k], b.radiance.L[2][k]);
         // NaN, Inf or negative radiance is a bug somewhere: count it and add nothing.
