@@ -1,5 +1,6 @@
-// The flat geometry of the packet kernels: spheres and parallelograms, nearest hit and occlusion,
-// lane by lane as SceneGeometry computes them.
+// The geometry queries of the packet kernels: nearest hit and occlusion among the flat spheres and
+// parallelograms, lane by lane as SceneGeometry computes them, or, when the scene's geometry is
+// elsewhere (a BVH, loose triangles), handed to SceneGeometry one lane at a time (packet_queries.h).
 // Part of the packet kernels: included by packet_kernels.cpp once per instruction set (Highway's
 // re-inclusion toggle below), inside that set's namespace.
 #if defined(PENUMBRA_PACKET_GEOMETRY_INL_H_) == defined(HWY_TARGET_TOGGLE)
@@ -12,6 +13,7 @@
 #include <hwy/highway.h>
 #include "core/geometry/parallelogram.h"
 #include "core/render/packet_math-inl.h"
+#include "core/render/packet_queries.h"
 #include "core/render/packet_scene.h"
 
 HWY_BEFORE_NAMESPACE();
@@ -70,8 +72,8 @@ HWY_INLINE MF parallelogramHit(const Parallelogram& q, const V3F& o, const V3F& 
 }
 
 // SceneGeometry::occludedByFlatShapes for the lanes of `active` (tMin = 0): which are blocked.
-HWY_INLINE MF occluded(const PacketScene& scene, const V3F& o, const V3F& d, VF tMax, int32_t skipSphere,
-                       MF active) {
+HWY_INLINE MF occludedByFlatShapes(const PacketScene& scene, const V3F& o, const V3F& d, VF tMax,
+                                   int32_t skipSphere, MF active) {
   const DF df;
   MF blocked = hn::FirstN(df, 0);
   const VF zero = hn::Zero(df);
@@ -90,6 +92,43 @@ HWY_INLINE MF occluded(const PacketScene& scene, const V3F& o, const V3F& d, VF 
     blocked = hn::Or(blocked, hn::And(active, parallelogramHit(q.shape, o, d, zero, tMax, t)));
   }
   return blocked;
+}
+
+HWY_INLINE void storeF3(const V3F& v, float (&out)[3][kMaxPacketLanes]) {
+  const DF df;
+  hn::StoreU(v.x, df, out[0]);
+  hn::StoreU(v.y, df, out[1]);
+  hn::StoreU(v.z, df, out[2]);
+}
+HWY_INLINE V3F loadF3(const float (&v)[3][kMaxPacketLanes]) {
+  const DF df;
+  return {hn::LoadU(df, v[0]), hn::LoadU(df, v[1]), hn::LoadU(df, v[2])};
+}
+// The lanes where v is not 0 (the queries' 1/0 lanes).
+HWY_INLINE MF loadMask(const float* v) {
+  const DF df;
+  return hn::LoadU(df, v) != hn::Zero(df);
+}
+
+// Segments from o along d up to tMax in the lanes of `active`, as the queries take them.
+HWY_INLINE void storeSegments(const V3F& o, const V3F& d, VF tMax, MF active, PacketSegments& out) {
+  const DF df;
+  storeF3(o, out.o);
+  storeF3(d, out.d);
+  hn::StoreU(tMax, df, out.tMax);
+  hn::StoreU(hn::IfThenElseZero(active, setF(1.f)), df, out.active);
+}
+
+// SceneGeometry::occluded(ray, skipSphere) for the lanes of `active` (tMin = 0): which are blocked.
+HWY_INLINE MF occluded(const PacketScene& scene, const V3F& o, const V3F& d, VF tMax, int32_t skipSphere,
+                       MF active) {
+  if (!scene.queriedScene) return occludedByFlatShapes(scene, o, d, tMax, skipSphere, active);
+  const DF df;
+  PacketSegments rays;
+  storeSegments(o, d, tMax, active, rays);
+  HWY_ALIGN float blocked[kMaxPacketLanes];
+  queryOccluded(*scene.queriedScene, rays, int(hn::Lanes(df)), skipSphere, blocked);
+  return loadMask(blocked);
 }
 
 // The nearest surface along each lane's ray: a sphere's index, or a parallelogram's (which wins:
@@ -221,12 +260,57 @@ HWY_INLINE PacketHit fillHit(const PacketScene& scene, const Nearest& n, const V
   return h;
 }
 
+// The camera rays' hits as the queries find them.
+HWY_INLINE PacketHit queriedHit(const Scene& scene, const PacketRays& rays) {
+  const DF df;
+  PacketHitLanes lanes;
+  queryCameraHits(scene, rays, int(hn::Lanes(df)), lanes);
+  PacketHit h;
+  h.hit = loadMask(lanes.hit);
+  h.p = loadF3(lanes.p);
+  h.ng = loadF3(lanes.ng);
+  h.ns = loadF3(lanes.ns);
+  h.offsetScale = hn::LoadU(df, lanes.offsetScale);
+  h.shades = loadMask(lanes.shades);
+  h.albedoOverPi = loadF3(lanes.albedoOverPi);
+  h.emitted = loadF3(lanes.emitted);
+  return h;
+}
+
+// What each lane's camera ray hits (SceneGeometry::intersect and the ShadingPoint).
+HWY_INLINE PacketHit cameraHit(const PacketScene& scene, const PacketRays& rays) {
+  if (scene.queriedScene) return queriedHit(*scene.queriedScene, rays);
+  const DF df;
+  const V3F o = loadF3(rays.o), d = loadF3(rays.d);
+  return fillHit(scene, nearest(scene, o, d, hn::LoadU(df, rays.tMin), hn::LoadU(df, rays.tMax)), o, d);
+}
+
+// addEmitterAlong by the queries: add(light, lanes, Le, p, ng) once per sphere light that some lanes reach.
+template <class Add>
+HWY_INLINE void forEachQueriedEmitterAlong(const PacketScene& scene, const V3F& o, const V3F& w, MF active,
+                                           const Add& add) {
+  const DF df;
+  PacketSegments rays;
+  storeSegments(o, w, setF(INFINITY), active, rays);
+  PacketEmitterLanes found;
+  queryEmittersAlong(*scene.queriedScene, rays, int(hn::Lanes(df)), found);
+  const VF light = hn::LoadU(df, found.light);
+  if (hn::AllFalse(df, light >= hn::Zero(df))) return;
+  const V3F Le = loadF3(found.Le), p = loadF3(found.p), ng = loadF3(found.ng);
+  for (size_t l = 0; l < scene.lights.size(); ++l) {
+    const MF m = light == setF(float(l));
+    if (!hn::AllFalse(df, m)) add(l, m, Le, p, ng);
+  }
+}
+
 // addEmitterAlong: for each lane of `active` whose ray (from o along unit w, tMin 0, no tMax) first
-// reaches the front of an emitting sphere of non-black radiance, add(object, lanes, p, ng) with that
-// sphere's object, those lanes, and the hit's point and (outward) normal there.
+// reaches the front of a sphere light of non-black radiance, add(light, lanes, Le, p, ng) with that
+// light's index, those lanes, the radiance it sends back along w, and the hit's point and (outward)
+// normal there.
 template <class Add>
 HWY_INLINE void forEachEmitterAlong(const PacketScene& scene, const V3F& o, const V3F& w, MF active,
                                     const Add& add) {
+  if (scene.queriedScene) return forEachQueriedEmitterAlong(scene, o, w, active, add);
   const DF df;
   const VF zero = hn::Zero(df);
   const Nearest n = nearest(scene, o, w, zero, setF(INFINITY));
@@ -239,7 +323,7 @@ HWY_INLINE void forEachEmitterAlong(const PacketScene& scene, const V3F& o, cons
     V3F p, ng;
     sphereHitPoint(scene.spheres[i], along, p, ng);
     const MF facing = hn::And(m, dot(ng, w) < zero);
-    if (!hn::AllFalse(df, facing)) add(object, facing, p, ng);
+    if (!hn::AllFalse(df, facing)) add(size_t(object.light), facing, setF3(object.radiance), p, ng);
   }
 }
 

@@ -43,18 +43,6 @@ namespace {
 
 namespace hn = hwy::HWY_NAMESPACE;
 
-HWY_INLINE V3F loadF3(const float (&v)[3][kMaxPacketLanes]) {
-  const DF df;
-  return {hn::LoadU(df, v[0]), hn::LoadU(df, v[1]), hn::LoadU(df, v[2])};
-}
-
-// What each lane's camera ray hits (SceneGeometry::intersect and the ShadingPoint).
-HWY_INLINE PacketHit cameraHit(const PacketScene& scene, const PacketRays& rays) {
-  const DF df;
-  const V3F o = loadF3(rays.o), d = loadF3(rays.d);
-  return fillHit(scene, nearest(scene, o, d, hn::LoadU(df, rays.tMin), hn::LoadU(df, rays.tMax)), o, d);
-}
-
 // Sampler draw j of every lane.
 HWY_INLINE void loadDraw(const PacketDraws& draws, size_t j, VF& u0, VF& u1) {
   const DF df;
@@ -75,8 +63,11 @@ HWY_INLINE V3F hemisphereDirection(VF u0, VF u1) {
 }
 
 // E += Le · factor in the lanes of m (E unchanged elsewhere).
+HWY_INLINE void addRadiance(MF m, const V3F& Le, VF factor, V3F& E) {
+  E = select(m, V3F{E.x + Le.x * factor, E.y + Le.y * factor, E.z + Le.z * factor}, E);
+}
 HWY_INLINE void addRadiance(MF m, const float (&Le)[3], VF factor, V3F& E) {
-  E = select(m, V3F{E.x + setF(Le[0]) * factor, E.y + setF(Le[1]) * factor, E.z + setF(Le[2]) * factor}, E);
+  addRadiance(m, setF3(Le), factor, E);
 }
 
 // deltaIrradiance (direct_lighting.h) on a diffuse surface: each point and directional light traced
@@ -220,8 +211,8 @@ HWY_INLINE void shadeHemisphere(const PacketScene& scene, const PacketRays& rays
       const MF active = hn::And(shaded, hn::And(local.z > zero, dot(w, h.ng) > zero));
       if (hn::AllFalse(df, active)) continue;
       forEachEmitterAlong(scene, offsetRayOrigin(h.p, h.ng, h.offsetScale, w), w, active,
-                          [&](const PacketObject& emitter, MF lanes, const V3F&, const V3F&) {
-                            addRadiance(lanes, emitter.radiance, cosOverPdf, E);
+                          [&](size_t, MF lanes, const V3F& Le, const V3F&, const V3F&) {
+                            addRadiance(lanes, Le, cosOverPdf, E);
                           });
     }
     const VF invSamples = setF(1.f / float(samples));
@@ -278,14 +269,14 @@ HWY_INLINE void shadeMis(const PacketScene& scene, const PacketRays& rays, const
         if (hn::AllFalse(df, active)) continue;
         const VF pdf = local.z * setF(kInvPi);
         forEachEmitterAlong(scene, offsetRayOrigin(h.p, h.ng, h.offsetScale, w), w, active,
-                            [&](const PacketObject& emitter, MF lanes, const V3F& p, const V3F& n) {
-                              const PacketLight& light = scene.lights[size_t(emitter.light)];
+                            [&](size_t l, MF lanes, const V3F& Le, const V3F& p, const V3F& n) {
+                              const PacketLight& light = scene.lights[l];
                               VF pL = zero;
                               if (scene.lightSamples > 0 && light.radius > 0.f)
                                 pL = kMeasure == LightMeasure::Area ? pdfAreaAsSolidAngle(light, h.p, p, n)
                                                                     : pdfSolidAngle(light, h.p, w);
                               const VF weight = misWeight<kHeuristic>(nB * pdf, nL * pL);
-                              addRadiance(lanes, emitter.radiance, setF(kPi) * weight, bsdfPart);
+                              addRadiance(lanes, Le, setF(kPi) * weight, bsdfPart);
                             });
       }
       const VF inv = setF(1.f / float(scene.bsdfSamples));

@@ -29,12 +29,21 @@ struct TestScene {
   float scale;
 };
 
+// Where the test scene's geometry lives: all flat spheres and parallelograms (held by the kernels),
+// or with a smooth-shaded mesh among them, as loose triangles or with everything in Embree's BVH (the
+// kernels query SceneGeometry).
+enum class Geometry { Flat, LooseTriangles, Bvh };
+const char* geometryName(Geometry g) {
+  return g == Geometry::Flat ? "Flat" : g == Geometry::LooseTriangles ? "LooseTriangles" : "Bvh";
+}
+
 // Every case a lane can meet, all in one image (at coordinates times `scale`): the sky (lanes that miss
 // everything), a floor parallelogram and a wall seen from behind (normals flipped to the viewer), a
 // diffuse sphere, a black sphere (nothing shaded), a light seen directly that also reflects (albedo
 // 0.5, as scene files give emitters) and one that does not, a light of black radiance, a tiny distant
-// light, and a diffuse sphere that cuts into a light (shading points inside it, lit by nothing of it).
-TestScene packetTestScene(float scale, bool deltaLights = false) {
+// light, and a diffuse sphere that cuts into a light (shading points inside it, lit by nothing of it);
+// unless the geometry is flat, also a rock whose interpolated normals differ from its faces'.
+TestScene packetTestScene(float scale, bool deltaLights = false, Geometry geometry = Geometry::Flat) {
   auto scene = std::make_shared<Scene>();
   auto addObject = [&](Color3 albedo) {
     scene->materials.push_back(SurfaceMaterial{makeDiffuse(albedo)});
@@ -71,7 +80,13 @@ TestScene packetTestScene(float scale, bool deltaLights = false) {
     scene->directionalLights.push_back(DirectionalLight::make(Vec3(-0.4f, 1.f, 0.3f), Color3(0.7f)));
     scene->directionalLights.push_back(DirectionalLight::make(Vec3(0.f, -1.f, 0.2f), Color3(5.f)));
   }
-  scene->geometry.build(AccelMode::BruteForce, AccelMode::BruteForce);
+  if (geometry != Geometry::Flat) {
+    TriangleMesh rock = makeRockMesh(geometry == Geometry::Bvh ? 1 : 0, 7);
+    for (Vec3& p : rock.positions) p = (p * 0.35f + Vec3(-0.5f, -0.65f, 1.3f)) * s;
+    scene->geometry.addMesh(rock, addObject(Color3(0.7f, 0.6f, 0.5f)));
+  }
+  const AccelMode accel = geometry == Geometry::Bvh ? AccelMode::Embree : AccelMode::BruteForce;
+  scene->geometry.build(accel, accel);
   scene->rayLengthBound = scene->geometry.bounds().diagonal() * 1.01f;
   return {std::move(scene), scale};
 }
@@ -126,14 +141,20 @@ const IntegratorDesc kPacketStrategies[] = {
     integratorOfType(IntegratorType::Simple),
 };
 
+class PacketRowLoopOn : public testing::TestWithParam<Geometry> {};
+
 // Each lane computes exactly what the scalar integrator computes, so the film is the scalar loop's bit
 // for bit: on every instruction set this CPU has, for every strategy with a kernel, every sampler,
 // one and several shading samples (MIS: 1 and 3 per light with 1 and 0 of the surface's), with and
-// without point and directional lights, at 1e-4, 1 and 1e4 scene units.
-TEST(PacketRowLoop, EqualsTheScalarLoopBitForBit) {
+// without point and directional lights, at 1e-4, 1 and 1e4 scene units, with the geometry in the
+// kernels' flat loops and queried from SceneGeometry.
+TEST_P(PacketRowLoopOn, EqualsTheScalarLoopBitForBit) {
   for (const float scale : {1e-4f, 1.f, 1e4f})
     for (const bool deltaLights : {false, true}) {
-      const TestScene t = packetTestScene(scale, deltaLights);
+      const TestScene t = packetTestScene(scale, deltaLights, GetParam());
+      EXPECT_EQ(
+          makePacketScene(*jobFor(t, directByBsdf(), 1, SamplerKind::Independent)).queriedScene != nullptr,
+          GetParam() != Geometry::Flat);
       for (const std::string& target : availablePacketTargets()) {
         ForcedTarget forced(target);
         for (const IntegratorDesc& strategy : kPacketStrategies)
@@ -153,6 +174,12 @@ TEST(PacketRowLoop, EqualsTheScalarLoopBitForBit) {
       }
     }
 }
+
+INSTANTIATE_TEST_SUITE_P(Geometries, PacketRowLoopOn,
+                         testing::Values(Geometry::Flat, Geometry::LooseTriangles, Geometry::Bvh),
+                         [](const testing::TestParamInfo<Geometry>& info) {
+                           return geometryName(info.param);
+                         });
 
 // The image has every kind of lane: sky pixels (0), lights seen directly (brighter than any reflection
 // here) and lit surfaces, so the comparison above exercises the masks.

@@ -49,6 +49,12 @@ bool kernelOf(const IntegratorDesc& d, PacketKernel& kernel) {
   return false;
 }
 
+// Whether the kernels hold all of the geometry themselves: spheres and parallelograms in flat loops,
+// nothing in a BVH, no triangle tested on its own.
+bool hasOnlyFlatShapes(const SceneGeometry& g) {
+  return !g.usesEmbree() && !g.spheresUseBvh() && g.flatTriangleCount() == 0;
+}
+
 }  // namespace
 
 int PacketScene::drawCount() const {
@@ -77,9 +83,6 @@ std::string packetUnsupportedReason(const RenderJob& job) {
   PacketKernel kernel;
   if (!kernelOf(d, kernel)) return "no packet kernel for " + strategyLabel(d);
   const Scene& scene = *job.scene;
-  const SceneGeometry& g = scene.geometry;
-  if (g.usesEmbree() || g.spheresUseBvh()) return "the scene's geometry is in a BVH";
-  if (g.flatTriangleCount() != 0) return "the scene has triangles outside parallelograms";
   int draws = 0;
   for (const DrawRequests& r : drawRequestsOf(d, int(scene.sphereLights.size())))
     draws += std::max(r.repeats, 0) * std::max(r.n, 0);
@@ -98,19 +101,21 @@ PacketScene makePacketScene(const RenderJob& job) {
   const SceneGeometry& g = scene.geometry;
   PacketScene p;
   kernelOf(job.settings.integrator, p.kernel);
+  if (!hasOnlyFlatShapes(g)) p.queriedScene = &scene;
   p.samples = job.settings.integrator.samples;
   p.lightSamples = job.settings.integrator.lightSamples;
   p.bsdfSamples = job.settings.integrator.bsdfSamples;
   p.draws = drawRequestsOf(job.settings.integrator, int(scene.sphereLights.size()));
   p.rayLengthBound = scene.rayLengthBound;
-  for (size_t i = 0; i < g.spheres().size(); ++i) {
+  for (size_t i = 0; i < g.spheres().size() && !p.queriedScene; ++i) {
     const Sphere& s = g.spheres()[i];
     p.spheres.push_back({{s.center.x, s.center.y, s.center.z},
                          s.radius,
                          maxAbsComponent(s.center) + s.radius,
                          g.sphereObjectId(i)});
   }
-  for (const Parallelogram& q : g.parallelograms()) p.quads.push_back({q, g.meshObjectId(q.mesh)});
+  if (!p.queriedScene)
+    for (const Parallelogram& q : g.parallelograms()) p.quads.push_back({q, g.meshObjectId(q.mesh)});
   for (const SurfaceMaterial& m : scene.materials) {
     PacketObject o{};
     const Color3 a = m.bsdf.albedo * kInvPi;

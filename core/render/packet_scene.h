@@ -1,7 +1,8 @@
 // A scene as the packet kernels read it (packet_kernels.cpp): flat arrays of spheres, parallelograms,
-// per-object diffuse materials and sphere lights, copied once per render from a Scene the packet path
-// supports. Plain data only, so the kernels (compiled once per instruction set) include nothing that
-// another translation unit could inline with other flags.
+// per-object diffuse materials and lights, copied once per render from a Scene the packet path
+// supports (or, for geometry in a BVH, the Scene whose SceneGeometry the kernels query). Plain data only, so
+// the kernels (compiled once per instruction set) include nothing that another translation unit could inline
+// with other flags.
 #pragma once
 
 #include <cstdint>
@@ -79,6 +80,10 @@ struct DrawRequests {
 
 struct PacketScene {
   PacketKernel kernel = PacketKernel::LightArea;
+  // The scene whose SceneGeometry answers the kernels' ray queries lane by lane (packet_queries.h)
+  // when its geometry is not all flat spheres and parallelograms; null when the arrays below hold it.
+  const Scene* queriedScene = nullptr;
+  // The flat geometry (empty when queried) and every object's material.
   std::vector<PacketSphere> spheres;
   std::vector<PacketQuad> quads;
   std::vector<PacketObject> objects;

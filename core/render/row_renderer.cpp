@@ -108,11 +108,12 @@ RowRenderer makeRowRenderer(const RenderJob& job) {
 }
 
 std::string rowLoopSummary(const RenderJob& job) {
-  const std::string reason = packetPathEnabled() ? packetUnsupportedReason(job) : "PENUMBRA_SIMD=off";
-  if (reason.empty())
-    return "packets of " + std::to_string(packetLanes()) + " camera samples (" + packetTargetName() + ")";
   if (job.settings.integrator.type == IntegratorType::Ao && job.scene->geometry.usesEmbree())
     return "ambient occlusion rays in batches of " + std::to_string(kAoBatchRays);
+  const std::string reason = packetPathEnabled() ? packetUnsupportedReason(job) : "PENUMBRA_SIMD=off";
+  if (reason.empty())
+    return "packets of " + std::to_string(packetLanes()) + " camera samples (" + packetTargetName() + ")" +
+           (makePacketScene(job).queriedScene ? ", rays traced one at a time" : "");
   return "one camera sample at a time: " + reason;
 }
 

@@ -1,0 +1,50 @@
+// The ray queries of the packet kernels in scenes whose geometry the kernels do not hold themselves
+// (shapes in a BVH, loose triangles): answered lane by lane by the scene's SceneGeometry, with the
+// scalar integrators' own code around each query (ShadingPoint, emittedAt, SphereLight::eval), so
+// that every lane gets exactly what the scalar integrator gets. The kernels keep the shading (light
+// sampling, warps, MIS weights, sums) in lanes; only the traversal is one ray at a time.
+// Lanes are arrays of kMaxPacketLanes (the first `lanes` used); a lane is active where active[k] != 0.
+#pragma once
+
+#include <cstdint>
+
+#include "core/render/packet_kernels.h"
+
+namespace penumbra {
+
+struct Scene;
+
+// What each lane's camera ray hits, as ShadingPoint holds it (normals flipped to the ray's side), with
+// what the diffuse shading needs of its material. Lanes that hit nothing are all 0.
+struct alignas(64) PacketHitLanes {
+  float hit[kMaxPacketLanes];
+  float p[3][kMaxPacketLanes], ng[3][kMaxPacketLanes], ns[3][kMaxPacketLanes];
+  float offsetScale[kMaxPacketLanes];
+  float shades[kMaxPacketLanes];  // the albedo is not black
+  float albedoOverPi[3][kMaxPacketLanes];
+  float emitted[3][kMaxPacketLanes];  // emittedAt
+};
+
+// Rays leaving shading points (tMin 0).
+struct alignas(64) PacketSegments {
+  float o[3][kMaxPacketLanes], d[3][kMaxPacketLanes];
+  float tMax[kMaxPacketLanes];
+  float active[kMaxPacketLanes];
+};
+
+// What each lane's ray reaches first when that is the front of a sphere light of non-black radiance
+// (addEmitterAlong): the light's index in Scene::sphereLights (-1 otherwise, and in inactive lanes),
+// the radiance it sends back along the ray, and the hit's point and outward normal.
+struct alignas(64) PacketEmitterLanes {
+  float light[kMaxPacketLanes];
+  float Le[3][kMaxPacketLanes];
+  float p[3][kMaxPacketLanes], ng[3][kMaxPacketLanes];
+};
+
+void queryCameraHits(const Scene& scene, const PacketRays& rays, int lanes, PacketHitLanes& out);
+// SceneGeometry::occluded(ray, skipSphere) of each active lane's segment: blocked[k] is 1 or 0.
+void queryOccluded(const Scene& scene, const PacketSegments& rays, int lanes, int32_t skipSphere,
+                   float* blocked);
+void queryEmittersAlong(const Scene& scene, const PacketSegments& rays, int lanes, PacketEmitterLanes& out);
+
+}  // namespace penumbra
