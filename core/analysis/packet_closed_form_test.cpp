@@ -5,8 +5,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "core/analysis/closed_forms.h"
 #include "core/math/frame.h"
@@ -25,19 +27,30 @@ namespace {
 constexpr int kSize = 8;
 constexpr uint32_t kSpp = 64;
 
-// The plane z = 0 (albedo 1, half-size 10) under one sphere, an emitter of radiance `Le` or (Le = 0)
-// a diffuse occluder; a camera 3 units above looking straight down with a 2° field of view, so each
-// pixel's footprint is ~0.01 units and the closed form at its centre is its expectation to ~1e-5.
-LoadedScene planeScene(const Vec3& c, float r, float Le) {
+// A sphere of the test scenes: an emitter of radiance Le or (Le = 0) a diffuse occluder.
+struct SphereDesc {
+  Vec3 c;
+  float r, Le;
+};
+
+// The plane z = 0 (albedo 1, half-size 10) under spheres; a camera 3 units above looking straight down
+// with a 2° field of view, so each pixel's footprint is ~0.01 units and the closed form at its centre
+// is its expectation to ~1e-5.
+LoadedScene planeScene(const std::vector<SphereDesc>& spheres) {
   std::ostringstream xml;
   xml.precision(9);
   xml << "<scene><integrator type=\"direct\"/>"
       << "<shape type=\"plane\"><bsdf type=\"diffuse\"><color name=\"albedo\" value=\"1\"/></bsdf>"
       << "<transform name=\"toWorld\"><scale value=\"10,1,10\"/><rotate axis=\"1,0,0\" angle=\"90\"/>"
-      << "</transform></shape><shape type=\"sphere\"><point name=\"center\" value=\"" << c.x << "," << c.y
-      << "," << c.z << "\"/><float name=\"radius\" value=\"" << r << "\"/>";
-  if (Le > 0.f) xml << "<emitter type=\"area\"><color name=\"radiance\" value=\"" << Le << "\"/></emitter>";
-  xml << "</shape></scene>";
+      << "</transform></shape>";
+  for (const SphereDesc& sphere : spheres) {
+    xml << "<shape type=\"sphere\"><point name=\"center\" value=\"" << sphere.c.x << "," << sphere.c.y << ","
+        << sphere.c.z << "\"/><float name=\"radius\" value=\"" << sphere.r << "\"/>";
+    if (sphere.Le > 0.f)
+      xml << "<emitter type=\"area\"><color name=\"radiance\" value=\"" << sphere.Le << "\"/></emitter>";
+    xml << "</shape>";
+  }
+  xml << "</scene>";
   LoadedScene s = loadSceneFromString(xml.str(), "packet-closed-form.xml", ".");
   CameraDesc& cam = s.settings.camera;
   const Vec3 origin(0.4f, -0.3f, 3.f), dir(0.f, 0.f, -1.f), left(-1.f, 0.f, 0.f);
@@ -87,7 +100,7 @@ void expectClosedForm(const LoadedScene& s, const IntegratorDesc& strategy, cons
 TEST(PacketClosedForm, ThePlaneUnderASphereLightForEveryDirectKernel) {
   const Vec3 c(0.9f, -0.2f, 1.1f);
   const float r = 0.35f, Le = 20.f;
-  const LoadedScene s = planeScene(c, r, Le);
+  const LoadedScene s = planeScene({{c, r, Le}});
   auto truth = [&](const glm::dvec3& x) {
     return double(Le) / kPiD * sphereLightIrradianceFactor(x, glm::dvec3(0, 0, 1), glm::dvec3(c), double(r));
   };
@@ -101,11 +114,43 @@ TEST(PacketClosedForm, ThePlaneUnderASphereLightForEveryDirectKernel) {
     expectClosedForm(s, strategy, truth);
 }
 
+// Sets an environment variable for the life of the object.
+struct ScopedEnvironment {
+  ScopedEnvironment(const char* name, const char* value) : name(name) { setenv(name, value, 1); }
+  ~ScopedEnvironment() { unsetenv(name); }
+  const char* name;
+};
+
+// Two sphere lights above the plane: the sum of their closed forms, by light sampling of every light
+// and of one light picked per sample by each selection (whose pmfs then matter); with the spheres in
+// the flat loops and in Embree's BVH (the kernels then query SceneGeometry for every ray).
+TEST(PacketClosedForm, ThePlaneUnderTwoSphereLightsForEveryLightSelection) {
+  const std::vector<SphereDesc> lights = {{Vec3(0.9f, -0.2f, 1.1f), 0.35f, 20.f},
+                                          {Vec3(-0.4f, 0.5f, 0.7f), 0.2f, 35.f}};
+  auto truth = [&](const glm::dvec3& x) {
+    double L = 0.0;
+    for (const SphereDesc& l : lights)
+      L += double(l.Le) / kPiD *
+           sphereLightIrradianceFactor(x, glm::dvec3(0, 0, 1), glm::dvec3(l.c), double(l.r));
+    return L;
+  };
+  for (const char* accel : {"brute-force", "bvh"}) {
+    SCOPED_TRACE(std::string("spheres by ") + accel);
+    const ScopedEnvironment env("PENUMBRA_SPHERE_ACCEL", accel);
+    const LoadedScene s = planeScene(lights);
+    ASSERT_EQ(s.scene->geometry.spheresUseBvh(), std::string(accel) == "bvh");
+    for (const LightMeasure measure : {LightMeasure::Area, LightMeasure::SolidAngle})
+      for (const LightSelection selection :
+           {LightSelection::All, LightSelection::Uniform, LightSelection::Power, LightSelection::Bvh})
+        expectClosedForm(s, directByLight(measure, selection), truth);
+  }
+}
+
 // Ambient occlusion of the plane beside a sphere floating above it: 1 − I(θ, α)/π.
 TEST(PacketClosedForm, ThePlaneBesideAnOccludingSphereForBothAoKernels) {
   const Vec3 c(0.8f, -0.1f, 0.5f);
   const float r = 0.3f;
-  const LoadedScene s = planeScene(c, r, 0.f);
+  const LoadedScene s = planeScene({{c, r, 0.f}});
   auto truth = [&](const glm::dvec3& x) {
     return aoPlaneWithSphere(x, glm::dvec3(0, 0, 1), glm::dvec3(c), r);
   };

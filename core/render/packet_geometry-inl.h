@@ -122,12 +122,12 @@ HWY_INLINE void storeSegments(const V3F& o, const V3F& d, VF tMax, MF active, Pa
 // SceneGeometry::occluded(ray, skipSphere) for the lanes of `active` (tMin = 0): which are blocked.
 HWY_INLINE MF occluded(const PacketScene& scene, const V3F& o, const V3F& d, VF tMax, int32_t skipSphere,
                        MF active) {
-  if (!scene.queriedScene) return occludedByFlatShapes(scene, o, d, tMax, skipSphere, active);
+  if (!scene.geometryQueried) return occludedByFlatShapes(scene, o, d, tMax, skipSphere, active);
   const DF df;
   PacketSegments rays;
   storeSegments(o, d, tMax, active, rays);
   HWY_ALIGN float blocked[kMaxPacketLanes];
-  queryOccluded(*scene.queriedScene, rays, int(hn::Lanes(df)), skipSphere, blocked);
+  queryOccluded(*scene.scene, rays, int(hn::Lanes(df)), skipSphere, blocked);
   return loadMask(blocked);
 }
 
@@ -198,6 +198,7 @@ HWY_INLINE V3D pointAlong(const V3F& o, const V3F& d, VF t) {
 struct PacketHit {
   MF hit;         // anything hit
   V3F p, ng, ns;  // ng and ns flipped to the ray's side (ShadingPoint)
+  V3F nsHit;      // the shading normal as the geometry gives it (SurfaceHit::ns)
   VF offsetScale;
   MF shades;  // the albedo is not black
   V3F albedoOverPi;
@@ -252,6 +253,7 @@ HWY_INLINE PacketHit fillHit(const PacketScene& scene, const Nearest& n, const V
     h.offsetScale = hn::IfThenElse(m, maxOf(maxAbs(p), setF(s.offsetScale)), h.offsetScale);
     setObject(scene.objects[s.object], m, d, ng, h);
   }
+  h.nsHit = h.ns;
   // ShadingPoint: normals towards the viewer; a shading normal on the other side falls back to ng.
   const MF backFacing = dot(h.ng, d) > zero;
   h.ng = select(backFacing, V3F{hn::Neg(h.ng.x), hn::Neg(h.ng.y), hn::Neg(h.ng.z)}, h.ng);
@@ -270,6 +272,7 @@ HWY_INLINE PacketHit queriedHit(const Scene& scene, const PacketRays& rays) {
   h.p = loadF3(lanes.p);
   h.ng = loadF3(lanes.ng);
   h.ns = loadF3(lanes.ns);
+  h.nsHit = loadF3(lanes.nsHit);
   h.offsetScale = hn::LoadU(df, lanes.offsetScale);
   h.shades = loadMask(lanes.shades);
   h.albedoOverPi = loadF3(lanes.albedoOverPi);
@@ -279,7 +282,7 @@ HWY_INLINE PacketHit queriedHit(const Scene& scene, const PacketRays& rays) {
 
 // What each lane's camera ray hits (SceneGeometry::intersect and the ShadingPoint).
 HWY_INLINE PacketHit cameraHit(const PacketScene& scene, const PacketRays& rays) {
-  if (scene.queriedScene) return queriedHit(*scene.queriedScene, rays);
+  if (scene.geometryQueried) return queriedHit(*scene.scene, rays);
   const DF df;
   const V3F o = loadF3(rays.o), d = loadF3(rays.d);
   return fillHit(scene, nearest(scene, o, d, hn::LoadU(df, rays.tMin), hn::LoadU(df, rays.tMax)), o, d);
@@ -293,7 +296,7 @@ HWY_INLINE void forEachQueriedEmitterAlong(const PacketScene& scene, const V3F& 
   PacketSegments rays;
   storeSegments(o, w, setF(INFINITY), active, rays);
   PacketEmitterLanes found;
-  queryEmittersAlong(*scene.queriedScene, rays, int(hn::Lanes(df)), found);
+  queryEmittersAlong(*scene.scene, rays, int(hn::Lanes(df)), found);
   const VF light = hn::LoadU(df, found.light);
   if (hn::AllFalse(df, light >= hn::Zero(df))) return;
   const V3F Le = loadF3(found.Le), p = loadF3(found.p), ng = loadF3(found.ng);
@@ -310,7 +313,7 @@ HWY_INLINE void forEachQueriedEmitterAlong(const PacketScene& scene, const V3F& 
 template <class Add>
 HWY_INLINE void forEachEmitterAlong(const PacketScene& scene, const V3F& o, const V3F& w, MF active,
                                     const Add& add) {
-  if (scene.queriedScene) return forEachQueriedEmitterAlong(scene, o, w, active, add);
+  if (scene.geometryQueried) return forEachQueriedEmitterAlong(scene, o, w, active, add);
   const DF df;
   const VF zero = hn::Zero(df);
   const Nearest n = nearest(scene, o, w, zero, setF(INFINITY));

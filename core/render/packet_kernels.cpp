@@ -186,6 +186,59 @@ HWY_INLINE void shadeDirect(const PacketScene& scene, const PacketRays& rays, co
   storeRadiance(scene, shaded, h, E, out);
 }
 
+// The light each shaded lane picks for sample i from its pick draw j (queryLightPicks).
+HWY_INLINE void pickLights(const PacketScene& scene, const PacketHit& h, MF shaded, const PacketDraws& draws,
+                           size_t j, PacketPickLanes& picks) {
+  const DF df;
+  storeF3(h.p, picks.p);
+  storeF3(h.ns, picks.n);
+  hn::StoreU(hn::IfThenElseZero(shaded, setF(1.f)), df, picks.active);
+  queryLightPicks(*scene.scene, scene.selection, draws.u[j], int(hn::Lanes(df)), picks);
+}
+
+// LightDirectIntegrator<measure, selection> through directRadiance (selectedLightIrradiance): per
+// sample one light picked per lane, sampled by the measure in the lanes that picked it, each sample's
+// cos θ / (pdf · pmf) divided in double.
+template <LightMeasure kMeasure>
+HWY_INLINE void shadeSelected(const PacketScene& scene, const PacketRays& rays, const PacketDraws& draws,
+                              PacketRadiance& out) {
+  const DF df;
+  const DD dd;
+  const PacketHit h = cameraHit(scene, rays);
+  const VF zero = hn::Zero(df);
+  V3F E{zero, zero, zero};
+  const MF shaded = hn::And(h.hit, h.shades);
+  if (!hn::AllFalse(df, shaded)) {
+    const size_t lanes = hn::Lanes(df);
+    for (int i = 0; i < scene.samples; ++i) {
+      const size_t pickDraw = 2 * size_t(i), lightDraw = pickDraw + 1;
+      PacketPickLanes picks;
+      pickLights(scene, h, shaded, draws, pickDraw, picks);
+      const VF picked = hn::LoadU(df, picks.light);
+      const VD pmf = hn::LoadU(dd, picks.pmf);
+      // Each light some lane picked, once (lanes picking one light are handled together).
+      for (size_t k = 0; k < lanes; ++k) {
+        const float l = picks.light[k];
+        if (l < 0.f) continue;
+        bool seen = false;
+        for (size_t e = 0; e < k && !seen; ++e) seen = picks.light[e] == l;
+        if (seen) continue;
+        const PacketLight& light = scene.lights[size_t(l)];
+        if (light.black || !(light.radius > 0.f)) continue;
+        const MF m = hn::And(shaded, picked == setF(l));
+        VF cosTheta;
+        PacketLightSample s;
+        const MF lit = unoccludedLightSample<kMeasure>(scene, light, h, m, draws, lightDraw, s, cosTheta);
+        if (hn::AllFalse(df, lit)) continue;
+        addRadiance(lit, light.radiance, demote(promote(cosTheta) / (promote(s.pdf) * pmf)), E);
+      }
+    }
+    const VF invSamples = setF(1.f / float(scene.samples));
+    E = scaled(E, invSamples);
+  }
+  storeRadiance(scene, shaded, h, E, out);
+}
+
 // HemisphereDirectIntegrator<kWarp> through directRadiance (and BsdfDirectIntegrator: on a diffuse
 // surface its directions are the cosine warp's): directions about the shading normal, each traced
 // to the emitter it reaches first.
@@ -320,6 +373,15 @@ HWY_INLINE void shadeAo(const PacketScene& scene, const PacketRays& rays, const 
   hn::StoreU(L, df, out.L[2]);
 }
 
+// NormalsIntegrator: |ns| of the hit as it comes from the geometry, 0 where nothing is hit.
+HWY_INLINE void shadeNormals(const PacketScene& scene, const PacketRays& rays, PacketRadiance& out) {
+  const DF df;
+  const PacketHit h = cameraHit(scene, rays);
+  hn::StoreU(hn::IfThenElseZero(h.hit, hn::Abs(h.nsHit.x)), df, out.L[0]);
+  hn::StoreU(hn::IfThenElseZero(h.hit, hn::Abs(h.nsHit.y)), df, out.L[1]);
+  hn::StoreU(hn::IfThenElseZero(h.hit, hn::Abs(h.nsHit.z)), df, out.L[2]);
+}
+
 }  // namespace
 
 void ShadePacket(const PacketScene& scene, const PacketRays& rays, const PacketDraws& draws,
@@ -329,6 +391,10 @@ void ShadePacket(const PacketScene& scene, const PacketRays& rays, const PacketD
       return shadeDirect<LightMeasure::Area>(scene, rays, draws, out);
     case PacketKernel::LightSolidAngle:
       return shadeDirect<LightMeasure::SolidAngle>(scene, rays, draws, out);
+    case PacketKernel::LightAreaSelected:
+      return shadeSelected<LightMeasure::Area>(scene, rays, draws, out);
+    case PacketKernel::LightSolidAngleSelected:
+      return shadeSelected<LightMeasure::SolidAngle>(scene, rays, draws, out);
     case PacketKernel::HemisphereUniform:
       return shadeHemisphere<HemisphereWarp::Uniform>(scene, rays, draws, out);
     case PacketKernel::HemisphereCosine:
@@ -347,6 +413,8 @@ void ShadePacket(const PacketScene& scene, const PacketRays& rays, const PacketD
       return shadeAo<HemisphereWarp::Uniform>(scene, rays, draws, out);
     case PacketKernel::AoCosine:
       return shadeAo<HemisphereWarp::Cosine>(scene, rays, draws, out);
+    case PacketKernel::Normals:
+      return shadeNormals(scene, rays, out);
   }
 }
 int Lanes() {

@@ -38,7 +38,8 @@ void queryCameraHits(const Scene& scene, const PacketRays& rays, int lanes, Pack
     SurfaceHit hit;
     if (!scene.geometry.intersect(ray, hit)) {
       out.hit[k] = out.offsetScale[k] = out.shades[k] = 0.f;
-      for (auto* v : {&out.p, &out.ng, &out.ns, &out.albedoOverPi, &out.emitted}) setLane(*v, k, Vec3(0.f));
+      for (auto* v : {&out.p, &out.ng, &out.ns, &out.nsHit, &out.albedoOverPi, &out.emitted})
+        setLane(*v, k, Vec3(0.f));
       continue;
     }
     const SurfaceMaterial& material = scene.materials[hit.objectId];
@@ -47,6 +48,7 @@ void queryCameraHits(const Scene& scene, const PacketRays& rays, int lanes, Pack
     setLane(out.p, k, hit.p);
     setLane(out.ng, k, sp.ng);
     setLane(out.ns, k, sp.ns);
+    setLane(out.nsHit, k, hit.ns);
     out.offsetScale[k] = hit.offsetScale;
     out.shades[k] = isBlack(material.bsdf.albedo) ? 0.f : 1.f;
     setLane(out.albedoOverPi, k, material.bsdf.albedo * kInvPi);
@@ -76,6 +78,40 @@ void queryEmittersAlong(const Scene& scene, const PacketSegments& rays, int lane
     setLane(out.p, k, hit.p);
     setLane(out.ng, k, hit.ng);
   }
+}
+
+namespace {
+
+template <class Selection>
+void pickLights(const Selection& selection, const float (&u)[2][kMaxPacketLanes], int lanes,
+                PacketPickLanes& picks) {
+  for (int k = 0; k < lanes; ++k) {
+    picks.light[k] = -1.f;
+    picks.pmf[k] = 0.0;
+    if (picks.active[k] == 0.f) continue;
+    const LightPick pick =
+        selection.pick(lane(picks.p, k), lane(picks.n, k), double(u[0][k]) + double(u[1][k]) * 0x1p-24);
+    if (!(pick.pmf > 0.0)) continue;
+    picks.light[k] = float(pick.light);
+    picks.pmf[k] = pick.pmf;
+  }
+}
+
+}  // namespace
+
+void queryLightPicks(const Scene& scene, LightSelection selection, const float (&u)[2][kMaxPacketLanes],
+                     int lanes, PacketPickLanes& picks) {
+  switch (selection) {
+    case LightSelection::Uniform:
+      return pickLights(scene.uniformSelection, u, lanes, picks);
+    case LightSelection::Power:
+      return pickLights(scene.powerSelection, u, lanes, picks);
+    case LightSelection::Bvh:
+      return pickLights(scene.lightBvh, u, lanes, picks);
+    case LightSelection::All:
+      break;
+  }
+  for (int k = 0; k < lanes; ++k) picks.light[k] = -1.f, picks.pmf[k] = 0.0;
 }
 
 }  // namespace penumbra

@@ -19,6 +19,7 @@ struct Scene;
 struct alignas(64) PacketHitLanes {
   float hit[kMaxPacketLanes];
   float p[3][kMaxPacketLanes], ng[3][kMaxPacketLanes], ns[3][kMaxPacketLanes];
+  float nsHit[3][kMaxPacketLanes];  // SurfaceHit::ns, before the ShadingPoint's flip
   float offsetScale[kMaxPacketLanes];
   float shades[kMaxPacketLanes];  // the albedo is not black
   float albedoOverPi[3][kMaxPacketLanes];
@@ -41,10 +42,22 @@ struct alignas(64) PacketEmitterLanes {
   float p[3][kMaxPacketLanes], ng[3][kMaxPacketLanes];
 };
 
+// The light each lane picks (LightDirectIntegrator::selectedLightIrradiance) at its shading point p
+// with shading normal n, from the two floats of its pick draw u: its index in Scene::sphereLights (-1
+// where nothing is picked, pmf 0, and in inactive lanes) and the probability it was picked with.
+struct alignas(64) PacketPickLanes {
+  float p[3][kMaxPacketLanes], n[3][kMaxPacketLanes];
+  float active[kMaxPacketLanes];
+  float light[kMaxPacketLanes];
+  double pmf[kMaxPacketLanes];
+};
+
 void queryCameraHits(const Scene& scene, const PacketRays& rays, int lanes, PacketHitLanes& out);
 // SceneGeometry::occluded(ray, skipSphere) of each active lane's segment: blocked[k] is 1 or 0.
 void queryOccluded(const Scene& scene, const PacketSegments& rays, int lanes, int32_t skipSphere,
                    float* blocked);
 void queryEmittersAlong(const Scene& scene, const PacketSegments& rays, int lanes, PacketEmitterLanes& out);
+void queryLightPicks(const Scene& scene, LightSelection selection, const float (&u)[2][kMaxPacketLanes],
+                     int lanes, PacketPickLanes& picks);
 
 }  // namespace penumbra

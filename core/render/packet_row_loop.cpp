@@ -73,11 +73,14 @@ RowRenderer packetRowsFor(const RenderJob& job, RowRenderer scalar) {
         int j = 0;
         for (const DrawRequests& r : scene->draws)
           for (int rep = 0; rep < r.repeats; ++rep)
-            for (int i = 0; i < r.n; ++i, ++j) {
-              const Vec2 u = sampler.next2D(uint32_t(i), uint32_t(r.n));
-              b.draws.u[j][0][k] = u.x;
-              b.draws.u[j][1][k] = u.y;
-            }
+            for (int i = 0; i < r.n; ++i)
+              for (int part = 0; part < r.parts; ++part, ++j) {
+                const Vec2 u = r.parts == 1 ? sampler.next2D(uint32_t(i), uint32_t(r.n))
+                                            : sampler.next2D(uint32_t(i), uint32_t(r.n), uint32_t(part),
+                                                             uint32_t(r.parts));
+                b.draws.u[j][0][k] = u.x;
+                b.draws.u[j][1][k] = u.y;
+              }
       }
       shade(*scene, b.rays, b.draws, b.radiance);
       for (int k = 0; k < count; ++k) {

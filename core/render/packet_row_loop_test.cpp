@@ -85,6 +85,7 @@ TestScene packetTestScene(float scale, bool deltaLights = false, Geometry geomet
     for (Vec3& p : rock.positions) p = (p * 0.35f + Vec3(-0.5f, -0.65f, 1.3f)) * s;
     scene->geometry.addMesh(rock, addObject(Color3(0.7f, 0.6f, 0.5f)));
   }
+  buildLightSelections(*scene);
   const AccelMode accel = geometry == Geometry::Bvh ? AccelMode::Embree : AccelMode::BruteForce;
   scene->geometry.build(accel, accel);
   scene->rayLengthBound = scene->geometry.bounds().diagonal() * 1.01f;
@@ -129,6 +130,10 @@ std::vector<double> renderSums(const std::shared_ptr<const RenderJob>& job, bool
 const IntegratorDesc kPacketStrategies[] = {
     directByLight(LightMeasure::Area),
     directByLight(LightMeasure::SolidAngle),
+    directByLight(LightMeasure::Area, LightSelection::Uniform),
+    directByLight(LightMeasure::SolidAngle, LightSelection::Power),
+    directByLight(LightMeasure::Area, LightSelection::Bvh),
+    directByLight(LightMeasure::SolidAngle, LightSelection::Bvh),
     directByHemisphere(HemisphereWarp::Uniform),
     directByHemisphere(HemisphereWarp::Cosine),
     directByBsdf(),
@@ -139,6 +144,7 @@ const IntegratorDesc kPacketStrategies[] = {
     directByMis(LightMeasure::SolidAngle, MisHeuristic::Balance),
     directByMis(LightMeasure::SolidAngle, MisHeuristic::Power),
     integratorOfType(IntegratorType::Simple),
+    integratorOfType(IntegratorType::Normals),
 };
 
 class PacketRowLoopOn : public testing::TestWithParam<Geometry> {};
@@ -152,9 +158,8 @@ TEST_P(PacketRowLoopOn, EqualsTheScalarLoopBitForBit) {
   for (const float scale : {1e-4f, 1.f, 1e4f})
     for (const bool deltaLights : {false, true}) {
       const TestScene t = packetTestScene(scale, deltaLights, GetParam());
-      EXPECT_EQ(
-          makePacketScene(*jobFor(t, directByBsdf(), 1, SamplerKind::Independent)).queriedScene != nullptr,
-          GetParam() != Geometry::Flat);
+      EXPECT_EQ(makePacketScene(*jobFor(t, directByBsdf(), 1, SamplerKind::Independent)).geometryQueried,
+                GetParam() != Geometry::Flat);
       for (const std::string& target : availablePacketTargets()) {
         ForcedTarget forced(target);
         for (const IntegratorDesc& strategy : kPacketStrategies)
@@ -200,15 +205,20 @@ TEST(PacketRowLoop, TheTestImageHasEveryKindOfLane) {
 }
 
 // What the packet path takes, and what it leaves to the scalar loop (with the reason).
-TEST(PacketRowLoop, SupportsItsStrategiesOnFlatDiffuseScenes) {
+TEST(PacketRowLoop, SupportsItsStrategiesOnDiffuseScenes) {
   const TestScene t = packetTestScene(1.f);
   auto job =
       std::make_shared<RenderJob>(*jobFor(t, directByLight(LightMeasure::Area), 1, SamplerKind::Sobol));
   EXPECT_EQ(packetUnsupportedReason(*job), "");
   job->settings.integrator.lightMeasure = LightMeasure::ProjectedSolidAngle;
   EXPECT_NE(packetUnsupportedReason(*job), "");
+  job->settings.integrator.lightSelection = LightSelection::Bvh;
+  EXPECT_NE(packetUnsupportedReason(*job), "");
   job->settings.integrator.lightMeasure = LightMeasure::Area;
-  job->settings.integrator.lightSelection = LightSelection::Power;
+  EXPECT_EQ(packetUnsupportedReason(*job), "");
+  job->settings.integrator.samples = kMaxPacketDraws / 2;  // a pick and a light draw each: they fit
+  EXPECT_EQ(packetUnsupportedReason(*job), "");
+  job->settings.integrator.samples = kMaxPacketDraws / 2 + 1;
   EXPECT_NE(packetUnsupportedReason(*job), "");
   job->settings.integrator.lightSelection = LightSelection::All;
   job->settings.integrator.samples = kMaxPacketDraws;  // 6 lights × 256 draws do not fit a packet

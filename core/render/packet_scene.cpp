@@ -19,6 +19,10 @@ bool kernelOf(const IntegratorDesc& d, PacketKernel& kernel) {
     kernel = PacketKernel::Simple;
     return true;
   }
+  if (d.type == IntegratorType::Normals) {
+    kernel = PacketKernel::Normals;
+    return true;
+  }
   if (d.type != IntegratorType::Direct) return false;
   switch (d.estimator) {
     case Estimator::Hemisphere:
@@ -27,15 +31,16 @@ bool kernelOf(const IntegratorDesc& d, PacketKernel& kernel) {
     case Estimator::Bsdf:  // the cosine warp on diffuse surfaces (the only ones the kernels shade)
       kernel = PacketKernel::HemisphereCosine;
       return true;
-    case Estimator::Light:
-      if (d.lightSelection != LightSelection::All) return false;
+    case Estimator::Light: {
+      const bool all = d.lightSelection == LightSelection::All;
       if (d.lightMeasure == LightMeasure::Area)
-        kernel = PacketKernel::LightArea;
+        kernel = all ? PacketKernel::LightArea : PacketKernel::LightAreaSelected;
       else if (d.lightMeasure == LightMeasure::SolidAngle)
-        kernel = PacketKernel::LightSolidAngle;
+        kernel = all ? PacketKernel::LightSolidAngle : PacketKernel::LightSolidAngleSelected;
       else
         return false;
       return true;
+    }
     case Estimator::Mis:
       if (d.lightMeasure == LightMeasure::ProjectedSolidAngle) return false;
       if (d.lightMeasure == LightMeasure::Area)
@@ -59,17 +64,20 @@ bool hasOnlyFlatShapes(const SceneGeometry& g) {
 
 int PacketScene::drawCount() const {
   int count = 0;
-  for (const DrawRequests& r : draws) count += r.repeats * r.n;
+  for (const DrawRequests& r : draws) count += r.repeats * r.n * r.parts;
   return count;
 }
 
 namespace {
 
-// The integrator's sampler requests after the filter's: per light for light sampling, the lights'
-// then the surface's for MIS, one request otherwise.
+// The integrator's sampler requests after the filter's: per light for light sampling of every light,
+// the pick's and the light's interleaved for one light per sample, the lights' then the surface's for
+// MIS, one request otherwise.
 std::vector<DrawRequests> drawRequestsOf(const IntegratorDesc& d, int lights) {
-  if (d.type == IntegratorType::Simple) return {};
-  if (d.type == IntegratorType::Direct && d.estimator == Estimator::Light) return {{lights, d.samples}};
+  if (d.type == IntegratorType::Simple || d.type == IntegratorType::Normals) return {};
+  if (d.type == IntegratorType::Direct && d.estimator == Estimator::Light)
+    return d.lightSelection == LightSelection::All ? std::vector<DrawRequests>{{lights, d.samples}}
+                                                   : std::vector<DrawRequests>{{1, d.samples, 2}};
   if (d.type == IntegratorType::Direct && d.estimator == Estimator::Mis)
     return {{lights, d.lightSamples}, {1, d.bsdfSamples}};
   return {{1, d.samples}};
@@ -85,7 +93,7 @@ std::string packetUnsupportedReason(const RenderJob& job) {
   const Scene& scene = *job.scene;
   int draws = 0;
   for (const DrawRequests& r : drawRequestsOf(d, int(scene.sphereLights.size())))
-    draws += std::max(r.repeats, 0) * std::max(r.n, 0);
+    draws += std::max(r.repeats, 0) * std::max(r.n, 0) * r.parts;
   if (draws > kMaxPacketDraws)
     return "more shading samples per camera sample than a packet carries (" +
            std::to_string(kMaxPacketDraws) + ")";
@@ -101,20 +109,22 @@ PacketScene makePacketScene(const RenderJob& job) {
   const SceneGeometry& g = scene.geometry;
   PacketScene p;
   kernelOf(job.settings.integrator, p.kernel);
-  if (!hasOnlyFlatShapes(g)) p.queriedScene = &scene;
+  p.scene = &scene;
+  p.geometryQueried = !hasOnlyFlatShapes(g);
+  p.selection = job.settings.integrator.lightSelection;
   p.samples = job.settings.integrator.samples;
   p.lightSamples = job.settings.integrator.lightSamples;
   p.bsdfSamples = job.settings.integrator.bsdfSamples;
   p.draws = drawRequestsOf(job.settings.integrator, int(scene.sphereLights.size()));
   p.rayLengthBound = scene.rayLengthBound;
-  for (size_t i = 0; i < g.spheres().size() && !p.queriedScene; ++i) {
+  for (size_t i = 0; i < g.spheres().size() && !p.geometryQueried; ++i) {
     const Sphere& s = g.spheres()[i];
     p.spheres.push_back({{s.center.x, s.center.y, s.center.z},
                          s.radius,
                          maxAbsComponent(s.center) + s.radius,
                          g.sphereObjectId(i)});
   }
-  if (!p.queriedScene)
+  if (!p.geometryQueried)
     for (const Parallelogram& q : g.parallelograms()) p.quads.push_back({q, g.meshObjectId(q.mesh)});
   for (const SurfaceMaterial& m : scene.materials) {
     PacketObject o{};

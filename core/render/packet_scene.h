@@ -60,29 +60,36 @@ struct PacketDirectionalLight {
 
 // The strategies the packet kernels compute (one kernel each, chosen per render).
 enum class PacketKernel : uint8_t {
-  LightArea,             // direct by light sampling, area measure, every light
-  LightSolidAngle,       // direct by light sampling, solid-angle measure, every light
-  HemisphereUniform,     // direct by uniform hemisphere directions
-  HemisphereCosine,      // direct by cosine hemisphere directions (also `bsdf` on diffuse surfaces)
-  MisAreaBalance,        // MIS of area light sampling and the cosine hemisphere, balance heuristic
-  MisAreaPower,          // ... power heuristic
-  MisSolidAngleBalance,  // MIS of solid-angle light sampling and the cosine hemisphere, balance
-  MisSolidAnglePower,    // ... power heuristic
-  Simple,                // point and directional lights only
-  AoUniform,             // ambient occlusion, uniform hemisphere
-  AoCosine,              // ambient occlusion, cosine hemisphere
+  LightArea,                // direct by light sampling, area measure, every light
+  LightSolidAngle,          // direct by light sampling, solid-angle measure, every light
+  LightAreaSelected,        // direct by light sampling, area measure, one light picked per sample
+  LightSolidAngleSelected,  // ... solid-angle measure
+  HemisphereUniform,        // direct by uniform hemisphere directions
+  HemisphereCosine,         // direct by cosine hemisphere directions (also `bsdf` on diffuse surfaces)
+  MisAreaBalance,           // MIS of area light sampling and the cosine hemisphere, balance heuristic
+  MisAreaPower,             // ... power heuristic
+  MisSolidAngleBalance,     // MIS of solid-angle light sampling and the cosine hemisphere, balance
+  MisSolidAnglePower,       // ... power heuristic
+  Simple,                   // point and directional lights only
+  AoUniform,                // ambient occlusion, uniform hemisphere
+  AoCosine,                 // ambient occlusion, cosine hemisphere
+  Normals,                  // the absolute shading normal
 };
 
-// `repeats` sampler requests of `n` stratified draws each (next2D(i, n) for i < n).
+// `repeats` sampler requests of `n` stratified draws each (next2D(i, n) for i < n), or of n draws of
+// `parts` interleaved requests each (next2D(i, n, k, parts) for i < n, k < parts).
 struct DrawRequests {
   int repeats, n;
+  int parts = 1;
 };
 
 struct PacketScene {
   PacketKernel kernel = PacketKernel::LightArea;
-  // The scene whose SceneGeometry answers the kernels' ray queries lane by lane (packet_queries.h)
-  // when its geometry is not all flat spheres and parallelograms; null when the arrays below hold it.
-  const Scene* queriedScene = nullptr;
+  // The scene this was made from, which answers the kernels' queries lane by lane (packet_queries.h):
+  // light picks, and every ray when its geometry is not all flat spheres and parallelograms
+  // (geometryQueried; otherwise the arrays below hold the geometry).
+  const Scene* scene = nullptr;
+  bool geometryQueried = false;
   // The flat geometry (empty when queried) and every object's material.
   std::vector<PacketSphere> spheres;
   std::vector<PacketQuad> quads;
@@ -90,9 +97,10 @@ struct PacketScene {
   std::vector<PacketLight> lights;  // sphere lights
   std::vector<PacketPointLight> pointLights;
   std::vector<PacketDirectionalLight> directionalLights;
-  int samples = 1;           // shading samples per camera sample (per light, for light sampling)
-  int lightSamples = 0;      // MIS: per light
-  int bsdfSamples = 0;       // MIS
+  LightSelection selection = LightSelection::All;  // how the *Selected kernels pick their light
+  int samples = 1;       // shading samples per camera sample (per light, for light sampling of every light)
+  int lightSamples = 0;  // MIS: per light
+  int bsdfSamples = 0;   // MIS
   float rayLengthBound = 0;  // how far ambient occlusion looks
   // The sampler draws of one camera sample after the filter's, in the integrator's order.
   std::vector<DrawRequests> draws;
