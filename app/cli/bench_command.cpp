@@ -233,7 +233,6 @@ void simdTable(const LoadedScene& sphere, const BenchOptions& o, const std::vect
   for (const std::string& t : targets) std::printf(" %12s %20s", (t + " M/s").c_str(), "speed-up (range)");
   std::printf("\n");
   for (const IntegratorDesc& strategy : everyStrategy()) {
-    if (strategy.usesLightSelection() && strategy.lightSelection != LightSelection::All) continue;
     RenderSettings settings = sphere.settings;
     settings.integrator = withCountsOf(strategy, sphere.settings.integrator);
     const RenderJob job(sphere.scene, settings, RenderLimits{});
