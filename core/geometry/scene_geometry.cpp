@@ -318,6 +318,33 @@ bool SceneGeometry::occluded(const Ray& ray, int32_t skipSphere) const {
   return occludedByFlatTriangles(ray);
 }
 
+void SceneGeometry::occludedMany(const Ray* rays, const bool* active, size_t n, int32_t skipSphere,
+                                 bool* blocked) const {
+  RTCRay bvh[kOccludedManyRays];
+  size_t query[kOccludedManyRays];
+  size_t queued = 0;
+  for (size_t i = 0; i < n; ++i) {
+    blocked[i] = false;
+    if (!active[i]) continue;
+    const Ray& ray = rays[i];
+    // occluded()'s tests, the BVH's deferred (the flat triangles' come first here: the answer is the same).
+    if (occludedByFlatShapes(ray, skipSphere) || occludedByFlatTriangles(ray)) {
+      blocked[i] = true;
+      continue;
+    }
+    if (!scene_ || !(ray.tMax > ray.tMin)) continue;
+    setupRay(ray, ray.tMax, bvh[queued]);
+    query[queued++] = i;
+  }
+  if (queued == 0) return;
+  OcclusionContext context;
+  rtcInitIntersectContext(&context.base);
+  context.skipSphere = skipSphere;
+  rtcOccluded1M(static_cast<RTCScene>(scene_.get()), &context.base, bvh, unsigned(queued), sizeof(RTCRay));
+  for (size_t q = 0; q < queued; ++q)
+    if (bvh[q].tfar < 0.f) blocked[query[q]] = true;  // Embree sets tfar = -inf on a hit
+}
+
 bool SceneGeometry::occludedByFlatShapes(const Ray& ray, int32_t skipSphere) const {
   for (size_t i = 0; i < flatSphereCount_; ++i)
     if (static_cast<int32_t>(i) != skipSphere && spheres_[i].occludes(ray)) return true;

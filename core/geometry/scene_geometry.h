@@ -66,6 +66,10 @@ class SceneGeometry {
   // addSphere) is not tested: a shadow ray towards a point of a convex light that faces the shading
   // point cannot be blocked by that light, and testing it would only add rounding (and cost).
   bool occluded(const Ray& ray, int32_t skipSphere = -1) const;
+  // occluded() of rays[0..n) (n <= kOccludedManyRays): blocked[i] = occluded(rays[i], skipSphere) for
+  // the rays with active[i]. The rays that reach the BVH go to Embree as one stream (rtcOccluded1M).
+  void occludedMany(const Ray* rays, const bool* active, size_t n, int32_t skipSphere, bool* blocked) const;
+  static constexpr size_t kOccludedManyRays = 16;
 
   Bounds bounds() const { return bounds_; }
   size_t sphereCount() const { return spheres_.size(); }

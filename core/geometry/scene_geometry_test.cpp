@@ -241,6 +241,45 @@ TEST(SceneGeometry, BruteForceAndEmbreeAgree) {
 }
 
 // AO-style rays leaving the surface of a convex shape never hit that shape again.
+// occludedMany answers each active ray as occluded() does (inactive ones: not blocked), for a skipped
+// sphere and none, on every split of the primitives between the flat loops and the BVH; rays in fans
+// from shading points as a packet's shadow rays are, some of them empty segments.
+TEST(SceneGeometry, OccludedManyAnswersAsOccludedDoes) {
+  for (const auto& [mode, sphereMode] : kAccelCombinations) {
+    SceneGeometry g;
+    g.addMesh(makeRockMesh(3, 9), 0);
+    g.addMesh(makeGridPlane(Vec3(-20, -1, -20), Vec3(0, 0, 40), Vec3(40, 0, 0), 2, 2), 1);
+    for (uint32_t i = 0; i < 40; ++i)
+      g.addSphere(Sphere{Vec3(-2.f + 0.1f * float(i), 0.8f + 0.02f * float(i % 7), 1.2f), 0.08f}, 2 + i);
+    g.build(mode, sphereMode);
+    std::mt19937 rng(8);
+    std::uniform_real_distribution<float> u(-1.f, 1.f);
+    int blocked = 0, tested = 0;
+    for (int packet = 0; packet < 200; ++packet) {
+      const size_t n = 1 + size_t(packet) % SceneGeometry::kOccludedManyRays;
+      const Vec3 target(u(rng) * 2.f, 1.f + u(rng), 1.2f + u(rng));
+      Ray rays[SceneGeometry::kOccludedManyRays];
+      bool active[SceneGeometry::kOccludedManyRays], answers[SceneGeometry::kOccludedManyRays];
+      for (size_t i = 0; i < n; ++i) {
+        const Vec3 o(u(rng) * 3.f, -0.999f, u(rng) * 3.f);
+        const Vec3 d = target - o;
+        const float length = glm::length(d);
+        rays[i] = Ray{o, d / length, 0.f, packet % 5 == 0 ? 0.f : length};
+        active[i] = (packet + int(i)) % 7 != 0;
+      }
+      const int32_t skip = packet % 2 ? int32_t(packet % 40) : -1;
+      g.occludedMany(rays, active, n, skip, answers);
+      for (size_t i = 0; i < n; ++i) {
+        EXPECT_EQ(answers[i], active[i] && g.occluded(rays[i], skip)) << "packet " << packet << " ray " << i;
+        tested += active[i];
+        blocked += answers[i];
+      }
+    }
+    EXPECT_GT(blocked, tested / 20);
+    EXPECT_LT(blocked, tested - tested / 20);
+  }
+}
+
 TEST(SceneGeometry, NoSelfIntersectionOnConvexShapes) {
   for (auto [mode, sphereMode] : kAccelCombinations) {
     for (float k : {1e-4f, 1.f, 1e4f}) {

@@ -58,8 +58,14 @@ void queryCameraHits(const Scene& scene, const PacketRays& rays, int lanes, Pack
 
 void queryOccluded(const Scene& scene, const PacketSegments& rays, int lanes, int32_t skipSphere,
                    float* blocked) {
-  for (int k = 0; k < lanes; ++k)
-    blocked[k] = rays.active[k] != 0.f && scene.geometry.occluded(segment(rays, k), skipSphere) ? 1.f : 0.f;
+  Ray segments[kMaxPacketLanes];
+  bool active[kMaxPacketLanes], hit[kMaxPacketLanes];
+  for (int k = 0; k < lanes; ++k) {
+    segments[k] = segment(rays, k);
+    active[k] = rays.active[k] != 0.f;
+  }
+  scene.geometry.occludedMany(segments, active, size_t(lanes), skipSphere, hit);
+  for (int k = 0; k < lanes; ++k) blocked[k] = hit[k] ? 1.f : 0.f;
 }
 
 void queryEmittersAlong(const Scene& scene, const PacketSegments& rays, int lanes, PacketEmitterLanes& out) {
