@@ -240,7 +240,6 @@ TEST(SceneGeometry, BruteForceAndEmbreeAgree) {
   EXPECT_LT(primMismatch, n / 100);
 }
 
-// AO-style rays leaving the surface of a convex shape never hit that shape again.
 // occludedMany answers each active ray as occluded() does (inactive ones: not blocked), for a skipped
 // sphere and none, on every split of the primitives between the flat loops and the BVH; rays in fans
 // from shading points as a packet's shadow rays are, some of them empty segments.
@@ -280,6 +279,7 @@ TEST(SceneGeometry, OccludedManyAnswersAsOccludedDoes) {
   }
 }
 
+// AO-style rays leaving the surface of a convex shape never hit that shape again.
 TEST(SceneGeometry, NoSelfIntersectionOnConvexShapes) {
   for (auto [mode, sphereMode] : kAccelCombinations) {
     for (float k : {1e-4f, 1.f, 1e4f}) {

@@ -155,6 +155,19 @@ HWY_INLINE MF unoccludedLightSample(const PacketScene& scene, const PacketLight&
   return hn::AndNot(occluded(scene, origin, s.wi, tMax, light.geometrySphere, lit), lit);
 }
 
+// Light-sampling draw j towards `light` in the lanes of m: E += Le · factor(s, cos θ) where it lights
+// (a light of black radiance or no size is never sampled: its draws are skipped).
+template <LightMeasure kMeasure, class Factor>
+HWY_INLINE void addLightSample(const PacketScene& scene, const PacketLight& light, const PacketHit& h, MF m,
+                               const PacketDraws& draws, size_t j, const Factor& factor, V3F& E) {
+  if (light.black || !(light.radius > 0.f)) return;
+  VF cosTheta;
+  PacketLightSample s;
+  const MF lit = unoccludedLightSample<kMeasure>(scene, light, h, m, draws, j, s, cosTheta);
+  if (hn::AllFalse(DF(), lit)) return;
+  addRadiance(lit, light.radiance, factor(s, cosTheta), E);
+}
+
 // LightDirectIntegrator<measure, All> through directRadiance: every light, every sample, shadow
 // tested; the mean over the samples, times albedo/π, plus the emission at the hit.
 template <LightMeasure kMeasure>
@@ -167,18 +180,11 @@ HWY_INLINE void shadeDirect(const PacketScene& scene, const PacketRays& rays, co
   const MF shaded = hn::And(h.hit, h.shades);
   if (!hn::AllFalse(df, shaded)) {
     const int samples = scene.samples;
-    for (size_t l = 0; l < scene.lights.size(); ++l) {
-      const PacketLight& light = scene.lights[l];
-      if (light.black || !(light.radius > 0.f)) continue;
-      for (int i = 0; i < samples; ++i) {
-        const size_t j = l * size_t(samples) + size_t(i);
-        VF cosTheta;
-        PacketLightSample s;
-        const MF lit = unoccludedLightSample<kMeasure>(scene, light, h, shaded, draws, j, s, cosTheta);
-        if (hn::AllFalse(df, lit)) continue;
-        addRadiance(lit, light.radiance, cosTheta / s.pdf, E);
-      }
-    }
+    const auto cosOverPdf = [](const PacketLightSample& s, VF cosTheta) { return cosTheta / s.pdf; };
+    for (size_t l = 0; l < scene.lights.size(); ++l)
+      for (int i = 0; i < samples; ++i)
+        addLightSample<kMeasure>(scene, scene.lights[l], h, shaded, draws, l * size_t(samples) + size_t(i),
+                                 cosOverPdf, E);
     const VF invSamples = setF(1.f / float(samples));
     // directRadiance: L + albedo/π · (delta lights' 0 + the estimate).
     E = scaled(E, invSamples);
@@ -223,14 +229,12 @@ HWY_INLINE void shadeSelected(const PacketScene& scene, const PacketRays& rays, 
         bool seen = false;
         for (size_t e = 0; e < k && !seen; ++e) seen = picks.light[e] == l;
         if (seen) continue;
-        const PacketLight& light = scene.lights[size_t(l)];
-        if (light.black || !(light.radius > 0.f)) continue;
-        const MF m = hn::And(shaded, picked == setF(l));
-        VF cosTheta;
-        PacketLightSample s;
-        const MF lit = unoccludedLightSample<kMeasure>(scene, light, h, m, draws, lightDraw, s, cosTheta);
-        if (hn::AllFalse(df, lit)) continue;
-        addRadiance(lit, light.radiance, demote(promote(cosTheta) / (promote(s.pdf) * pmf)), E);
+        addLightSample<kMeasure>(
+            scene, scene.lights[size_t(l)], h, hn::And(shaded, picked == setF(l)), draws, lightDraw,
+            [&](const PacketLightSample& s, VF cosTheta) {
+              return demote(promote(cosTheta) / (promote(s.pdf) * pmf));
+            },
+            E);
       }
     }
     const VF invSamples = setF(1.f / float(scene.samples));
@@ -299,15 +303,14 @@ HWY_INLINE void shadeMis(const PacketScene& scene, const PacketRays& rays, const
     size_t j = 0;
     if (scene.lightSamples > 0) {
       for (const PacketLight& light : scene.lights)
-        for (int i = 0; i < scene.lightSamples; ++i, ++j) {
-          if (light.black || !(light.radius > 0.f)) continue;
-          VF cosTheta;
-          PacketLightSample s;
-          const MF lit = unoccludedLightSample<kMeasure>(scene, light, h, shaded, draws, j, s, cosTheta);
-          if (hn::AllFalse(df, lit)) continue;
-          const VF weight = misWeight<kHeuristic>(nL * s.pdf, nB * (cosTheta * setF(kInvPi)));
-          addRadiance(lit, light.radiance, cosTheta / s.pdf * weight, lightPart);
-        }
+        for (int i = 0; i < scene.lightSamples; ++i, ++j)
+          addLightSample<kMeasure>(
+              scene, light, h, shaded, draws, j,
+              [&](const PacketLightSample& s, VF cosTheta) {
+                const VF weight = misWeight<kHeuristic>(nL * s.pdf, nB * (cosTheta * setF(kInvPi)));
+                return cosTheta / s.pdf * weight;
+              },
+              lightPart);
       const VF inv = setF(1.f / float(scene.lightSamples));
       lightPart = scaled(lightPart, inv);
     }

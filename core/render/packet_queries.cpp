@@ -59,7 +59,8 @@ void queryCameraHits(const Scene& scene, const PacketRays& rays, int lanes, Pack
 void queryOccluded(const Scene& scene, const PacketSegments& rays, int lanes, int32_t skipSphere,
                    float* blocked) {
   Ray segments[kMaxPacketLanes];
-  bool active[kMaxPacketLanes], hit[kMaxPacketLanes];
+  // Zeroed: the compiler cannot see that lanes <= kMaxPacketLanes.
+  bool active[kMaxPacketLanes] = {}, hit[kMaxPacketLanes];
   for (int k = 0; k < lanes; ++k) {
     segments[k] = segment(rays, k);
     active[k] = rays.active[k] != 0.f;

@@ -54,13 +54,11 @@ bool kernelOf(const IntegratorDesc& d, PacketKernel& kernel) {
   return false;
 }
 
-// Whether the kernels hold all of the geometry themselves: spheres and parallelograms in flat loops,
-// nothing in a BVH, no triangle tested on its own.
-bool hasOnlyFlatShapes(const SceneGeometry& g) {
-  return !g.usesEmbree() && !g.spheresUseBvh() && g.flatTriangleCount() == 0;
-}
-
 }  // namespace
+
+bool packetGeometryQueried(const SceneGeometry& g) {
+  return g.usesEmbree() || g.spheresUseBvh() || g.flatTriangleCount() != 0;
+}
 
 int PacketScene::drawCount() const {
   int count = 0;
@@ -110,7 +108,7 @@ PacketScene makePacketScene(const RenderJob& job) {
   PacketScene p;
   kernelOf(job.settings.integrator, p.kernel);
   p.scene = &scene;
-  p.geometryQueried = !hasOnlyFlatShapes(g);
+  p.geometryQueried = packetGeometryQueried(g);
   p.selection = job.settings.integrator.lightSelection;
   p.samples = job.settings.integrator.samples;
   p.lightSamples = job.settings.integrator.lightSamples;

@@ -107,6 +107,10 @@ struct PacketScene {
   int drawCount() const;
 };
 
+// Whether the kernels ask `g` for every ray (shapes in a BVH, triangles tested one by one) rather than
+// hold the geometry themselves (only spheres and parallelograms in flat loops).
+bool packetGeometryQueried(const SceneGeometry& g);
+
 // The most light draws (lights × samples) a packet carries.
 inline constexpr int kMaxPacketDraws = 256;
 
