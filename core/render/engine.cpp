@@ -207,6 +207,8 @@ bool Engine::passBoundary() {
   nextRow_ = 0;
   const bool stop = stopRequested_ || stopNow_ || (limits_.targetSpp > 0 && spp_ >= limits_.targetSpp) ||
                     (limits_.seconds > 0 && clock_.elapsed() >= limits_.seconds);
+  // Finished before the last pass is published: a viewer that sees the final image sees it finished.
+  if (stop) finish();
   // The last pass is always published, so viewers see the finished image.
   const bool published = publisher_.atPassBoundary(film_, spp_, stop, !stop && nextPassIsLast());
   if (signal_ && published && !stop) signal_->notify();

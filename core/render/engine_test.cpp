@@ -488,10 +488,17 @@ std::vector<double> rowSums(const Film& film, int y) {
 // Stops a render of `job` inside a pass (some rows ahead), retrying a few times in case a stop lands on
 // a pass boundary; returns false if none landed inside one.
 bool stopInsideAPass(Engine& engine, std::shared_ptr<RenderJob> job, SampleSchedule schedule) {
-  for (int attempt = 0; attempt < 8; ++attempt) {
+  for (int attempt = 0; attempt < 16; ++attempt) {
     engine.start(job, RenderLimits{}, 3, schedule);
     if (!eventually([&] { return engine.progress().spp >= 2; })) continue;
-    std::this_thread::sleep_for(std::chrono::milliseconds(3 + 7 * attempt));
+    // Stopped as soon as the running pass is partway through its rows (spinning: a sleep on a loaded
+    // machine can outlast the pass).
+    const auto t0 = std::chrono::steady_clock::now();
+    for (RenderProgress p = engine.progress();
+         !(p.passRows > 0 && p.passRows < p.rows * 3 / 4) &&
+         std::chrono::steady_clock::now() - t0 < std::chrono::seconds(2);
+         p = engine.progress())
+      std::this_thread::yield();
     engine.stopNow();
     engine.wait();
     const std::vector<uint32_t>& rows = engine.rowPasses();
