@@ -99,22 +99,13 @@ struct LightDirectIntegrator {
       if (!(pick.pmf > 0.0)) continue;
       const size_t spheres = scene.sphereLights.size();
       if (pick.light < spheres)
-        E += selectedSample(scene, scene.sphereLights[pick.light], sp, reflection, u, pick.pmf);
+        E += selectedLightSample<kLightMeasure>(scene, scene.sphereLights[pick.light], sp, reflection, u,
+                                                pick.pmf);
       else
-        E += selectedSample(scene, scene.polygonLights[pick.light - spheres], sp, reflection, u, pick.pmf);
+        E += selectedLightSample<kLightMeasure>(scene, scene.polygonLights[pick.light - spheres], sp,
+                                                reflection, u, pick.pmf);
     }
     return E * (1.f / float(samples));
-  }
-
-  template <class Light, class Reflection>
-  static Color3 selectedSample(const Scene& scene, const Light& light, const ShadingPoint& sp,
-                               const Reflection& reflection, Vec2 u, double pmf) {
-    const LightTechnique<kLightMeasure, Light> technique(light, sp);
-    LightSample s;
-    float cosTheta;
-    if (!unoccludedLightSample(scene, light, lightScaleOf(light), technique, sp, u, s, cosTheta))
-      return Color3(0.f);
-    return reflection(s.Le, s.wi) * static_cast<float>(technique.cosOverSelectedPdf(s, cosTheta, pmf));
   }
 };
 

@@ -56,6 +56,31 @@ inline float lightScaleOf(const PolygonLight& light) {
   return light.scale;
 }
 
+// One light-sampling draw u towards `light`: E += Le f · (cos θ / pdf) · weight(sample, cos θ) where it
+// lights sp.
+template <LightMeasure kMeasure, class Light, class Reflection, class Weight>
+inline void addLightDraw(const Scene& scene, const Light& light, float lightScale,
+                         const LightTechnique<kMeasure, Light>& technique, const ShadingPoint& sp,
+                         const Reflection& reflection, Vec2 u, const Weight& weight, Color3& E) {
+  LightSample s;
+  float cosTheta;
+  if (!unoccludedLightSample(scene, light, lightScale, technique, sp, u, s, cosTheta)) return;
+  E += reflection(s.Le, s.wi) * (technique.cosOverPdf(s, cosTheta) * weight(s, cosTheta));
+}
+
+// One draw u towards a light picked with probability pmf: Le f cos θ / (pdf · pmf), 0 where it does not
+// light sp.
+template <LightMeasure kMeasure, class Light, class Reflection>
+inline Color3 selectedLightSample(const Scene& scene, const Light& light, const ShadingPoint& sp,
+                                  const Reflection& reflection, Vec2 u, double pmf) {
+  const LightTechnique<kMeasure, Light> technique(light, sp);
+  LightSample s;
+  float cosTheta;
+  if (!unoccludedLightSample(scene, light, lightScaleOf(light), technique, sp, u, s, cosTheta))
+    return Color3(0.f);
+  return reflection(s.Le, s.wi) * static_cast<float>(technique.cosOverSelectedPdf(s, cosTheta, pmf));
+}
+
 // `samples` light-sampling draws towards one light (one sampler request, stratified over its draws;
 // drawn even when the light cannot be sampled), each adding Le f · (cos θ / pdf) · weight(sample, cos θ)
 // to E.
@@ -65,13 +90,9 @@ inline void addLightIrradiance(const Scene& scene, const Light& light, const Sha
                                const Weight& weight, Color3& E) {
   const LightTechnique<kMeasure, Light> technique(light, sp);
   const float lightScale = lightScaleOf(light);
-  for (int i = 0; i < samples; ++i) {
-    const Vec2 u = sampler.next2D(uint32_t(i), uint32_t(samples));
-    LightSample s;
-    float cosTheta;
-    if (!unoccludedLightSample(scene, light, lightScale, technique, sp, u, s, cosTheta)) continue;
-    E += reflection(s.Le, s.wi) * (technique.cosOverPdf(s, cosTheta) * weight(s, cosTheta));
-  }
+  for (int i = 0; i < samples; ++i)
+    addLightDraw(scene, light, lightScale, technique, sp, reflection,
+                 sampler.next2D(uint32_t(i), uint32_t(samples)), weight, E);
 }
 
 // Light sampling of every area light: `samples` draws per light, the mean over the draws, summed over

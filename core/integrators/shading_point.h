@@ -39,6 +39,12 @@ struct ShadingPoint {
     if (withFrame) frame = Frame(ns);
   }
 
+  // The shading point at p whose normals are already flipped to the viewer's side (as the constructor
+  // above leaves them), without frame or material: what light sampling reads of it.
+  static ShadingPoint facing(const Vec3& p, const Vec3& ng, const Vec3& ns, float offsetScale) {
+    return ShadingPoint(p, ng, ns, offsetScale);
+  }
+
   // A ray leaving the surface towards unit direction w, up to distance tMax.
   Ray spawnRay(const Vec3& w, float tMax) const {
     Ray r;
@@ -74,6 +80,15 @@ struct ShadingPoint {
     r.tMin = 0.f;
     r.tMax = dist - kRayOffsetScale * (2.f * std::max(targetScale, hit.offsetScale) + hit.offsetScale);
     return r;
+  }
+
+ private:
+  ShadingPoint(const Vec3& p, const Vec3& facingNg, const Vec3& facingNs, float offsetScale)
+      : ng(facingNg), ns(facingNs), material(nullptr) {
+    hit.p = p;
+    hit.ng = facingNg;
+    hit.ns = facingNs;
+    hit.offsetScale = offsetScale;
   }
 };
 

@@ -216,6 +216,13 @@ HWY_INLINE void setObject(const PacketObject& object, MF m, const V3F& rayD, con
   }
 }
 
+// fillParallelogramHit's point: o + t·d moved onto the plane in double.
+HWY_INLINE V3F quadHitPoint(const Parallelogram& q, const V3D& along) {
+  const V3D qn{setD(double(q.n.x)), setD(double(q.n.y)), setD(double(q.n.z))};
+  const VD off = dot(qn, along) - setD(double(q.planeOffset));
+  return demote(V3D{along.x - qn.x * off, along.y - qn.y * off, along.z - qn.z * off});
+}
+
 // SceneGeometry::intersect's hit filling (fillParallelogramHit, Sphere::fillHit), emittedAt and the
 // ShadingPoint's normals.
 HWY_INLINE PacketHit fillHit(const PacketScene& scene, const Nearest& n, const V3F& o, const V3F& d) {
@@ -230,16 +237,19 @@ HWY_INLINE PacketHit fillHit(const PacketScene& scene, const Nearest& n, const V
   for (size_t j = 0; j < scene.quads.size(); ++j) {
     const MF m = n.quad == setF(float(j));
     if (hn::AllFalse(df, m)) continue;
-    // fillParallelogramHit: o + t·d moved onto the plane in double.
     const Parallelogram& q = scene.quads[j].shape;
-    const V3D qn{setD(double(q.n.x)), setD(double(q.n.y)), setD(double(q.n.z))};
-    const VD off = dot(qn, along) - setD(double(q.planeOffset));
-    const V3F p = demote(V3D{along.x - qn.x * off, along.y - qn.y * off, along.z - qn.z * off});
+    const V3F p = quadHitPoint(q, along);
     h.p = select(m, p, h.p);
     h.ng = select(m, setF3(q.n), h.ng);
     h.ns = select(m, setF3(q.ns), h.ns);
     h.offsetScale = hn::IfThenElse(m, maxAbs(p), h.offsetScale);
     setObject(scene.objects[scene.quads[j].object], m, d, setF3(q.n), h);
+    if (scene.quads[j].polygonLight >= 0) {
+      // PolygonLight::eval: its emitting side only.
+      const PacketPolygonLight& light = scene.polygons[size_t(scene.quads[j].polygonLight)];
+      const MF facing = hn::And(m, dot(setF3(light.n), d) < zero);
+      h.emitted = select(facing, setF3(light.radiance), h.emitted);
+    }
   }
   for (size_t i = 0; i < scene.spheres.size(); ++i) {
     const MF m = onSphere(n, i);
@@ -288,7 +298,11 @@ HWY_INLINE PacketHit cameraHit(const PacketScene& scene, const PacketRays& rays)
   return fillHit(scene, nearest(scene, o, d, hn::LoadU(df, rays.tMin), hn::LoadU(df, rays.tMax)), o, d);
 }
 
-// addEmitterAlong by the queries: add(light, lanes, Le, p, ng) once per sphere light that some lanes reach.
+// The light index forEachEmitterAlong gives lanes that reached a polygon light (any of them).
+inline constexpr size_t kAnyPolygonLight = ~size_t(0);
+
+// addEmitterAlong by the queries: add(light, lanes, Le, p, ng) once per sphere light that some lanes
+// reach, and once for the lanes that reach polygon lights.
 template <class Add>
 HWY_INLINE void forEachQueriedEmitterAlong(const PacketScene& scene, const V3F& o, const V3F& w, MF active,
                                            const Add& add) {
@@ -300,16 +314,23 @@ HWY_INLINE void forEachQueriedEmitterAlong(const PacketScene& scene, const V3F& 
   const VF light = hn::LoadU(df, found.light);
   if (hn::AllFalse(df, light >= hn::Zero(df))) return;
   const V3F Le = loadF3(found.Le), p = loadF3(found.p), ng = loadF3(found.ng);
-  for (size_t l = 0; l < scene.lights.size(); ++l) {
-    const MF m = light == setF(float(l));
-    if (!hn::AllFalse(df, m)) add(l, m, Le, p, ng);
+  // Each sphere light some lane reached, once; then the lanes that reached any polygon light together.
+  const size_t lanes = hn::Lanes(df), spheres = scene.lights.size();
+  for (size_t k = 0; k < lanes; ++k) {
+    const float l = found.light[k];
+    if (l < 0.f || size_t(l) >= spheres) continue;
+    bool seen = false;
+    for (size_t e = 0; e < k && !seen; ++e) seen = found.light[e] == l;
+    if (!seen) add(size_t(l), light == setF(l), Le, p, ng);
   }
+  const MF polygon = light >= setF(float(spheres));
+  if (!hn::AllFalse(df, polygon)) add(kAnyPolygonLight, polygon, Le, p, ng);
 }
 
 // addEmitterAlong: for each lane of `active` whose ray (from o along unit w, tMin 0, no tMax) first
-// reaches the front of a sphere light of non-black radiance, add(light, lanes, Le, p, ng) with that
-// light's index, those lanes, the radiance it sends back along w, and the hit's point and (outward)
-// normal there.
+// reaches the front of an area light of non-black radiance, add(light, lanes, Le, p, ng) with that
+// sphere light's index (kAnyPolygonLight for the lanes that reached polygon lights), those lanes, the
+// radiance it sends back along w, and the hit's point and (outward) normal there.
 template <class Add>
 HWY_INLINE void forEachEmitterAlong(const PacketScene& scene, const V3F& o, const V3F& w, MF active,
                                     const Add& add) {
@@ -327,6 +348,16 @@ HWY_INLINE void forEachEmitterAlong(const PacketScene& scene, const V3F& o, cons
     sphereHitPoint(scene.spheres[i], along, p, ng);
     const MF facing = hn::And(m, dot(ng, w) < zero);
     if (!hn::AllFalse(df, facing)) add(size_t(object.light), facing, setF3(object.radiance), p, ng);
+  }
+  for (size_t j = 0; j < scene.quads.size(); ++j) {
+    if (scene.quads[j].polygonLight < 0) continue;
+    const PacketPolygonLight& light = scene.polygons[size_t(scene.quads[j].polygonLight)];
+    if (light.radiance[0] == 0.f && light.radiance[1] == 0.f && light.radiance[2] == 0.f) continue;
+    // PolygonLight::eval: its emitting side only.
+    const MF facing = hn::And(hn::And(active, n.quad == setF(float(j))), dot(setF3(light.n), w) < zero);
+    if (hn::AllFalse(df, facing)) continue;
+    const Parallelogram& q = scene.quads[j].shape;
+    add(kAnyPolygonLight, facing, setF3(light.radiance), quadHitPoint(q, along), setF3(q.n));
   }
 }
 

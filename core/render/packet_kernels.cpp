@@ -134,38 +134,72 @@ HWY_INLINE void shadeSimple(const PacketScene& scene, const PacketRays& rays, Pa
   storeRadiance(scene, hn::And(h.hit, h.shades), h, V3F{zero, zero, zero}, out);
 }
 
-// unoccludedLightSample: light-sampling draw j towards `light` from each shaded lane's point: the
-// lanes it lights (a valid sample above the surface, not blocked), with the sample and its cos θ.
-template <LightMeasure kMeasure>
-HWY_INLINE MF unoccludedLightSample(const PacketScene& scene, const PacketLight& light, const PacketHit& h,
-                                    MF shaded, const PacketDraws& draws, size_t j, PacketLightSample& s,
-                                    VF& cosTheta) {
+// The rest of unoccludedLightSample once sample s is drawn: the lanes of m it lights (a valid sample
+// above the surface, leavesSurface, whose shadow ray ShadingPoint::spawnShadowRayAlong is not blocked),
+// with its cos θ. lightScale is lightScaleOf; the shadow rays skip sphere skipSphere (-1: none).
+HWY_INLINE MF reachesLight(const PacketScene& scene, const PacketHit& h, MF m, const PacketLightSample& s,
+                           VF lightScale, int32_t skipSphere, VF& cosTheta) {
   const DF df;
   const VF zero = hn::Zero(df);
-  VF u0, u1;
-  loadDraw(draws, j, u0, u1);
-  s = kMeasure == LightMeasure::Area ? sampleArea(light, h.p, u0, u1) : sampleSolidAngle(light, h.p, u0, u1);
   cosTheta = dot(h.ns, s.wi);
-  // leavesSurface, then the shadow ray (ShadingPoint::spawnShadowRayAlong).
-  const MF lit = hn::And(hn::And(shaded, s.valid), hn::And(cosTheta > zero, dot(s.wi, h.ng) > zero));
+  const MF lit = hn::And(hn::And(m, s.valid), hn::And(cosTheta > zero, dot(s.wi, h.ng) > zero));
   if (hn::AllFalse(df, lit)) return lit;
   const V3F origin = offsetRayOrigin(h.p, h.ng, h.offsetScale, s.wi);
   const VF tMax =
-      s.dist - setF(kRayOffsetScale) * (setF(2.f) * maxOf(setF(light.scale), h.offsetScale) + h.offsetScale);
-  return hn::AndNot(occluded(scene, origin, s.wi, tMax, light.geometrySphere, lit), lit);
+      s.dist - setF(kRayOffsetScale) * (setF(2.f) * maxOf(lightScale, h.offsetScale) + h.offsetScale);
+  return hn::AndNot(occluded(scene, origin, s.wi, tMax, skipSphere, lit), lit);
 }
 
-// Light-sampling draw j towards `light` in the lanes of m: E += Le · factor(s, cos θ) where it lights
-// (a light of black radiance or no size is never sampled: its draws are skipped).
+// Light-sampling draw j towards sphere light `light` in the lanes of m: E += Le · factor(s, cos θ) where
+// it lights (a light of black radiance or no size is never sampled: its draws are skipped).
 template <LightMeasure kMeasure, class Factor>
 HWY_INLINE void addLightSample(const PacketScene& scene, const PacketLight& light, const PacketHit& h, MF m,
                                const PacketDraws& draws, size_t j, const Factor& factor, V3F& E) {
   if (light.black || !(light.radius > 0.f)) return;
-  VF cosTheta;
-  PacketLightSample s;
-  const MF lit = unoccludedLightSample<kMeasure>(scene, light, h, m, draws, j, s, cosTheta);
+  VF u0, u1, cosTheta;
+  loadDraw(draws, j, u0, u1);
+  const PacketLightSample s =
+      kMeasure == LightMeasure::Area ? sampleArea(light, h.p, u0, u1) : sampleSolidAngle(light, h.p, u0, u1);
+  const MF lit = reachesLight(scene, h, m, s, setF(light.scale), light.geometrySphere, cosTheta);
   if (hn::AllFalse(DF(), lit)) return;
   addRadiance(lit, light.radiance, factor(s, cosTheta), E);
+}
+
+// Area-sampling draw j towards the polygon light of each lane of m (PolygonLight::sampleArea): E += Le ·
+// factor(s, cos θ) where it lights.
+template <class Factor>
+HWY_INLINE void addPolygonAreaSample(const PacketScene& scene, const PolygonLanes& light, const PacketHit& h,
+                                     MF m, const PacketDraws& draws, size_t j, const Factor& factor, V3F& E) {
+  VF u0, u1, cosTheta;
+  loadDraw(draws, j, u0, u1);
+  const PacketLightSample s = samplePolygonArea(light, h.p, u0, u1);
+  const MF lit = reachesLight(scene, h, m, s, light.scale, -1, cosTheta);
+  if (hn::AllFalse(DF(), lit)) return;
+  addRadiance(lit, light.radiance, factor(s, cosTheta), E);
+}
+
+// The first light (spheres, then polygons) that the kernels of kMeasure leave to the scalar techniques
+// lane by lane (packet_queries.h): the polygon lights, and every light for the projected solid angle.
+template <LightMeasure kMeasure>
+HWY_INLINE size_t firstLightByLane(const PacketScene& scene) {
+  switch (kMeasure) {
+    case LightMeasure::Area:
+      return scene.lights.size() + scene.polygons.size();
+    case LightMeasure::SolidAngle:
+      return scene.lights.size();
+    case LightMeasure::ProjectedSolidAngle:
+      return 0;
+  }
+  return 0;
+}
+
+// The shading points of the lanes of m, for the queries.
+HWY_INLINE void storeShading(const PacketHit& h, MF m, PacketShadingLanes& points) {
+  storeF3(h.p, points.p);
+  storeF3(h.ng, points.ng);
+  storeF3(h.ns, points.ns);
+  hn::StoreU(h.offsetScale, DF(), points.offsetScale);
+  hn::StoreU(hn::IfThenElseZero(m, setF(1.f)), DF(), points.active);
 }
 
 // LightDirectIntegrator<measure, All> through directRadiance: every light, every sample, shadow
@@ -181,10 +215,30 @@ HWY_INLINE void shadeDirect(const PacketScene& scene, const PacketRays& rays, co
   if (!hn::AllFalse(df, shaded)) {
     const int samples = scene.samples;
     const auto cosOverPdf = [](const PacketLightSample& s, VF cosTheta) { return cosTheta / s.pdf; };
-    for (size_t l = 0; l < scene.lights.size(); ++l)
-      for (int i = 0; i < samples; ++i)
-        addLightSample<kMeasure>(scene, scene.lights[l], h, shaded, draws, l * size_t(samples) + size_t(i),
-                                 cosOverPdf, E);
+    const size_t byLane = firstLightByLane<kMeasure>(scene);
+    const size_t spheres = scene.lights.size();
+    if constexpr (kMeasure != LightMeasure::ProjectedSolidAngle)
+      for (size_t l = 0; l < std::min(byLane, spheres); ++l)
+        for (int i = 0; i < samples; ++i)
+          addLightSample<kMeasure>(scene, scene.lights[l], h, shaded, draws, l * size_t(samples) + size_t(i),
+                                   cosOverPdf, E);
+    if constexpr (kMeasure == LightMeasure::Area)
+      for (size_t l = 0; l < scene.polygons.size(); ++l) {
+        if (scene.polygons[l].skipped) continue;
+        const PolygonLanes light = broadcast(scene.polygons[l]);
+        for (int i = 0; i < samples; ++i)
+          addPolygonAreaSample(scene, light, h, shaded, draws, (spheres + l) * size_t(samples) + size_t(i),
+                               cosOverPdf, E);
+      }
+    if (byLane < spheres + scene.polygons.size()) {
+      // The rest of the sum, lane by lane, going on from the lanes' sums so far.
+      PacketShadingLanes points;
+      storeShading(h, shaded, points);
+      PacketColorLanes sums;
+      storeF3(E, sums.c);
+      queryLightIrradiance(*scene.scene, kMeasure, byLane, points, draws, samples, int(hn::Lanes(df)), sums);
+      E = loadF3(sums.c);
+    }
     const VF invSamples = setF(1.f / float(samples));
     // directRadiance: L + albedo/π · (delta lights' 0 + the estimate).
     E = scaled(E, invSamples);
@@ -222,19 +276,43 @@ HWY_INLINE void shadeSelected(const PacketScene& scene, const PacketRays& rays, 
       pickLights(scene, h, shaded, draws, pickDraw, picks);
       const VF picked = hn::LoadU(df, picks.light);
       const VD pmf = hn::LoadU(dd, picks.pmf);
+      const float byLane = float(firstLightByLane<kMeasure>(scene));
+      const MF pickedByLane = hn::And(shaded, picked >= setF(byLane));
+      const auto cosOverSelectedPdf = [&](const PacketLightSample& s, VF cosTheta) {
+        return demote(promote(cosTheta) / (promote(s.pdf) * pmf));
+      };
+      if constexpr (kMeasure == LightMeasure::Area) {
+        // Every lane that picked a polygon light, each sampling its own.
+        const float spheres = float(scene.lights.size());
+        alignas(64) float polygon[kMaxPacketLanes];
+        for (size_t k = 0; k < lanes; ++k) {
+          const float l = picks.light[k];
+          const bool lights = l >= spheres && !scene.polygons[size_t(l - spheres)].skipped;
+          polygon[k] = lights ? l - spheres : -1.f;
+        }
+        const MF pickedPolygon = hn::And(shaded, hn::Load(df, polygon) >= hn::Zero(df));
+        if (!hn::AllFalse(df, pickedPolygon))
+          addPolygonAreaSample(scene, gatherPolygons(scene.polygons, polygon), h, pickedPolygon, draws,
+                               lightDraw, cosOverSelectedPdf, E);
+      }
+      if (!hn::AllFalse(df, pickedByLane)) {
+        // The lanes whose light the scalar technique samples, each adding its one sample.
+        PacketShadingLanes points;
+        storeShading(h, pickedByLane, points);
+        PacketColorLanes sample;
+        querySelectedLightSamples(*scene.scene, kMeasure, points, picks, draws.u[lightDraw], int(lanes),
+                                  sample);
+        addRadiance(pickedByLane, loadF3(sample.c), setF(1.f), E);
+      }
       // Each light some lane picked, once (lanes picking one light are handled together).
       for (size_t k = 0; k < lanes; ++k) {
         const float l = picks.light[k];
-        if (l < 0.f) continue;
+        if (l < 0.f || l >= byLane || size_t(l) >= scene.lights.size()) continue;
         bool seen = false;
         for (size_t e = 0; e < k && !seen; ++e) seen = picks.light[e] == l;
         if (seen) continue;
-        addLightSample<kMeasure>(
-            scene, scene.lights[size_t(l)], h, hn::And(shaded, picked == setF(l)), draws, lightDraw,
-            [&](const PacketLightSample& s, VF cosTheta) {
-              return demote(promote(cosTheta) / (promote(s.pdf) * pmf));
-            },
-            E);
+        addLightSample<kMeasure>(scene, scene.lights[size_t(l)], h, hn::And(shaded, picked == setF(l)), draws,
+                                 lightDraw, cosOverSelectedPdf, E);
       }
     }
     const VF invSamples = setF(1.f / float(scene.samples));
@@ -254,7 +332,8 @@ HWY_INLINE void shadeHemisphere(const PacketScene& scene, const PacketRays& rays
   const VF zero = hn::Zero(df);
   V3F E{zero, zero, zero};
   const MF shaded = hn::And(h.hit, h.shades);
-  if (!hn::AllFalse(df, shaded) && !scene.lights.empty()) {
+  // Scene::hasAreaLights.
+  if (!hn::AllFalse(df, shaded) && (!scene.lights.empty() || !scene.polygons.empty())) {
     const FrameF frame = frameAbout(h.ns);
     const int samples = scene.samples;
     for (int i = 0; i < samples; ++i) {
@@ -398,6 +477,10 @@ void ShadePacket(const PacketScene& scene, const PacketRays& rays, const PacketD
       return shadeSelected<LightMeasure::Area>(scene, rays, draws, out);
     case PacketKernel::LightSolidAngleSelected:
       return shadeSelected<LightMeasure::SolidAngle>(scene, rays, draws, out);
+    case PacketKernel::LightProjectedSolidAngle:
+      return shadeDirect<LightMeasure::ProjectedSolidAngle>(scene, rays, draws, out);
+    case PacketKernel::LightProjectedSolidAngleSelected:
+      return shadeSelected<LightMeasure::ProjectedSolidAngle>(scene, rays, draws, out);
     case PacketKernel::HemisphereUniform:
       return shadeHemisphere<HemisphereWarp::Uniform>(scene, rays, draws, out);
     case PacketKernel::HemisphereCosine:

@@ -1,5 +1,5 @@
-// Sphere-light sampling of the packet kernels (area and solid angle), lane by lane as SphereLight
-// computes it.
+// Area-light sampling of the packet kernels, lane by lane as the lights compute it: sphere lights by
+// area and solid angle (SphereLight), polygon lights by area (PolygonLight).
 // Part of the packet kernels: included by packet_kernels.cpp once per instruction set (Highway's
 // re-inclusion toggle below), inside that set's namespace.
 #if defined(PENUMBRA_PACKET_LIGHTS_INL_H_) == defined(HWY_TARGET_TOGGLE)
@@ -10,7 +10,12 @@
 #endif
 
 #include <hwy/highway.h>
+
+#include <cfloat>
+#include <vector>
+
 #include "core/lights/sphere_light.h"
+#include "core/render/packet_kernels.h"
 #include "core/render/packet_math-inl.h"
 #include "core/render/packet_scene.h"
 
@@ -156,6 +161,81 @@ HWY_INLINE VF pdfSolidAngle(const PacketLight& light, const V3F& x, const V3F& w
   const VD sinMax = hn::Sqrt(cone.sin2Max) + setD(SphereLight::kDirectionSlack);
   const MD inside = hn::And(hn::AndNot(cosW <= zero, cone.valid), hn::Not(sin2W > sinMax * sinMax));
   return demote(hn::IfThenElseZero(inside, setD(1.0) / (setD(2.0 * kPiD) * cone.oneMinusCos)));
+}
+
+// Polygon lights in lanes: one light broadcast, or each lane its own.
+struct PolygonLanes {
+  V3F p0, e1, e2, n;
+  VF area, scale;
+  MF parallelogram;
+  V3F radiance;
+};
+
+HWY_INLINE PolygonLanes broadcast(const PacketPolygonLight& l) {
+  return {setF3(l.p0),
+          setF3(l.e1),
+          setF3(l.e2),
+          setF3(l.n),
+          setF(l.area),
+          setF(l.scale),
+          hn::Ne(setF(l.parallelogram ? 1.f : 0.f), hn::Zero(DF())),
+          setF3(l.radiance)};
+}
+
+// Each lane's polygon light: `index` into PacketScene::polygons where >= 0, a placeholder elsewhere.
+HWY_INLINE PolygonLanes gatherPolygons(const std::vector<PacketPolygonLight>& polygons, const float* index) {
+  const DF df;
+  const size_t lanes = hn::Lanes(df);
+  alignas(64) float v[18][kMaxPacketLanes];
+  for (size_t k = 0; k < lanes; ++k) {
+    const PacketPolygonLight& l = polygons[index[k] >= 0.f ? size_t(index[k]) : 0];
+    for (int c = 0; c < 3; ++c) {
+      v[c][k] = l.p0[c], v[3 + c][k] = l.e1[c], v[6 + c][k] = l.e2[c], v[9 + c][k] = l.n[c];
+      v[14 + c][k] = l.radiance[c];
+    }
+    v[12][k] = l.area, v[13][k] = l.scale, v[17][k] = l.parallelogram ? 1.f : 0.f;
+  }
+  auto load3 = [&](int c) { return V3F{hn::Load(df, v[c]), hn::Load(df, v[c + 1]), hn::Load(df, v[c + 2])}; };
+  return {load3(0),
+          load3(3),
+          load3(6),
+          load3(9),
+          hn::Load(df, v[12]),
+          hn::Load(df, v[13]),
+          hn::Ne(hn::Load(df, v[17]), hn::Zero(df)),
+          load3(14)};
+}
+
+// PolygonLight::sampleArea: a uniform point (Heitz's triangle map on triangles), its solid-angle
+// density d² / (area |cos θp|) in double (areaDensityAsSolidAngle), valid where x faces the light.
+HWY_INLINE PacketLightSample samplePolygonArea(const PolygonLanes& light, const V3F& x, VF u0, VF u1) {
+  const DD dd;
+  const VD zero = hn::Zero(dd);
+  VD a = promote(u0), b = promote(u1);
+  const VD aHalf = a * setD(0.5), bHalf = b * setD(0.5);
+  const MD above = b > a;
+  const MD triangle = toD(hn::Not(light.parallelogram));
+  const VD aT = hn::IfThenElse(above, aHalf, a - bHalf), bT = hn::IfThenElse(above, b - aHalf, bHalf);
+  a = hn::IfThenElse(triangle, aT, a);
+  b = hn::IfThenElse(triangle, bT, b);
+  const V3D p0 = promote(light.p0), e1 = promote(light.e1), e2 = promote(light.e2), n = promote(light.n);
+  const V3D p{p0.x + a * e1.x + b * e2.x, p0.y + a * e1.y + b * e2.y, p0.z + a * e1.z + b * e2.z};
+  const V3D xD = promote(x);
+  const V3D d{p.x - xD.x, p.y - xD.y, p.z - xD.z};
+  const VD d2 = dot(d, d);
+  const VD dist = hn::Sqrt(d2);
+  const VD cosArea = hn::Abs(dot(n, d)) * promote(light.area);
+  const VD pdf = d2 * dist / cosArea;
+  const MD finite = hn::And(cosArea > zero, pdf < setD(double(FLT_MAX)));
+  // PolygonLight::faces: above the plane by more than 2^-20 of the coordinates' magnitude.
+  const VD margin = setD(0x1p-20) * promote(maxOf(light.scale, maxAbs(x)));
+  const MD faces = dot(n, V3D{xD.x - p0.x, xD.y - p0.y, xD.z - p0.z}) > margin;
+  PacketLightSample s;
+  s.pdf = demote(hn::IfThenElseZero(finite, pdf));
+  s.valid = hn::And(toF(faces), s.pdf > hn::Zero(DF()));
+  s.wi = demote(V3D{d.x / dist, d.y / dist, d.z / dist});
+  s.dist = demote(dist);
+  return s;
 }
 
 }  // namespace HWY_NAMESPACE

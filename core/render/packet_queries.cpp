@@ -1,5 +1,7 @@
 #include "core/render/packet_queries.h"
 
+#include "core/integrators/reflection.h"
+#include "core/integrators/sampling_loops.h"
 #include "core/integrators/shading_point.h"
 #include "core/world/scene.h"
 
@@ -26,7 +28,93 @@ Ray segment(const PacketSegments& rays, int k) {
   return r;
 }
 
+// Lane k's shading point.
+ShadingPoint shadingPoint(const PacketShadingLanes& points, int k) {
+  return ShadingPoint::facing(lane(points.p, k), lane(points.ng, k), lane(points.ns, k),
+                              points.offsetScale[k]);
+}
+
+Vec2 drawOf(const float (&u)[2][kMaxPacketLanes], int k) {
+  return Vec2(u[0][k], u[1][k]);
+}
+
+template <LightMeasure kMeasure, class Light>
+void addLightIrradiance(const Scene& scene, const Light& light, size_t firstDraw,
+                        const PacketShadingLanes& points, const PacketDraws& draws, int samples, int lanes,
+                        PacketColorLanes& E) {
+  const float lightScale = lightScaleOf(light);
+  for (int k = 0; k < lanes; ++k) {
+    if (points.active[k] == 0.f) continue;
+    const ShadingPoint sp = shadingPoint(points, k);
+    const LightTechnique<kMeasure, Light> technique(light, sp);
+    Color3 e = lane(E.c, k);
+    for (int i = 0; i < samples; ++i)
+      addLightDraw(scene, light, lightScale, technique, sp, DiffuseReflection{},
+                   drawOf(draws.u[firstDraw + size_t(i)], k), UnitWeight{}, e);
+    setLane(E.c, k, e);
+  }
+}
+
+template <LightMeasure kMeasure>
+void lightIrradiance(const Scene& scene, size_t firstLight, const PacketShadingLanes& points,
+                     const PacketDraws& draws, int samples, int lanes, PacketColorLanes& E) {
+  const size_t spheres = scene.sphereLights.size(), count = scene.areaLightCount();
+  for (size_t l = firstLight; l < count; ++l) {
+    const size_t firstDraw = l * size_t(samples);
+    if (l < spheres)
+      addLightIrradiance<kMeasure>(scene, scene.sphereLights[l], firstDraw, points, draws, samples, lanes, E);
+    else
+      addLightIrradiance<kMeasure>(scene, scene.polygonLights[l - spheres], firstDraw, points, draws, samples,
+                                   lanes, E);
+  }
+}
+
+template <LightMeasure kMeasure>
+void selectedLightSamples(const Scene& scene, const PacketShadingLanes& points, const PacketPickLanes& picks,
+                          const float (&u)[2][kMaxPacketLanes], int lanes, PacketColorLanes& out) {
+  const size_t spheres = scene.sphereLights.size();
+  for (int k = 0; k < lanes; ++k) {
+    Color3 c(0.f);
+    if (points.active[k] != 0.f && picks.light[k] >= 0.f) {
+      const ShadingPoint sp = shadingPoint(points, k);
+      const size_t l = size_t(picks.light[k]);
+      c = l < spheres ? selectedLightSample<kMeasure>(scene, scene.sphereLights[l], sp, DiffuseReflection{},
+                                                      drawOf(u, k), picks.pmf[k])
+                      : selectedLightSample<kMeasure>(scene, scene.polygonLights[l - spheres], sp,
+                                                      DiffuseReflection{}, drawOf(u, k), picks.pmf[k]);
+    }
+    setLane(out.c, k, c);
+  }
+}
+
 }  // namespace
+
+void queryLightIrradiance(const Scene& scene, LightMeasure measure, size_t firstLight,
+                          const PacketShadingLanes& points, const PacketDraws& draws, int samples, int lanes,
+                          PacketColorLanes& E) {
+  switch (measure) {
+    case LightMeasure::Area:
+      return lightIrradiance<LightMeasure::Area>(scene, firstLight, points, draws, samples, lanes, E);
+    case LightMeasure::SolidAngle:
+      return lightIrradiance<LightMeasure::SolidAngle>(scene, firstLight, points, draws, samples, lanes, E);
+    case LightMeasure::ProjectedSolidAngle:
+      return lightIrradiance<LightMeasure::ProjectedSolidAngle>(scene, firstLight, points, draws, samples,
+                                                                lanes, E);
+  }
+}
+
+void querySelectedLightSamples(const Scene& scene, LightMeasure measure, const PacketShadingLanes& points,
+                               const PacketPickLanes& picks, const float (&u)[2][kMaxPacketLanes], int lanes,
+                               PacketColorLanes& out) {
+  switch (measure) {
+    case LightMeasure::Area:
+      return selectedLightSamples<LightMeasure::Area>(scene, points, picks, u, lanes, out);
+    case LightMeasure::SolidAngle:
+      return selectedLightSamples<LightMeasure::SolidAngle>(scene, points, picks, u, lanes, out);
+    case LightMeasure::ProjectedSolidAngle:
+      return selectedLightSamples<LightMeasure::ProjectedSolidAngle>(scene, points, picks, u, lanes, out);
+  }
+}
 
 void queryCameraHits(const Scene& scene, const PacketRays& rays, int lanes, PacketHitLanes& out) {
   for (int k = 0; k < lanes; ++k) {
@@ -76,9 +164,19 @@ void queryEmittersAlong(const Scene& scene, const PacketSegments& rays, int lane
     if (rays.active[k] == 0.f) continue;
     const Ray ray = segment(rays, k);
     if (!scene.geometry.intersect(ray, hit)) continue;
-    const int32_t light = scene.materials[hit.objectId].sphereLight;
-    if (light < 0) continue;
-    const Color3 Le = scene.sphereLights[size_t(light)].eval(hit.p, hit.ng, ray.d);
+    // addEmitterAlong: a sphere light's outer side, a polygon light's emitting side.
+    const SurfaceMaterial& material = scene.materials[hit.objectId];
+    size_t light;
+    Color3 Le;
+    if (material.sphereLight >= 0) {
+      light = size_t(material.sphereLight);
+      Le = scene.sphereLights[light].eval(hit.p, hit.ng, ray.d);
+    } else if (const PolygonLight* polygon = scene.polygonLightOf(material, hit.primId)) {
+      light = scene.sphereLights.size() + size_t(polygon - scene.polygonLights.data());
+      Le = polygon->eval(ray.d);
+    } else {
+      continue;
+    }
     if (isBlack(Le)) continue;
     out.light[k] = float(light);
     setLane(out.Le, k, Le);

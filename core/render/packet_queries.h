@@ -33,9 +33,10 @@ struct alignas(64) PacketSegments {
   float active[kMaxPacketLanes];
 };
 
-// What each lane's ray reaches first when that is the front of a sphere light of non-black radiance
-// (addEmitterAlong): the light's index in Scene::sphereLights (-1 otherwise, and in inactive lanes),
-// the radiance it sends back along the ray, and the hit's point and outward normal.
+// What each lane's ray reaches first when that is the front of an area light of non-black radiance
+// (addEmitterAlong): the light's index among the area lights (Scene::sphereLights, then
+// Scene::polygonLights; -1 otherwise, and in inactive lanes), the radiance it sends back along the ray,
+// and the hit's point and outward normal.
 struct alignas(64) PacketEmitterLanes {
   float light[kMaxPacketLanes];
   float Le[3][kMaxPacketLanes];
@@ -43,7 +44,7 @@ struct alignas(64) PacketEmitterLanes {
 };
 
 // The light each lane picks (LightDirectIntegrator::selectedLightIrradiance) at its shading point p
-// with shading normal n, from the two floats of its pick draw u: its index in Scene::sphereLights (-1
+// with shading normal n, from the two floats of its pick draw u: its index among the area lights (-1
 // where nothing is picked, pmf 0, and in inactive lanes) and the probability it was picked with.
 struct alignas(64) PacketPickLanes {
   float p[3][kMaxPacketLanes], n[3][kMaxPacketLanes];
@@ -52,11 +53,35 @@ struct alignas(64) PacketPickLanes {
   double pmf[kMaxPacketLanes];
 };
 
+// The shading points of a packet's lanes as the kernels hold them (ShadingPoint::facing), active where
+// a lane is shaded.
+struct alignas(64) PacketShadingLanes {
+  float p[3][kMaxPacketLanes], ng[3][kMaxPacketLanes], ns[3][kMaxPacketLanes];
+  float offsetScale[kMaxPacketLanes];
+  float active[kMaxPacketLanes];
+};
+
+// Radiance per lane.
+struct alignas(64) PacketColorLanes {
+  float c[3][kMaxPacketLanes];
+};
+
 void queryCameraHits(const Scene& scene, const PacketRays& rays, int lanes, PacketHitLanes& out);
 // SceneGeometry::occluded(ray, skipSphere) of each active lane's segment: blocked[k] is 1 or 0.
 void queryOccluded(const Scene& scene, const PacketSegments& rays, int lanes, int32_t skipSphere,
                    float* blocked);
 void queryEmittersAlong(const Scene& scene, const PacketSegments& rays, int lanes, PacketEmitterLanes& out);
+// everyLightIrradiance's terms of the area lights from `firstLight` on (spheres, then polygons), by the
+// scalar technique of `measure` at each active lane's shading point: its draws are j = light · samples
+// + i of `draws`, and each lane's E goes on from the value it holds, as the scalar sum does.
+void queryLightIrradiance(const Scene& scene, LightMeasure measure, size_t firstLight,
+                          const PacketShadingLanes& points, const PacketDraws& draws, int samples, int lanes,
+                          PacketColorLanes& E);
+// selectedLightSample of the light each active lane picked (picks.light, picks.pmf), from draw u, by the
+// scalar technique of `measure`: out is 0 in the other lanes and where the sample does not light.
+void querySelectedLightSamples(const Scene& scene, LightMeasure measure, const PacketShadingLanes& points,
+                               const PacketPickLanes& picks, const float (&u)[2][kMaxPacketLanes], int lanes,
+                               PacketColorLanes& out);
 void queryLightPicks(const Scene& scene, LightSelection selection, const float (&u)[2][kMaxPacketLanes],
                      int lanes, PacketPickLanes& picks);
 

@@ -7,6 +7,7 @@
 #include <thread>
 
 #include "core/geometry/procedural_mesh.h"
+#include "core/lights/mesh_lights.h"
 #include "core/materials/bsdf.h"
 #include "core/math/frame.h"
 #include "core/render/engine.h"
@@ -32,9 +33,29 @@ struct TestScene {
 // Where the test scene's geometry lives: all flat spheres and parallelograms (held by the kernels),
 // or with a smooth-shaded mesh among them, as loose triangles or with everything in Embree's BVH (the
 // kernels query SceneGeometry).
-enum class Geometry { Flat, LooseTriangles, Bvh };
+// The *WithPolygonLights variants add polygon lights: rectangles, which stay flat parallelograms, and
+// with the BVH also a glowing rock of triangle lights.
+enum class Geometry { Flat, LooseTriangles, Bvh, FlatWithPolygonLights, BvhWithPolygonLights };
+bool hasPolygonLights(Geometry g) {
+  return g == Geometry::FlatWithPolygonLights || g == Geometry::BvhWithPolygonLights;
+}
+bool isFlat(Geometry g) {
+  return g == Geometry::Flat || g == Geometry::FlatWithPolygonLights;
+}
 const char* geometryName(Geometry g) {
-  return g == Geometry::Flat ? "Flat" : g == Geometry::LooseTriangles ? "LooseTriangles" : "Bvh";
+  switch (g) {
+    case Geometry::Flat:
+      return "Flat";
+    case Geometry::LooseTriangles:
+      return "LooseTriangles";
+    case Geometry::Bvh:
+      return "Bvh";
+    case Geometry::FlatWithPolygonLights:
+      return "FlatWithPolygonLights";
+    case Geometry::BvhWithPolygonLights:
+      return "BvhWithPolygonLights";
+  }
+  return "";
 }
 
 // Every case a lane can meet, all in one image (at coordinates times `scale`): the sky (lanes that miss
@@ -42,7 +63,9 @@ const char* geometryName(Geometry g) {
 // diffuse sphere, a black sphere (nothing shaded), a light seen directly that also reflects (albedo
 // 0.5, as scene files give emitters) and one that does not, a light of black radiance, a tiny distant
 // light, and a diffuse sphere that cuts into a light (shading points inside it, lit by nothing of it);
-// unless the geometry is flat, also a rock whose interpolated normals differ from its faces'.
+// unless the geometry is flat, also a rock whose interpolated normals differ from its faces'; with
+// polygon lights, a rectangle light overhead facing down (seen from behind by the camera), one on the
+// floor facing up, a black one, and unless flat a glowing rock of 20 triangle lights.
 TestScene packetTestScene(float scale, bool deltaLights = false, Geometry geometry = Geometry::Flat) {
   auto scene = std::make_shared<Scene>();
   auto addObject = [&](Color3 albedo) {
@@ -80,13 +103,34 @@ TestScene packetTestScene(float scale, bool deltaLights = false, Geometry geomet
     scene->directionalLights.push_back(DirectionalLight::make(Vec3(-0.4f, 1.f, 0.3f), Color3(0.7f)));
     scene->directionalLights.push_back(DirectionalLight::make(Vec3(0.f, -1.f, 0.2f), Color3(5.f)));
   }
-  if (geometry != Geometry::Flat) {
-    TriangleMesh rock = makeRockMesh(geometry == Geometry::Bvh ? 1 : 0, 7);
+  if (!isFlat(geometry)) {
+    TriangleMesh rock = makeRockMesh(geometry == Geometry::LooseTriangles ? 0 : 1, 7);
     for (Vec3& p : rock.positions) p = (p * 0.35f + Vec3(-0.5f, -0.65f, 1.3f)) * s;
     scene->geometry.addMesh(rock, addObject(Color3(0.7f, 0.6f, 0.5f)));
   }
+  if (hasPolygonLights(geometry)) {
+    auto addMeshLight = [&](const TriangleMesh& mesh, Color3 radiance) {
+      const uint32_t object = addObject(Color3(0.5f));
+      scene->materials[object].polygonLightsAt = int32_t(scene->polygonLightOfPrim.size());
+      addMeshLights(mesh, radiance, scene->polygonLights, scene->polygonLightOfPrim);
+      scene->geometry.addMesh(mesh, object);
+    };
+    addMeshLight(makeGridPlane(Vec3(-1.f, 2.5f, -1.f) * s, Vec3(1.5f, 0, 0) * s, Vec3(0, 0, 1.2f) * s, 1, 1),
+                 Color3(4.f, 3.f, 2.f));
+    addMeshLight(
+        makeGridPlane(Vec3(-2.5f, -0.999f, 0.5f) * s, Vec3(0, 0, 0.8f) * s, Vec3(0.6f, 0, 0) * s, 1, 1),
+        Color3(1.f, 2.f, 0.5f));
+    addMeshLight(makeGridPlane(Vec3(2.f, -1.f, -1.f) * s, Vec3(0, 1, 0) * s, Vec3(0, 0, 1) * s, 1, 1),
+                 Color3(0.f));
+    if (!isFlat(geometry)) {
+      TriangleMesh glowing = makeRockMesh(0, 3);
+      for (Vec3& p : glowing.positions) p = (p * 0.25f + Vec3(-1.6f, -0.7f, -0.5f)) * s;
+      addMeshLight(glowing, Color3(0.5f, 1.f, 2.f));
+    }
+  }
   buildLightSelections(*scene);
-  const AccelMode accel = geometry == Geometry::Bvh ? AccelMode::Embree : AccelMode::BruteForce;
+  const AccelMode accel =
+      isFlat(geometry) || geometry == Geometry::LooseTriangles ? AccelMode::BruteForce : AccelMode::Embree;
   scene->geometry.build(accel, accel);
   scene->rayLengthBound = scene->geometry.bounds().diagonal() * 1.01f;
   return {std::move(scene), scale};
@@ -134,6 +178,8 @@ const IntegratorDesc kPacketStrategies[] = {
     directByLight(LightMeasure::SolidAngle, LightSelection::Power),
     directByLight(LightMeasure::Area, LightSelection::Bvh),
     directByLight(LightMeasure::SolidAngle, LightSelection::Bvh),
+    directByLight(LightMeasure::ProjectedSolidAngle),
+    directByLight(LightMeasure::ProjectedSolidAngle, LightSelection::Bvh),
     directByHemisphere(HemisphereWarp::Uniform),
     directByHemisphere(HemisphereWarp::Cosine),
     directByBsdf(),
@@ -153,13 +199,17 @@ class PacketRowLoopOn : public testing::TestWithParam<Geometry> {};
 // for bit: on every instruction set this CPU has, for every strategy with a kernel, every sampler,
 // one and several shading samples (MIS: 1 and 3 per light with 1 and 0 of the surface's), with and
 // without point and directional lights, at 1e-4, 1 and 1e4 scene units, with the geometry in the
-// kernels' flat loops and queried from SceneGeometry.
+// kernels' flat loops and queried from SceneGeometry, with and without polygon lights (delta lights
+// are not repeated there: they add nothing new beside polygon lights).
 TEST_P(PacketRowLoopOn, EqualsTheScalarLoopBitForBit) {
+  const bool polygonLights = hasPolygonLights(GetParam());
   for (const float scale : {1e-4f, 1.f, 1e4f})
     for (const bool deltaLights : {false, true}) {
+      if (polygonLights && deltaLights) continue;
       const TestScene t = packetTestScene(scale, deltaLights, GetParam());
+      ASSERT_EQ(t.scene->polygonLights.empty(), !polygonLights);
       EXPECT_EQ(makePacketScene(*jobFor(t, directByBsdf(), 1, SamplerKind::Independent)).geometryQueried,
-                GetParam() != Geometry::Flat);
+                !isFlat(GetParam()));
       for (const std::string& target : availablePacketTargets()) {
         ForcedTarget forced(target);
         for (const IntegratorDesc& strategy : kPacketStrategies)
@@ -170,6 +220,11 @@ TEST_P(PacketRowLoopOn, EqualsTheScalarLoopBitForBit) {
                            " " + strategyLabel(strategy) + " scale " + std::to_string(scale) +
                            (deltaLights ? " with point and directional lights" : ""));
               const auto job = jobFor(t, strategy, samples, sampler);
+              if (polygonLights && strategy.estimator == Estimator::Mis &&
+                  strategy.type == IntegratorType::Direct) {
+                EXPECT_NE(packetUnsupportedReason(*job), "");
+                continue;
+              }
               ASSERT_EQ(packetUnsupportedReason(*job), "");
               const std::vector<double> packets = renderSums(job, true, 2),
                                         scalar = renderSums(job, false, 2);
@@ -181,7 +236,8 @@ TEST_P(PacketRowLoopOn, EqualsTheScalarLoopBitForBit) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Geometries, PacketRowLoopOn,
-                         testing::Values(Geometry::Flat, Geometry::LooseTriangles, Geometry::Bvh),
+                         testing::Values(Geometry::Flat, Geometry::LooseTriangles, Geometry::Bvh,
+                                         Geometry::FlatWithPolygonLights, Geometry::BvhWithPolygonLights),
                          [](const testing::TestParamInfo<Geometry>& info) {
                            return geometryName(info.param);
                          });
@@ -211,9 +267,9 @@ TEST(PacketRowLoop, SupportsItsStrategiesOnDiffuseScenes) {
       std::make_shared<RenderJob>(*jobFor(t, directByLight(LightMeasure::Area), 1, SamplerKind::Sobol));
   EXPECT_EQ(packetUnsupportedReason(*job), "");
   job->settings.integrator.lightMeasure = LightMeasure::ProjectedSolidAngle;
-  EXPECT_NE(packetUnsupportedReason(*job), "");
+  EXPECT_EQ(packetUnsupportedReason(*job), "");
   job->settings.integrator.lightSelection = LightSelection::Bvh;
-  EXPECT_NE(packetUnsupportedReason(*job), "");
+  EXPECT_EQ(packetUnsupportedReason(*job), "");
   job->settings.integrator.lightMeasure = LightMeasure::Area;
   EXPECT_EQ(packetUnsupportedReason(*job), "");
   job->settings.integrator.samples = kMaxPacketDraws / 2;  // a pick and a light draw each: they fit
@@ -238,6 +294,30 @@ TEST(PacketRowLoop, SupportsItsStrategiesOnDiffuseScenes) {
   EXPECT_EQ(packetUnsupportedReason(*job), "");
   job->settings.integrator = directByMis(LightMeasure::ProjectedSolidAngle, MisHeuristic::Power);
   EXPECT_NE(packetUnsupportedReason(*job), "");
+}
+
+// Packets are declined where they would do nothing in lanes but the sums: rays queried one at a time
+// and the measure's light samples drawn lane by lane (projected solid angle; solid angle of polygon
+// lights). With flat geometry, or a measure sampled in lanes, the packet path is taken.
+TEST(PacketRowLoop, IsDeclinedWhereRaysAndLightSamplesAreAllOneLaneAtATime) {
+  const TestScene queried = packetTestScene(1.f, false, Geometry::BvhWithPolygonLights);
+  const TestScene flat = packetTestScene(1.f, false, Geometry::FlatWithPolygonLights);
+  const TestScene spheres = packetTestScene(1.f, false, Geometry::Bvh);
+  auto declined = [](const TestScene& t, const IntegratorDesc& d) {
+    return !packetPathDeclinedReason(*jobFor(t, d, 1, SamplerKind::Sobol)).empty();
+  };
+  for (const LightSelection selection : {LightSelection::All, LightSelection::Bvh}) {
+    EXPECT_TRUE(declined(queried, directByLight(LightMeasure::SolidAngle, selection)));
+    EXPECT_TRUE(declined(queried, directByLight(LightMeasure::ProjectedSolidAngle, selection)));
+    EXPECT_TRUE(declined(spheres, directByLight(LightMeasure::ProjectedSolidAngle, selection)));
+    EXPECT_FALSE(declined(spheres, directByLight(LightMeasure::SolidAngle, selection)));
+    EXPECT_FALSE(declined(queried, directByLight(LightMeasure::Area, selection)));
+    EXPECT_FALSE(declined(flat, directByLight(LightMeasure::SolidAngle, selection)));
+    EXPECT_FALSE(declined(flat, directByLight(LightMeasure::ProjectedSolidAngle, selection)));
+  }
+  EXPECT_FALSE(declined(queried, directByHemisphere(HemisphereWarp::Cosine)));
+  EXPECT_FALSE(declined(queried, aoBy(HemisphereWarp::Cosine)));
+  EXPECT_TRUE(declined(queried, directByMis(LightMeasure::SolidAngle, MisHeuristic::Power)));  // no kernel
 }
 
 // Every instruction set this binary has kernels for runs here and can be chosen; an unknown name

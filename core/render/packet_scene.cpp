@@ -38,7 +38,8 @@ bool kernelOf(const IntegratorDesc& d, PacketKernel& kernel) {
       else if (d.lightMeasure == LightMeasure::SolidAngle)
         kernel = all ? PacketKernel::LightSolidAngle : PacketKernel::LightSolidAngleSelected;
       else
-        return false;
+        kernel =
+            all ? PacketKernel::LightProjectedSolidAngle : PacketKernel::LightProjectedSolidAngleSelected;
       return true;
     }
     case Estimator::Mis:
@@ -56,8 +57,32 @@ bool kernelOf(const IntegratorDesc& d, PacketKernel& kernel) {
 
 }  // namespace
 
-bool packetGeometryQueried(const SceneGeometry& g) {
-  return g.usesEmbree() || g.spheresUseBvh() || g.flatTriangleCount() != 0;
+namespace {
+
+// No polygon light, or two different ones.
+constexpr int32_t kNoPolygonLight = -1, kTwoPolygonLights = -2;
+
+// The polygon light a flat parallelogram's two triangles both are (Scene::polygonLightOf), or one of the
+// two codes above.
+int32_t quadPolygonLight(const Scene& scene, const Parallelogram& q) {
+  const SurfaceMaterial& material = scene.materials[scene.geometry.meshObjectId(q.mesh)];
+  if (material.polygonLightsAt < 0) return kNoPolygonLight;
+  const size_t at = size_t(material.polygonLightsAt);
+  const int32_t low = scene.polygonLightOfPrim[at + q.primLow],
+                high = scene.polygonLightOfPrim[at + q.primHigh];
+  return low == high ? low : kTwoPolygonLights;
+}
+
+}  // namespace
+
+bool packetGeometryQueried(const Scene& scene) {
+  const SceneGeometry& g = scene.geometry;
+  if (g.usesEmbree() || g.spheresUseBvh() || g.flatTriangleCount() != 0) return true;
+  // Every triangle is in a flat parallelogram: the flat loops see a polygon light's emission when the
+  // parallelogram is that light whole.
+  for (const Parallelogram& q : g.parallelograms())
+    if (quadPolygonLight(scene, q) == kTwoPolygonLights) return true;
+  return false;
 }
 
 int PacketScene::drawCount() const {
@@ -90,15 +115,29 @@ std::string packetUnsupportedReason(const RenderJob& job) {
   if (!kernelOf(d, kernel)) return "no packet kernel for " + strategyLabel(d);
   const Scene& scene = *job.scene;
   int draws = 0;
-  for (const DrawRequests& r : drawRequestsOf(d, int(scene.sphereLights.size())))
+  for (const DrawRequests& r : drawRequestsOf(d, int(scene.areaLightCount())))
     draws += std::max(r.repeats, 0) * std::max(r.n, 0) * r.parts;
   if (draws > kMaxPacketDraws)
     return "more shading samples per camera sample than a packet carries (" +
            std::to_string(kMaxPacketDraws) + ")";
   if (d.type == IntegratorType::Ao) return {};  // ambient occlusion sees only the geometry
-  if (!scene.polygonLights.empty()) return "the scene has polygon lights";
+  if (!scene.polygonLights.empty() && d.type == IntegratorType::Direct && d.estimator == Estimator::Mis)
+    return "no packet kernel for MIS with polygon lights";
   for (const SurfaceMaterial& m : scene.materials)
     if (!m.bsdf.isDiffuse()) return "the scene has a glossy material";
+  return {};
+}
+
+std::string packetPathDeclinedReason(const RenderJob& job) {
+  std::string reason = packetUnsupportedReason(job);
+  if (!reason.empty()) return reason;
+  const IntegratorDesc& d = job.settings.integrator;
+  const Scene& scene = *job.scene;
+  if (d.type != IntegratorType::Direct || d.estimator != Estimator::Light || !packetGeometryQueried(scene))
+    return {};
+  const bool byLane = d.lightMeasure == LightMeasure::ProjectedSolidAngle ||
+                      (d.lightMeasure == LightMeasure::SolidAngle && !scene.polygonLights.empty());
+  if (byLane) return "rays and " + strategyLabel(d) + " light samples would both go one lane at a time";
   return {};
 }
 
@@ -108,12 +147,12 @@ PacketScene makePacketScene(const RenderJob& job) {
   PacketScene p;
   kernelOf(job.settings.integrator, p.kernel);
   p.scene = &scene;
-  p.geometryQueried = packetGeometryQueried(g);
+  p.geometryQueried = packetGeometryQueried(scene);
   p.selection = job.settings.integrator.lightSelection;
   p.samples = job.settings.integrator.samples;
   p.lightSamples = job.settings.integrator.lightSamples;
   p.bsdfSamples = job.settings.integrator.bsdfSamples;
-  p.draws = drawRequestsOf(job.settings.integrator, int(scene.sphereLights.size()));
+  p.draws = drawRequestsOf(job.settings.integrator, int(scene.areaLightCount()));
   p.rayLengthBound = scene.rayLengthBound;
   for (size_t i = 0; i < g.spheres().size() && !p.geometryQueried; ++i) {
     const Sphere& s = g.spheres()[i];
@@ -123,7 +162,8 @@ PacketScene makePacketScene(const RenderJob& job) {
                          g.sphereObjectId(i)});
   }
   if (!p.geometryQueried)
-    for (const Parallelogram& q : g.parallelograms()) p.quads.push_back({q, g.meshObjectId(q.mesh)});
+    for (const Parallelogram& q : g.parallelograms())
+      p.quads.push_back({q, g.meshObjectId(q.mesh), quadPolygonLight(scene, q)});
   for (const SurfaceMaterial& m : scene.materials) {
     PacketObject o{};
     const Color3 a = m.bsdf.albedo * kInvPi;
@@ -155,6 +195,18 @@ PacketScene makePacketScene(const RenderJob& job) {
     pl.black = isBlack(l.radiance);
     pl.geometrySphere = l.geometryIndex;
     p.lights.push_back(pl);
+  }
+  for (const PolygonLight& l : scene.polygonLights) {
+    PacketPolygonLight pl{};
+    for (int c = 0; c < 3; ++c) {
+      pl.p0[c] = l.p0[c], pl.e1[c] = l.e1[c], pl.e2[c] = l.e2[c], pl.n[c] = l.n[c];
+      pl.radiance[c] = l.radiance[c];
+    }
+    pl.area = l.area;
+    pl.scale = lightScaleOf(l);
+    pl.parallelogram = l.parallelogram;
+    pl.skipped = isBlack(l.radiance) || !l.valid();
+    p.polygons.push_back(pl);
   }
   return p;
 }

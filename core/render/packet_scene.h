@@ -24,6 +24,7 @@ struct PacketSphere {
 struct PacketQuad {
   Parallelogram shape;
   uint32_t object;
+  int32_t polygonLight;  // the polygon light both its triangles are (index into PacketScene::polygons), or -1
 };
 
 // What a camera ray finds at an object: albedo/π (0 for a black albedo: nothing is shaded there) and,
@@ -46,6 +47,15 @@ struct PacketLight {
   int32_t geometrySphere;  // its index among PacketScene::spheres (skipped by its own shadow rays)
 };
 
+struct PacketPolygonLight {
+  float p0[3], e1[3], e2[3], n[3];  // PolygonLight's
+  float area;
+  float scale;  // lightScaleOf: how far its shadow rays stop short
+  bool parallelogram;
+  float radiance[3];
+  bool skipped;  // radiance 0 or no area: no sample lights anything (its draws are still consumed)
+};
+
 struct PacketPointLight {
   float position[3];
   float intensity[3];
@@ -60,20 +70,22 @@ struct PacketDirectionalLight {
 
 // The strategies the packet kernels compute (one kernel each, chosen per render).
 enum class PacketKernel : uint8_t {
-  LightArea,                // direct by light sampling, area measure, every light
-  LightSolidAngle,          // direct by light sampling, solid-angle measure, every light
-  LightAreaSelected,        // direct by light sampling, area measure, one light picked per sample
-  LightSolidAngleSelected,  // ... solid-angle measure
-  HemisphereUniform,        // direct by uniform hemisphere directions
-  HemisphereCosine,         // direct by cosine hemisphere directions (also `bsdf` on diffuse surfaces)
-  MisAreaBalance,           // MIS of area light sampling and the cosine hemisphere, balance heuristic
-  MisAreaPower,             // ... power heuristic
-  MisSolidAngleBalance,     // MIS of solid-angle light sampling and the cosine hemisphere, balance
-  MisSolidAnglePower,       // ... power heuristic
-  Simple,                   // point and directional lights only
-  AoUniform,                // ambient occlusion, uniform hemisphere
-  AoCosine,                 // ambient occlusion, cosine hemisphere
-  Normals,                  // the absolute shading normal
+  LightArea,                         // direct by light sampling, area measure, every light
+  LightSolidAngle,                   // direct by light sampling, solid-angle measure, every light
+  LightAreaSelected,                 // direct by light sampling, area measure, one light picked per sample
+  LightSolidAngleSelected,           // ... solid-angle measure
+  LightProjectedSolidAngle,          // direct by light sampling, projected solid angle, every light
+  LightProjectedSolidAngleSelected,  // ... one light picked per sample
+  HemisphereUniform,                 // direct by uniform hemisphere directions
+  HemisphereCosine,      // direct by cosine hemisphere directions (also `bsdf` on diffuse surfaces)
+  MisAreaBalance,        // MIS of area light sampling and the cosine hemisphere, balance heuristic
+  MisAreaPower,          // ... power heuristic
+  MisSolidAngleBalance,  // MIS of solid-angle light sampling and the cosine hemisphere, balance
+  MisSolidAnglePower,    // ... power heuristic
+  Simple,                // point and directional lights only
+  AoUniform,             // ambient occlusion, uniform hemisphere
+  AoCosine,              // ambient occlusion, cosine hemisphere
+  Normals,               // the absolute shading normal
 };
 
 // `repeats` sampler requests of `n` stratified draws each (next2D(i, n) for i < n), or of n draws of
@@ -95,6 +107,10 @@ struct PacketScene {
   std::vector<PacketQuad> quads;
   std::vector<PacketObject> objects;
   std::vector<PacketLight> lights;  // sphere lights
+  // Polygon lights (Scene::polygonLights, after the sphere lights in the area lights' order): sampled in
+  // lanes by area; by the solid angle and projected solid angle lane by lane with the scalar techniques
+  // (packet_queries.h), as are sphere lights by the projected solid angle.
+  std::vector<PacketPolygonLight> polygons;
   std::vector<PacketPointLight> pointLights;
   std::vector<PacketDirectionalLight> directionalLights;
   LightSelection selection = LightSelection::All;  // how the *Selected kernels pick their light
@@ -109,14 +125,21 @@ struct PacketScene {
 
 // Whether the kernels ask `g` for every ray (shapes in a BVH, triangles tested one by one) rather than
 // hold the geometry themselves (only spheres and parallelograms in flat loops).
-bool packetGeometryQueried(const SceneGeometry& g);
+// Whether the kernels query the scene's SceneGeometry for every ray: when its shapes are not all flat
+// spheres and parallelograms, or when a polygon light is not one of those parallelograms whole.
+bool packetGeometryQueried(const Scene& scene);
 
 // The most light draws (lights × samples) a packet carries.
 inline constexpr int kMaxPacketDraws = 256;
 
 // Empty when the packet path renders `job` exactly as the scalar row loop would; otherwise why not
 // (the job then renders one camera sample at a time).
+// Why no packet kernel computes `job` (empty when one does).
 std::string packetUnsupportedReason(const RenderJob& job);
+// Why the row loop renders `job` one camera sample at a time (empty when it takes packets): no kernel
+// computes it, or the kernel would be no faster because both its rays and its light samples go one lane
+// at a time (a queried scene whose light measure samples its lights lane by lane).
+std::string packetPathDeclinedReason(const RenderJob& job);
 // The packet scene of a job for which packetUnsupportedReason is empty.
 PacketScene makePacketScene(const RenderJob& job);
 
