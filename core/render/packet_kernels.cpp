@@ -179,7 +179,8 @@ HWY_INLINE void addPolygonAreaSample(const PacketScene& scene, const PolygonLane
 }
 
 // The first light (spheres, then polygons) that the kernels of kMeasure leave to the scalar techniques
-// lane by lane (packet_queries.h): the polygon lights, and every light for the projected solid angle.
+// lane by lane (packet_queries.h): none by area, the polygon lights by solid angle, every light by the
+// projected solid angle.
 template <LightMeasure kMeasure>
 HWY_INLINE size_t firstLightByLane(const PacketScene& scene) {
   switch (kMeasure) {
