@@ -178,22 +178,6 @@ HWY_INLINE void addPolygonAreaSample(const PacketScene& scene, const PolygonLane
   addRadiance(lit, light.radiance, factor(s, cosTheta), E);
 }
 
-// The first light (spheres, then polygons) that the kernels of kMeasure leave to the scalar techniques
-// lane by lane (packet_queries.h): none by area, the polygon lights by solid angle, every light by the
-// projected solid angle.
-template <LightMeasure kMeasure>
-HWY_INLINE size_t firstLightByLane(const PacketScene& scene) {
-  switch (kMeasure) {
-    case LightMeasure::Area:
-      return scene.lights.size() + scene.polygons.size();
-    case LightMeasure::SolidAngle:
-      return scene.lights.size();
-    case LightMeasure::ProjectedSolidAngle:
-      return 0;
-  }
-  return 0;
-}
-
 // The shading points of the lanes of m, for the queries.
 HWY_INLINE void storeShading(const PacketHit& h, MF m, PacketShadingLanes& points) {
   storeF3(h.p, points.p);
@@ -216,7 +200,7 @@ HWY_INLINE void shadeDirect(const PacketScene& scene, const PacketRays& rays, co
   if (!hn::AllFalse(df, shaded)) {
     const int samples = scene.samples;
     const auto cosOverPdf = [](const PacketLightSample& s, VF cosTheta) { return cosTheta / s.pdf; };
-    const size_t byLane = firstLightByLane<kMeasure>(scene);
+    const size_t byLane = scene.firstLightByLane;
     const size_t spheres = scene.lights.size();
     if constexpr (kMeasure != LightMeasure::ProjectedSolidAngle)
       for (size_t l = 0; l < std::min(byLane, spheres); ++l)
@@ -277,25 +261,26 @@ HWY_INLINE void shadeSelected(const PacketScene& scene, const PacketRays& rays, 
       pickLights(scene, h, shaded, draws, pickDraw, picks);
       const VF picked = hn::LoadU(df, picks.light);
       const VD pmf = hn::LoadU(dd, picks.pmf);
-      const float byLane = float(firstLightByLane<kMeasure>(scene));
+      const float byLane = float(scene.firstLightByLane);
       const MF pickedByLane = hn::And(shaded, picked >= setF(byLane));
       const auto cosOverSelectedPdf = [&](const PacketLightSample& s, VF cosTheta) {
         return demote(promote(cosTheta) / (promote(s.pdf) * pmf));
       };
-      if constexpr (kMeasure == LightMeasure::Area) {
-        // Every lane that picked a polygon light, each sampling its own.
-        const float spheres = float(scene.lights.size());
-        alignas(64) float polygon[kMaxPacketLanes];
-        for (size_t k = 0; k < lanes; ++k) {
-          const float l = picks.light[k];
-          const bool lights = l >= spheres && !scene.polygons[size_t(l - spheres)].skipped;
-          polygon[k] = lights ? l - spheres : -1.f;
+      if constexpr (kMeasure == LightMeasure::Area)
+        if (!scene.polygons.empty()) {
+          // Every lane that picked a polygon light, each sampling its own.
+          const float spheres = float(scene.lights.size());
+          alignas(64) float polygon[kMaxPacketLanes];
+          for (size_t k = 0; k < lanes; ++k) {
+            const float l = picks.light[k];
+            const bool lights = l >= spheres && !scene.polygons[size_t(l - spheres)].skipped;
+            polygon[k] = lights ? l - spheres : -1.f;
+          }
+          const MF pickedPolygon = hn::And(shaded, hn::Load(df, polygon) >= hn::Zero(df));
+          if (!hn::AllFalse(df, pickedPolygon))
+            addPolygonAreaSample(scene, gatherPolygons(scene.polygons, polygon), h, pickedPolygon, draws,
+                                 lightDraw, cosOverSelectedPdf, E);
         }
-        const MF pickedPolygon = hn::And(shaded, hn::Load(df, polygon) >= hn::Zero(df));
-        if (!hn::AllFalse(df, pickedPolygon))
-          addPolygonAreaSample(scene, gatherPolygons(scene.polygons, polygon), h, pickedPolygon, draws,
-                               lightDraw, cosOverSelectedPdf, E);
-      }
       if (!hn::AllFalse(df, pickedByLane)) {
         // The lanes whose light the scalar technique samples, each adding its one sample.
         PacketShadingLanes points;

@@ -55,10 +55,6 @@ bool kernelOf(const IntegratorDesc& d, PacketKernel& kernel) {
   return false;
 }
 
-}  // namespace
-
-namespace {
-
 // No polygon light, or two different ones.
 constexpr int32_t kNoPolygonLight = -1, kTwoPolygonLights = -2;
 
@@ -128,6 +124,18 @@ std::string packetUnsupportedReason(const RenderJob& job) {
   return {};
 }
 
+size_t firstAreaLightSampledByLane(LightMeasure measure, const Scene& scene) {
+  switch (measure) {
+    case LightMeasure::Area:
+      return scene.areaLightCount();
+    case LightMeasure::SolidAngle:
+      return scene.sphereLights.size();
+    case LightMeasure::ProjectedSolidAngle:
+      return 0;
+  }
+  return 0;
+}
+
 std::string packetPathDeclinedReason(const RenderJob& job) {
   std::string reason = packetUnsupportedReason(job);
   if (!reason.empty()) return reason;
@@ -135,9 +143,8 @@ std::string packetPathDeclinedReason(const RenderJob& job) {
   const Scene& scene = *job.scene;
   if (d.type != IntegratorType::Direct || d.estimator != Estimator::Light || !packetGeometryQueried(scene))
     return {};
-  const bool byLane = d.lightMeasure == LightMeasure::ProjectedSolidAngle ||
-                      (d.lightMeasure == LightMeasure::SolidAngle && !scene.polygonLights.empty());
-  if (byLane) return "rays and " + strategyLabel(d) + " light samples would both go one lane at a time";
+  if (firstAreaLightSampledByLane(d.lightMeasure, scene) < scene.areaLightCount())
+    return "rays and " + strategyLabel(d) + " light samples would both go one lane at a time";
   return {};
 }
 
@@ -208,6 +215,7 @@ PacketScene makePacketScene(const RenderJob& job) {
     pl.skipped = isBlack(l.radiance) || !l.valid();
     p.polygons.push_back(pl);
   }
+  p.firstLightByLane = firstAreaLightSampledByLane(job.settings.integrator.lightMeasure, scene);
   return p;
 }
 

@@ -111,6 +111,9 @@ struct PacketScene {
   // lanes by area; by the solid angle and projected solid angle lane by lane with the scalar techniques
   // (packet_queries.h), as are sphere lights by the projected solid angle.
   std::vector<PacketPolygonLight> polygons;
+  // The first area light (spheres, then polygons) the kernels leave to the scalar techniques
+  // (firstAreaLightSampledByLane).
+  size_t firstLightByLane = 0;
   std::vector<PacketPointLight> pointLights;
   std::vector<PacketDirectionalLight> directionalLights;
   LightSelection selection = LightSelection::All;  // how the *Selected kernels pick their light
@@ -134,6 +137,11 @@ inline constexpr int kMaxPacketDraws = 256;
 
 // Empty when the packet path renders `job` exactly as the scalar row loop would; otherwise why not
 // (the job then renders one camera sample at a time).
+// The first area light (spheres, then polygons) whose samples by `measure` the packet kernels leave to
+// the scalar techniques lane by lane: none by area, the polygon lights by solid angle, every light by
+// the projected solid angle (maps that need atan2, sin, cos or asin).
+size_t firstAreaLightSampledByLane(LightMeasure measure, const Scene& scene);
+
 // Why no packet kernel computes `job` (empty when one does).
 std::string packetUnsupportedReason(const RenderJob& job);
 // Why the row loop renders `job` one camera sample at a time (empty when it takes packets): no kernel
