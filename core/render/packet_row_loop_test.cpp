@@ -42,20 +42,10 @@ bool hasPolygonLights(Geometry g) {
 bool isFlat(Geometry g) {
   return g == Geometry::Flat || g == Geometry::FlatWithPolygonLights;
 }
+constexpr const char* kGeometryNames[] = {"Flat", "LooseTriangles", "Bvh", "FlatWithPolygonLights",
+                                          "BvhWithPolygonLights"};
 const char* geometryName(Geometry g) {
-  switch (g) {
-    case Geometry::Flat:
-      return "Flat";
-    case Geometry::LooseTriangles:
-      return "LooseTriangles";
-    case Geometry::Bvh:
-      return "Bvh";
-    case Geometry::FlatWithPolygonLights:
-      return "FlatWithPolygonLights";
-    case Geometry::BvhWithPolygonLights:
-      return "BvhWithPolygonLights";
-  }
-  return "";
+  return kGeometryNames[int(g)];
 }
 
 // Every case a lane can meet, all in one image (at coordinates times `scale`): the sky (lanes that miss
