@@ -10,6 +10,7 @@
 #include <string>
 
 #include "core/integrators/integrator_test_support.h"
+#include "core/materials/bsdf_albedo.h"
 
 namespace penumbra {
 namespace {
@@ -48,29 +49,6 @@ struct GlossyScene {
   double truth = 0;
 };
 
-// ∫ Le f(wo, wi) cos θi dω over the cone of the light seen from the origin (normal +z, frame = world),
-// by the midpoint rule in (cone angle, φ), in double but for f.
-double quadratureTruth(const Bsdf& bsdf, const Vec3& wo) {
-  const DVec3 c(kLightCenter);
-  const double d = glm::length(c), sinMax = kLightRadius / d, cosMax = std::sqrt(1 - sinMax * sinMax);
-  DVec3 s, t;
-  const DVec3 axis = c / d;
-  orthonormalBasis(axis, s, t);
-  const int nu = 1500, nphi = 1500;
-  double sum = 0;
-  for (int i = 0; i < nu; ++i) {
-    // Uniform in cos (dω = d cos dφ): the midpoint rule on a grid of equal solid angle.
-    const double cosA = 1 - (i + 0.5) / nu * (1 - cosMax), sinA = std::sqrt(1 - cosA * cosA);
-    for (int j = 0; j < nphi; ++j) {
-      const double phi = 2 * kPiD * (j + 0.5) / nphi;
-      const DVec3 w = axis * cosA + (s * std::cos(phi) + t * std::sin(phi)) * sinA;
-      if (w.z <= 0) continue;
-      sum += double(evalBsdf(bsdf, wo, Vec3(w)).x) * w.z;
-    }
-  }
-  return kRadiance * sum * (1 - cosMax) * 2 * kPiD / (double(nu) * nphi);
-}
-
 GlossyScene glossyScene(const GlossyCase& c) {
   GlossyScene out;
   out.scene = test::planeScene(10.f);
@@ -81,7 +59,9 @@ GlossyScene glossyScene(const GlossyCase& c) {
   out.ray.d = glm::normalize(-c.eye);
   // The shading frame at the hit is Frame(+z), the identity up to the basis's signs: express wo in it.
   const Frame frame(Vec3(0.f, 0.f, 1.f));
-  out.truth = quadratureTruth(c.bsdf, frame.toLocal(glm::normalize(c.eye)));
+  const double d = glm::length(glm::dvec3(kLightCenter)), sinMax = kLightRadius / d;
+  out.truth = kRadiance * coneReflectance(c.bsdf, frame.toLocal(glm::normalize(c.eye)),
+                                          glm::dvec3(kLightCenter) / d, std::sqrt(1 - sinMax * sinMax));
   return out;
 }
 

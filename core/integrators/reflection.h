@@ -32,6 +32,8 @@ struct GlossyReflection {
 
   GlossyReflection(const Bsdf& b, const ShadingPoint& sp, const Vec3& rayDirection)
       : bsdf(&b), frame(sp.frame), wo(sp.frame.toLocal(-rayDirection)) {}
+  // From the frame and wo the constructor above computes (the packet kernels keep them per lane).
+  GlossyReflection(const Bsdf& b, const Frame& f, const Vec3& woLocal) : bsdf(&b), frame(f), wo(woLocal) {}
 
   Color3 operator()(const Color3& Le, const Vec3& wi) const {
     return Le * evalBsdf(*bsdf, wo, frame.toLocal(wi));

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "core/math/frame.h"
+
 namespace penumbra {
 
 double integrateAboutMirror(const Vec3& wo, double alpha, const std::function<double(const Vec3&)>& g) {
@@ -50,6 +52,23 @@ double sampledMass(const Bsdf& b, const Vec3& wo) {
   return diffuse + integrateAboutMirror(wo, b.alpha, [&](const Vec3& wi) {
            return double(pdfBsdf(b, wo, wi)) - diffuse * wi.z / kPiD;
          });
+}
+
+double coneReflectance(const Bsdf& bsdf, const Vec3& wo, const glm::dvec3& axis, double cosMax, int n) {
+  DVec3 s, t;
+  orthonormalBasis(axis, s, t);
+  double sum = 0;
+  for (int i = 0; i < n; ++i) {
+    // Uniform in cos (dω = d cos dφ): cells of equal solid angle.
+    const double cosA = 1 - (i + 0.5) / n * (1 - cosMax), sinA = std::sqrt(1 - cosA * cosA);
+    for (int j = 0; j < n; ++j) {
+      const double phi = 2 * kPiD * (j + 0.5) / n;
+      const DVec3 w = axis * cosA + (s * std::cos(phi) + t * std::sin(phi)) * sinA;
+      if (w.z <= 0) continue;
+      sum += double(evalBsdf(bsdf, wo, Vec3(w)).x) * w.z;
+    }
+  }
+  return sum * (1 - cosMax) * 2 * kPiD / (double(n) * n);
 }
 
 }  // namespace penumbra

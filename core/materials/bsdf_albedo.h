@@ -20,4 +20,10 @@ double directionalAlbedo(const Bsdf& bsdf, const Vec3& wo);
 // closed form).
 double sampledMass(const Bsdf& bsdf, const Vec3& wo);
 
+// ∫ f(wo, wi) cos θi dωi (first channel) over the cone of directions within the angle acos(cosMax) of the
+// unit vector axis (a uniform sphere light's as seen from the point: times its radiance, the radiance
+// reflected from it): the midpoint rule on an n × n grid of equal solid angle in (cos of the angle to
+// the axis, azimuth about it), in double but for f.
+double coneReflectance(const Bsdf& bsdf, const Vec3& wo, const glm::dvec3& axis, double cosMax, int n = 1500);
+
 }  // namespace penumbra

@@ -200,15 +200,20 @@ struct PacketHit {
   V3F p, ng, ns;  // ng and ns flipped to the ray's side (ShadingPoint)
   V3F nsHit;      // the shading normal as the geometry gives it (SurfaceHit::ns)
   VF offsetScale;
-  MF shades;  // the albedo is not black
+  MF shades;  // PacketObject::shades
+  MF glossy;  // PacketObject::glossy
+  VF object;  // the index of the hit's object (material)
   V3F albedoOverPi;
   V3F emitted;  // emittedAt
 };
 
-HWY_INLINE void setObject(const PacketObject& object, MF m, const V3F& rayD, const V3F& ngUnflipped,
-                          PacketHit& h) {
+HWY_INLINE void setObject(const PacketScene& scene, uint32_t index, MF m, const V3F& rayD,
+                          const V3F& ngUnflipped, PacketHit& h) {
+  const PacketObject& object = scene.objects[index];
   h.albedoOverPi = select(m, setF3(object.albedoOverPi), h.albedoOverPi);
   if (object.shades) h.shades = hn::Or(h.shades, m);
+  if (object.glossy) h.glossy = hn::Or(h.glossy, m);
+  h.object = hn::IfThenElse(m, setF(float(index)), h.object);
   if (object.emits) {
     // SphereLight::eval: the outer side only.
     const MF facing = hn::And(m, dot(ngUnflipped, rayD) < hn::Zero(DF()));
@@ -230,8 +235,8 @@ HWY_INLINE PacketHit fillHit(const PacketScene& scene, const Nearest& n, const V
   PacketHit h;
   const VF zero = hn::Zero(df);
   h.p = h.ng = h.ns = h.albedoOverPi = h.emitted = {zero, zero, zero};
-  h.offsetScale = zero;
-  h.shades = hn::FirstN(df, 0);
+  h.offsetScale = h.object = zero;
+  h.shades = h.glossy = hn::FirstN(df, 0);
   h.hit = n.hit;
   const V3D along = pointAlong(o, d, n.t);
   for (size_t j = 0; j < scene.quads.size(); ++j) {
@@ -243,7 +248,7 @@ HWY_INLINE PacketHit fillHit(const PacketScene& scene, const Nearest& n, const V
     h.ng = select(m, setF3(q.n), h.ng);
     h.ns = select(m, setF3(q.ns), h.ns);
     h.offsetScale = hn::IfThenElse(m, maxAbs(p), h.offsetScale);
-    setObject(scene.objects[scene.quads[j].object], m, d, setF3(q.n), h);
+    setObject(scene, scene.quads[j].object, m, d, setF3(q.n), h);
     if (scene.quads[j].polygonLight >= 0) {
       // PolygonLight::eval: its emitting side only.
       const PacketPolygonLight& light = scene.polygons[size_t(scene.quads[j].polygonLight)];
@@ -261,7 +266,7 @@ HWY_INLINE PacketHit fillHit(const PacketScene& scene, const Nearest& n, const V
     h.ng = select(m, ng, h.ng);
     h.ns = select(m, ng, h.ns);
     h.offsetScale = hn::IfThenElse(m, maxOf(maxAbs(p), setF(s.offsetScale)), h.offsetScale);
-    setObject(scene.objects[s.object], m, d, ng, h);
+    setObject(scene, s.object, m, d, ng, h);
   }
   h.nsHit = h.ns;
   // ShadingPoint: normals towards the viewer; a shading normal on the other side falls back to ng.
@@ -285,6 +290,8 @@ HWY_INLINE PacketHit queriedHit(const Scene& scene, const PacketRays& rays) {
   h.nsHit = loadF3(lanes.nsHit);
   h.offsetScale = hn::LoadU(df, lanes.offsetScale);
   h.shades = loadMask(lanes.shades);
+  h.glossy = loadMask(lanes.glossy);
+  h.object = hn::LoadU(df, lanes.object);
   h.albedoOverPi = loadF3(lanes.albedoOverPi);
   h.emitted = loadF3(lanes.emitted);
   return h;
@@ -301,8 +308,8 @@ HWY_INLINE PacketHit cameraHit(const PacketScene& scene, const PacketRays& rays)
 // The light index forEachEmitterAlong gives lanes that reached a polygon light (any of them).
 inline constexpr size_t kAnyPolygonLight = ~size_t(0);
 
-// addEmitterAlong by the queries: add(light, lanes, Le, p, ng) once per sphere light that some lanes
-// reach, and once for the lanes that reach polygon lights.
+// addEmitterAlong by the queries: add(light, lanes, Le, p, ng, index) once per sphere light that some
+// lanes reach, and once for the lanes that reach polygon lights.
 template <class Add>
 HWY_INLINE void forEachQueriedEmitterAlong(const PacketScene& scene, const V3F& o, const V3F& w, MF active,
                                            const Add& add) {
@@ -321,16 +328,17 @@ HWY_INLINE void forEachQueriedEmitterAlong(const PacketScene& scene, const V3F& 
     if (l < 0.f || size_t(l) >= spheres) continue;
     bool seen = false;
     for (size_t e = 0; e < k && !seen; ++e) seen = found.light[e] == l;
-    if (!seen) add(size_t(l), light == setF(l), Le, p, ng);
+    if (!seen) add(size_t(l), light == setF(l), Le, p, ng, light);
   }
   const MF polygon = light >= setF(float(spheres));
-  if (!hn::AllFalse(df, polygon)) add(kAnyPolygonLight, polygon, Le, p, ng);
+  if (!hn::AllFalse(df, polygon)) add(kAnyPolygonLight, polygon, Le, p, ng, light);
 }
 
 // addEmitterAlong: for each lane of `active` whose ray (from o along unit w, tMin 0, no tMax) first
-// reaches the front of an area light of non-black radiance, add(light, lanes, Le, p, ng) with that
+// reaches the front of an area light of non-black radiance, add(light, lanes, Le, p, ng, index) with that
 // sphere light's index (kAnyPolygonLight for the lanes that reached polygon lights), those lanes, the
-// radiance it sends back along w, and the hit's point and (outward) normal there.
+// radiance it sends back along w, the hit's point and (outward) normal there, and each lane's light as
+// an index among the area lights (spheres, then polygons).
 template <class Add>
 HWY_INLINE void forEachEmitterAlong(const PacketScene& scene, const V3F& o, const V3F& w, MF active,
                                     const Add& add) {
@@ -347,7 +355,8 @@ HWY_INLINE void forEachEmitterAlong(const PacketScene& scene, const V3F& o, cons
     V3F p, ng;
     sphereHitPoint(scene.spheres[i], along, p, ng);
     const MF facing = hn::And(m, dot(ng, w) < zero);
-    if (!hn::AllFalse(df, facing)) add(size_t(object.light), facing, setF3(object.radiance), p, ng);
+    if (!hn::AllFalse(df, facing))
+      add(size_t(object.light), facing, setF3(object.radiance), p, ng, setF(float(object.light)));
   }
   for (size_t j = 0; j < scene.quads.size(); ++j) {
     if (scene.quads[j].polygonLight < 0) continue;
@@ -357,7 +366,8 @@ HWY_INLINE void forEachEmitterAlong(const PacketScene& scene, const V3F& o, cons
     const MF facing = hn::And(hn::And(active, n.quad == setF(float(j))), dot(setF3(light.n), w) < zero);
     if (hn::AllFalse(df, facing)) continue;
     const Parallelogram& q = scene.quads[j].shape;
-    add(kAnyPolygonLight, facing, setF3(light.radiance), quadHitPoint(q, along), setF3(q.n));
+    add(kAnyPolygonLight, facing, setF3(light.radiance), quadHitPoint(q, along), setF3(q.n),
+        setF(float(scene.lights.size() + size_t(scene.quads[j].polygonLight))));
   }
 }
 

@@ -70,9 +70,53 @@ HWY_INLINE void addRadiance(MF m, const float (&Le)[3], VF factor, V3F& E) {
   addRadiance(m, setF3(Le), factor, E);
 }
 
-// deltaIrradiance (direct_lighting.h) on a diffuse surface: each point and directional light traced
-// once, Li cos θ where it reaches the shaded lanes.
-HWY_INLINE V3F deltaIrradiance(const PacketScene& scene, const PacketHit& h, MF shaded) {
+// The glossy surfaces among a packet's shaded lanes, whose BSDF the scalar code evaluates and samples lane
+// by lane (GlossyReflection; queryGlossyFactors, queryGlossySamples).
+struct GlossySurfaces {
+  MF lanes;  // the shaded lanes whose surface is glossy
+  bool any;  // lanes is not empty (the rest is filled only then)
+  PacketGlossyLanes data;
+};
+
+// The glossy lanes among `shaded`, with their frames and wo.
+HWY_INLINE void findGlossy(const PacketScene& scene, const PacketRays& rays, const PacketHit& h, MF shaded,
+                           GlossySurfaces& g) {
+  const DF df;
+  g.lanes = hn::And(shaded, h.glossy);
+  g.any = scene.anyGlossy && !hn::AllFalse(df, g.lanes);
+  if (!g.any) return;
+  HWY_ALIGN float object[kMaxPacketLanes], active[kMaxPacketLanes];
+  PacketColorLanes ns;
+  hn::Store(h.object, df, object);
+  hn::Store(hn::IfThenElseZero(g.lanes, setF(1.f)), df, active);
+  storeF3(h.ns, ns.c);
+  queryGlossyLanes(*scene.scene, rays, object, ns.c, active, int(hn::Lanes(df)), g.data);
+}
+
+// reflection(Le, wi) (reflection.h) in the lanes of m: Le f(wo, wi) on glossy surfaces, Le on diffuse
+// ones (whose f is applied to the whole estimate); the other lanes keep Le. With glossyPdf, also the
+// glossy lanes' GlossyReflection::pdf of wi there (0 elsewhere).
+HWY_INLINE V3F reflected(const PacketScene& scene, const GlossySurfaces& g, MF m, const V3F& Le,
+                         const V3F& wi, VF* glossyPdf = nullptr) {
+  const DF df;
+  if (glossyPdf) *glossyPdf = hn::Zero(df);
+  if (!g.any) return Le;
+  const MF glossy = hn::And(m, g.lanes);
+  if (hn::AllFalse(df, glossy)) return Le;
+  PacketColorLanes w, f;
+  HWY_ALIGN float active[kMaxPacketLanes], pdf[kMaxPacketLanes];
+  storeF3(wi, w.c);
+  hn::Store(hn::IfThenElseZero(glossy, setF(1.f)), df, active);
+  queryGlossyFactors(*scene.scene, g.data, w.c, active, int(hn::Lanes(df)), f, glossyPdf ? pdf : nullptr);
+  if (glossyPdf) *glossyPdf = hn::IfThenElseZero(glossy, hn::Load(df, pdf));
+  const V3F fl = loadF3(f.c);
+  return {Le.x * fl.x, Le.y * fl.y, Le.z * fl.z};
+}
+
+// deltaIrradiance (direct_lighting.h): each point and directional light traced once, reflection(Li, wi)
+// cos θ where it reaches the shaded lanes.
+HWY_INLINE V3F deltaIrradiance(const PacketScene& scene, const PacketHit& h, MF shaded,
+                               const GlossySurfaces& g) {
   const DF df;
   const VF zero = hn::Zero(df);
   V3F E{zero, zero, zero};
@@ -99,7 +143,8 @@ HWY_INLINE V3F deltaIrradiance(const PacketScene& scene, const PacketHit& h, MF 
     const V3F w = scaled(toTarget, inv);
     const VF tMax = length - setF(2.f * kRayOffsetScale) * maxOf(setF(light.scale), h.offsetScale);
     lit = hn::AndNot(occluded(scene, origin, w, tMax, -1, lit), lit);
-    E = select(lit, V3F{E.x + Li.x * cosTheta, E.y + Li.y * cosTheta, E.z + Li.z * cosTheta}, E);
+    if (hn::AllFalse(df, lit)) continue;
+    addRadiance(lit, reflected(scene, g, lit, Li, wi), cosTheta, E);
   }
   for (const PacketDirectionalLight& light : scene.directionalLights) {
     if (light.black) continue;
@@ -109,21 +154,27 @@ HWY_INLINE V3F deltaIrradiance(const PacketScene& scene, const PacketHit& h, MF 
     if (hn::AllFalse(df, lit)) continue;
     const V3F origin = offsetRayOrigin(h.p, h.ng, h.offsetScale, wi);
     lit = hn::AndNot(occluded(scene, origin, wi, setF(scene.rayLengthBound), -1, lit), lit);
-    addRadiance(lit, light.irradiance, cosTheta, E);
+    if (hn::AllFalse(df, lit)) continue;
+    addRadiance(lit, reflected(scene, g, lit, setF3(light.irradiance), wi), cosTheta, E);
   }
   return E;
 }
 
-// directRadiance's result: the emission at the hit, plus albedo/π times (the delta lights' irradiance
-// plus the strategy's estimate E) where shaded.
-HWY_INLINE void storeRadiance(const PacketScene& scene, MF shaded, const PacketHit& h, const V3F& area,
-                              PacketRadiance& out) {
-  const DF df;
-  const V3F delta = deltaIrradiance(scene, h, shaded);
+// directRadiance's result: the emission at the hit, plus where shaded on a diffuse surface albedo/π times
+// (the delta lights' irradiance plus the strategy's estimate), on a glossy one the delta lights' and the
+// estimate's reflected radiance.
+HWY_INLINE void storeRadiance(const PacketScene& scene, MF shaded, const PacketHit& h,
+                              const GlossySurfaces& g, const V3F& area, PacketRadiance& out) {
+  const V3F delta = deltaIrradiance(scene, h, shaded, g);
   const V3F E{delta.x + area.x, delta.y + area.y, delta.z + area.z};
-  hn::StoreU(hn::IfThenElse(shaded, h.emitted.x + h.albedoOverPi.x * E.x, h.emitted.x), df, out.L[0]);
-  hn::StoreU(hn::IfThenElse(shaded, h.emitted.y + h.albedoOverPi.y * E.y, h.emitted.y), df, out.L[1]);
-  hn::StoreU(hn::IfThenElse(shaded, h.emitted.z + h.albedoOverPi.z * E.z, h.emitted.z), df, out.L[2]);
+  V3F L{h.emitted.x + h.albedoOverPi.x * E.x, h.emitted.y + h.albedoOverPi.y * E.y,
+        h.emitted.z + h.albedoOverPi.z * E.z};
+  if (g.any)
+    L = select(g.lanes,
+               V3F{(h.emitted.x + delta.x) + area.x, (h.emitted.y + delta.y) + area.y,
+                   (h.emitted.z + delta.z) + area.z},
+               L);
+  storeF3(select(shaded, L, h.emitted), out.L);
 }
 
 // SimpleIntegrator: the delta lights alone.
@@ -131,7 +182,10 @@ HWY_INLINE void shadeSimple(const PacketScene& scene, const PacketRays& rays, Pa
   const DF df;
   const PacketHit h = cameraHit(scene, rays);
   const VF zero = hn::Zero(df);
-  storeRadiance(scene, hn::And(h.hit, h.shades), h, V3F{zero, zero, zero}, out);
+  const MF shaded = hn::And(h.hit, h.shades);
+  GlossySurfaces g;
+  findGlossy(scene, rays, h, shaded, g);
+  storeRadiance(scene, shaded, h, g, V3F{zero, zero, zero}, out);
 }
 
 // The rest of unoccludedLightSample once sample s is drawn: the lanes of m it lights (a valid sample
@@ -150,11 +204,14 @@ HWY_INLINE MF reachesLight(const PacketScene& scene, const PacketHit& h, MF m, c
   return hn::AndNot(occluded(scene, origin, s.wi, tMax, skipSphere, lit), lit);
 }
 
-// Light-sampling draw j towards sphere light `light` in the lanes of m: E += Le · factor(s, cos θ) where
-// it lights (a light of black radiance or no size is never sampled: its draws are skipped).
-template <LightMeasure kMeasure, class Factor>
-HWY_INLINE void addLightSample(const PacketScene& scene, const PacketLight& light, const PacketHit& h, MF m,
-                               const PacketDraws& draws, size_t j, const Factor& factor, V3F& E) {
+// Light-sampling draw j towards sphere light `light` in the lanes of m: E += reflection(Le, wi) ·
+// factor(s, cos θ, the glossy lanes' BSDF density of wi) where it lights (a light of black radiance or
+// no size is never sampled: its draws are skipped). The density is computed only with kGlossyPdf (0
+// otherwise).
+template <LightMeasure kMeasure, bool kGlossyPdf = false, class Factor>
+HWY_INLINE void addLightSample(const PacketScene& scene, const PacketLight& light, const PacketHit& h,
+                               const GlossySurfaces& g, MF m, const PacketDraws& draws, size_t j,
+                               const Factor& factor, V3F& E) {
   if (light.black || !(light.radius > 0.f)) return;
   VF u0, u1, cosTheta;
   loadDraw(draws, j, u0, u1);
@@ -162,20 +219,25 @@ HWY_INLINE void addLightSample(const PacketScene& scene, const PacketLight& ligh
       kMeasure == LightMeasure::Area ? sampleArea(light, h.p, u0, u1) : sampleSolidAngle(light, h.p, u0, u1);
   const MF lit = reachesLight(scene, h, m, s, setF(light.scale), light.geometrySphere, cosTheta);
   if (hn::AllFalse(DF(), lit)) return;
-  addRadiance(lit, light.radiance, factor(s, cosTheta), E);
+  VF glossyPdf;
+  const V3F Le = reflected(scene, g, lit, setF3(light.radiance), s.wi, kGlossyPdf ? &glossyPdf : nullptr);
+  addRadiance(lit, Le, factor(s, cosTheta, kGlossyPdf ? glossyPdf : hn::Zero(DF())), E);
 }
 
-// Area-sampling draw j towards the polygon light of each lane of m (PolygonLight::sampleArea): E += Le ·
-// factor(s, cos θ) where it lights.
-template <class Factor>
+// Area-sampling draw j towards the polygon light of each lane of m (PolygonLight::sampleArea): E +=
+// reflection(Le, wi) · factor(s, cos θ, the glossy density as for addLightSample) where it lights.
+template <bool kGlossyPdf = false, class Factor>
 HWY_INLINE void addPolygonAreaSample(const PacketScene& scene, const PolygonLanes& light, const PacketHit& h,
-                                     MF m, const PacketDraws& draws, size_t j, const Factor& factor, V3F& E) {
+                                     const GlossySurfaces& g, MF m, const PacketDraws& draws, size_t j,
+                                     const Factor& factor, V3F& E) {
   VF u0, u1, cosTheta;
   loadDraw(draws, j, u0, u1);
   const PacketLightSample s = samplePolygonArea(light, h.p, u0, u1);
   const MF lit = reachesLight(scene, h, m, s, light.scale, -1, cosTheta);
   if (hn::AllFalse(DF(), lit)) return;
-  addRadiance(lit, light.radiance, factor(s, cosTheta), E);
+  VF glossyPdf;
+  const V3F Le = reflected(scene, g, lit, light.radiance, s.wi, kGlossyPdf ? &glossyPdf : nullptr);
+  addRadiance(lit, Le, factor(s, cosTheta, kGlossyPdf ? glossyPdf : hn::Zero(DF())), E);
 }
 
 // The shading points of the lanes of m, for the queries.
@@ -197,22 +259,24 @@ HWY_INLINE void shadeDirect(const PacketScene& scene, const PacketRays& rays, co
   const VF zero = hn::Zero(df);
   V3F E{zero, zero, zero};
   const MF shaded = hn::And(h.hit, h.shades);
+  GlossySurfaces g;
+  findGlossy(scene, rays, h, shaded, g);
   if (!hn::AllFalse(df, shaded)) {
     const int samples = scene.samples;
-    const auto cosOverPdf = [](const PacketLightSample& s, VF cosTheta) { return cosTheta / s.pdf; };
+    const auto cosOverPdf = [](const PacketLightSample& s, VF cosTheta, VF) { return cosTheta / s.pdf; };
     const size_t byLane = scene.firstLightByLane;
     const size_t spheres = scene.lights.size();
     if constexpr (kMeasure != LightMeasure::ProjectedSolidAngle)
       for (size_t l = 0; l < std::min(byLane, spheres); ++l)
         for (int i = 0; i < samples; ++i)
-          addLightSample<kMeasure>(scene, scene.lights[l], h, shaded, draws, l * size_t(samples) + size_t(i),
-                                   cosOverPdf, E);
+          addLightSample<kMeasure>(scene, scene.lights[l], h, g, shaded, draws,
+                                   l * size_t(samples) + size_t(i), cosOverPdf, E);
     if constexpr (kMeasure == LightMeasure::Area)
       for (size_t l = 0; l < scene.polygons.size(); ++l) {
         if (scene.polygons[l].skipped) continue;
         const PolygonLanes light = broadcast(scene.polygons[l]);
         for (int i = 0; i < samples; ++i)
-          addPolygonAreaSample(scene, light, h, shaded, draws, (spheres + l) * size_t(samples) + size_t(i),
+          addPolygonAreaSample(scene, light, h, g, shaded, draws, (spheres + l) * size_t(samples) + size_t(i),
                                cosOverPdf, E);
       }
     if (byLane < spheres + scene.polygons.size()) {
@@ -221,14 +285,15 @@ HWY_INLINE void shadeDirect(const PacketScene& scene, const PacketRays& rays, co
       storeShading(h, shaded, points);
       PacketColorLanes sums;
       storeF3(E, sums.c);
-      queryLightIrradiance(*scene.scene, kMeasure, byLane, points, draws, samples, int(hn::Lanes(df)), sums);
+      queryLightIrradiance(*scene.scene, kMeasure, byLane, points, g.any ? &g.data : nullptr, nullptr, draws,
+                           samples, int(hn::Lanes(df)), sums);
       E = loadF3(sums.c);
     }
     const VF invSamples = setF(1.f / float(samples));
     // directRadiance: L + albedo/π · (delta lights' 0 + the estimate).
     E = scaled(E, invSamples);
   }
-  storeRadiance(scene, shaded, h, E, out);
+  storeRadiance(scene, shaded, h, g, E, out);
 }
 
 // The light each shaded lane picks for sample i from its pick draw j (queryLightPicks).
@@ -253,6 +318,8 @@ HWY_INLINE void shadeSelected(const PacketScene& scene, const PacketRays& rays, 
   const VF zero = hn::Zero(df);
   V3F E{zero, zero, zero};
   const MF shaded = hn::And(h.hit, h.shades);
+  GlossySurfaces g;
+  findGlossy(scene, rays, h, shaded, g);
   if (!hn::AllFalse(df, shaded)) {
     const size_t lanes = hn::Lanes(df);
     for (int i = 0; i < scene.samples; ++i) {
@@ -263,7 +330,7 @@ HWY_INLINE void shadeSelected(const PacketScene& scene, const PacketRays& rays, 
       const VD pmf = hn::LoadU(dd, picks.pmf);
       const float byLane = float(scene.firstLightByLane);
       const MF pickedByLane = hn::And(shaded, picked >= setF(byLane));
-      const auto cosOverSelectedPdf = [&](const PacketLightSample& s, VF cosTheta) {
+      const auto cosOverSelectedPdf = [&](const PacketLightSample& s, VF cosTheta, VF) {
         return demote(promote(cosTheta) / (promote(s.pdf) * pmf));
       };
       if constexpr (kMeasure == LightMeasure::Area)
@@ -278,7 +345,7 @@ HWY_INLINE void shadeSelected(const PacketScene& scene, const PacketRays& rays, 
           }
           const MF pickedPolygon = hn::And(shaded, hn::Load(df, polygon) >= hn::Zero(df));
           if (!hn::AllFalse(df, pickedPolygon))
-            addPolygonAreaSample(scene, gatherPolygons(scene.polygons, polygon), h, pickedPolygon, draws,
+            addPolygonAreaSample(scene, gatherPolygons(scene.polygons, polygon), h, g, pickedPolygon, draws,
                                  lightDraw, cosOverSelectedPdf, E);
         }
       if (!hn::AllFalse(df, pickedByLane)) {
@@ -286,8 +353,8 @@ HWY_INLINE void shadeSelected(const PacketScene& scene, const PacketRays& rays, 
         PacketShadingLanes points;
         storeShading(h, pickedByLane, points);
         PacketColorLanes sample;
-        querySelectedLightSamples(*scene.scene, kMeasure, points, picks, draws.u[lightDraw], int(lanes),
-                                  sample);
+        querySelectedLightSamples(*scene.scene, kMeasure, points, g.any ? &g.data : nullptr, picks,
+                                  draws.u[lightDraw], int(lanes), sample);
         addRadiance(pickedByLane, loadF3(sample.c), setF(1.f), E);
       }
       // Each light some lane picked, once (lanes picking one light are handled together).
@@ -297,50 +364,91 @@ HWY_INLINE void shadeSelected(const PacketScene& scene, const PacketRays& rays, 
         bool seen = false;
         for (size_t e = 0; e < k && !seen; ++e) seen = picks.light[e] == l;
         if (seen) continue;
-        addLightSample<kMeasure>(scene, scene.lights[size_t(l)], h, hn::And(shaded, picked == setF(l)), draws,
-                                 lightDraw, cosOverSelectedPdf, E);
+        addLightSample<kMeasure>(scene, scene.lights[size_t(l)], h, g, hn::And(shaded, picked == setF(l)),
+                                 draws, lightDraw, cosOverSelectedPdf, E);
       }
     }
     const VF invSamples = setF(1.f / float(scene.samples));
     E = scaled(E, invSamples);
   }
-  storeRadiance(scene, shaded, h, E, out);
+  storeRadiance(scene, shaded, h, g, E, out);
 }
 
-// HemisphereDirectIntegrator<kWarp> through directRadiance (and BsdfDirectIntegrator: on a diffuse
-// surface its directions are the cosine warp's): directions about the shading normal, each traced
-// to the emitter it reaches first.
+// A direction sampled about the shading normal from draw j: by warp kWarp, or on glossy lanes (with
+// bsdfSampled) by the BSDF's sampler (bsdfSampledRadiance). Le · weight · cosOverPdf is its
+// contribution on a diffuse lane before f (reflection.h) and on a glossy BSDF-sampled one.
+struct SurfaceDirection {
+  V3F w;
+  MF valid;       // leavesSurface's test of the local direction (the geometric side is the caller's)
+  VF cosOverPdf;  // π for the cosine warp, 2π cos θ for the uniform one, 1 on BSDF-sampled lanes
+  VF pdf;         // the solid-angle density (the cosine warp's or the BSDF's)
+  V3F weight;     // 1, or the BSDF sample's f cos θ / pdf
+};
+
 template <HemisphereWarp kWarp>
+HWY_INLINE SurfaceDirection surfaceDirection(const PacketScene& scene, const GlossySurfaces& g,
+                                             bool bsdfSampled, const FrameF& frame, const PacketDraws& draws,
+                                             size_t j) {
+  const DF df;
+  VF u0, u1;
+  loadDraw(draws, j, u0, u1);
+  const V3F local = hemisphereDirection<kWarp>(u0, u1);
+  const VF one = setF(1.f);
+  SurfaceDirection d{toWorld(frame, local),
+                     local.z > hn::Zero(df),
+                     kWarp == HemisphereWarp::Cosine ? setF(kPi) : setF(2.f * kPi) * local.z,
+                     kWarp == HemisphereWarp::Cosine ? local.z * setF(kInvPi) : setF(0.5f * kInvPi),
+                     {one, one, one}};
+  if (!bsdfSampled) return d;
+  PacketBsdfSampleLanes bs;
+  HWY_ALIGN float glossy[kMaxPacketLanes];
+  hn::Store(hn::IfThenElseZero(g.lanes, one), df, glossy);
+  queryGlossySamples(*scene.scene, g.data, draws.u[j], glossy, int(hn::Lanes(df)), bs);
+  d.w = select(g.lanes, loadF3(bs.w), d.w);
+  d.valid = hn::Or(hn::And(g.lanes, loadMask(bs.valid)), hn::AndNot(g.lanes, d.valid));
+  d.cosOverPdf = hn::IfThenElse(g.lanes, one, d.cosOverPdf);
+  d.pdf = hn::IfThenElse(g.lanes, hn::LoadU(df, bs.pdf), d.pdf);
+  d.weight = select(g.lanes, loadF3(bs.weight), d.weight);
+  return d;
+}
+
+// HemisphereDirectIntegrator<kWarp> through directRadiance, and with kBsdf BsdfDirectIntegrator (the
+// cosine warp on diffuse surfaces, the BSDF's sampler on glossy ones): directions about the shading
+// normal, each traced to the emitter it reaches first.
+template <HemisphereWarp kWarp, bool kBsdf = false>
 HWY_INLINE void shadeHemisphere(const PacketScene& scene, const PacketRays& rays, const PacketDraws& draws,
                                 PacketRadiance& out) {
+  static_assert(!kBsdf || kWarp == HemisphereWarp::Cosine);
   const DF df;
   const PacketHit h = cameraHit(scene, rays);
   const VF zero = hn::Zero(df);
   V3F E{zero, zero, zero};
   const MF shaded = hn::And(h.hit, h.shades);
+  GlossySurfaces g;
+  findGlossy(scene, rays, h, shaded, g);
   // Scene::hasAreaLights.
   if (!hn::AllFalse(df, shaded) && (!scene.lights.empty() || !scene.polygons.empty())) {
     const FrameF frame = frameAbout(h.ns);
     const int samples = scene.samples;
+    const bool bsdfSampled = kBsdf && g.any;
     for (int i = 0; i < samples; ++i) {
-      VF u0, u1;
-      loadDraw(draws, i, u0, u1);
-      const V3F local = hemisphereDirection<kWarp>(u0, u1);
-      // cos θ / pdf in closed form: π for the cosine warp, 2π cos θ for the uniform one.
-      const VF cosOverPdf = kWarp == HemisphereWarp::Cosine ? setF(kPi) : setF(2.f * kPi) * local.z;
-      const V3F w = toWorld(frame, local);
-      // leavesSurface(sp, w, cos θ) (which also drops the cosine warp's local.z <= 0).
-      const MF active = hn::And(shaded, hn::And(local.z > zero, dot(w, h.ng) > zero));
+      const SurfaceDirection d = surfaceDirection<kWarp>(scene, g, bsdfSampled, frame, draws, size_t(i));
+      // leavesSurface(sp, w, cos θ).
+      const MF active = hn::And(shaded, hn::And(d.valid, dot(d.w, h.ng) > zero));
       if (hn::AllFalse(df, active)) continue;
-      forEachEmitterAlong(scene, offsetRayOrigin(h.p, h.ng, h.offsetScale, w), w, active,
-                          [&](size_t, MF lanes, const V3F& Le, const V3F&, const V3F&) {
-                            addRadiance(lanes, Le, cosOverPdf, E);
+      forEachEmitterAlong(scene, offsetRayOrigin(h.p, h.ng, h.offsetScale, d.w), d.w, active,
+                          [&](size_t, MF lanes, const V3F& Le, const V3F&, const V3F&, VF) {
+                            // The BSDF's samples carry f cos θ / pdf; f of the warps' is evaluated.
+                            const V3F reflectedLe =
+                                bsdfSampled ? V3F{Le.x * d.weight.x, Le.y * d.weight.y, Le.z * d.weight.z}
+                                            : reflected(scene, g, lanes, Le, d.w);
+                            addRadiance(lanes, reflectedLe, d.cosOverPdf, E);
                           });
     }
     const VF invSamples = setF(1.f / float(samples));
     E = scaled(E, invSamples);
   }
-  storeRadiance(scene, shaded, h, E, out);
+  storeRadiance(scene, shaded, h, g, E, out);
 }
 
 // misWeight (mis_weight.h): 1 / (1 + r), r = b / a (squared for the power heuristic).
@@ -351,9 +459,10 @@ HWY_INLINE VF misWeight(VF a, VF b) {
   return kHeuristic == MisHeuristic::Balance ? one / (one + r) : one / (one + r * r);
 }
 
-// MisIntegrator<measure, heuristic> on a diffuse surface through directRadiance: every light sampled
-// by the measure and the cosine hemisphere (the diffuse BSDF's sampling), each sample weighted by the
-// heuristic of the two densities.
+// MisIntegrator<measure, heuristic> through directRadiance: every light sampled by the measure and the
+// surface's own directions (the cosine hemisphere on diffuse lanes, the BSDF's sampler on glossy ones),
+// each sample weighted by the heuristic of the two densities. Light samples and light densities the
+// lanes cannot compute exactly (firstAreaLightSampledByLane) come from the scalar techniques lane by lane.
 template <LightMeasure kMeasure, MisHeuristic kHeuristic>
 HWY_INLINE void shadeMis(const PacketScene& scene, const PacketRays& rays, const PacketDraws& draws,
                          PacketRadiance& out) {
@@ -362,50 +471,95 @@ HWY_INLINE void shadeMis(const PacketScene& scene, const PacketRays& rays, const
   const VF zero = hn::Zero(df);
   V3F E{zero, zero, zero};
   const MF shaded = hn::And(h.hit, h.shades);
-  if (!hn::AllFalse(df, shaded) && !scene.lights.empty()) {
-    const VF nL = setF(float(scene.lightSamples)), nB = setF(float(scene.bsdfSamples));
+  GlossySurfaces g;
+  findGlossy(scene, rays, h, shaded, g);
+  // Scene::hasAreaLights.
+  if (!hn::AllFalse(df, shaded) && (!scene.lights.empty() || !scene.polygons.empty())) {
+    const int nLight = scene.lightSamples, nBsdf = scene.bsdfSamples;
+    const VF nL = setF(float(nLight)), nB = setF(float(nBsdf));
+    const size_t spheres = scene.lights.size(), byLane = scene.firstLightByLane;
+    const int laneCount = int(hn::Lanes(df));
     V3F lightPart{zero, zero, zero}, bsdfPart{zero, zero, zero};
-    size_t j = 0;
-    if (scene.lightSamples > 0) {
-      for (const PacketLight& light : scene.lights)
-        for (int i = 0; i < scene.lightSamples; ++i, ++j)
-          addLightSample<kMeasure>(
-              scene, light, h, shaded, draws, j,
-              [&](const PacketLightSample& s, VF cosTheta) {
-                const VF weight = misWeight<kHeuristic>(nL * s.pdf, nB * (cosTheta * setF(kInvPi)));
-                return cosTheta / s.pdf * weight;
-              },
-              lightPart);
-      const VF inv = setF(1.f / float(scene.lightSamples));
+    // The shading points for the lane-by-lane queries, stored when first needed.
+    PacketShadingLanes points;
+    bool pointsStored = false;
+    auto shadingPoints = [&]() -> const PacketShadingLanes& {
+      if (!pointsStored) storeShading(h, shaded, points);
+      pointsStored = true;
+      return points;
+    };
+    if (nLight > 0) {
+      const auto misFactor = [&](const PacketLightSample& s, VF cosTheta, VF glossyPdf) {
+        // Reflection::pdf: the cosine hemisphere's on diffuse lanes, the BSDF's on glossy ones.
+        const VF surfacePdf = hn::IfThenElse(g.lanes, glossyPdf, cosTheta * setF(kInvPi));
+        const VF weight = misWeight<kHeuristic>(nL * s.pdf, nB * surfacePdf);
+        return cosTheta / s.pdf * weight;
+      };
+      for (size_t l = 0; l < std::min(byLane, spheres); ++l)
+        for (int i = 0; i < nLight; ++i)
+          addLightSample<kMeasure, true>(scene, scene.lights[l], h, g, shaded, draws,
+                                         l * size_t(nLight) + size_t(i), misFactor, lightPart);
+      if constexpr (kMeasure == LightMeasure::Area)
+        for (size_t l = 0; l < scene.polygons.size(); ++l) {
+          if (scene.polygons[l].skipped) continue;
+          const PolygonLanes light = broadcast(scene.polygons[l]);
+          for (int i = 0; i < nLight; ++i)
+            addPolygonAreaSample<true>(scene, light, h, g, shaded, draws,
+                                       (spheres + l) * size_t(nLight) + size_t(i), misFactor, lightPart);
+        }
+      if (byLane < spheres + scene.polygons.size()) {
+        PacketColorLanes sums;
+        storeF3(lightPart, sums.c);
+        const PacketMisWeights weights{kHeuristic, float(nLight), float(nBsdf)};
+        queryLightIrradiance(*scene.scene, kMeasure, byLane, shadingPoints(), g.any ? &g.data : nullptr,
+                             &weights, draws, nLight, laneCount, sums);
+        lightPart = loadF3(sums.c);
+      }
+      const VF inv = setF(1.f / float(nLight));
       lightPart = scaled(lightPart, inv);
     }
-    if (scene.bsdfSamples > 0) {
+    if (nBsdf > 0) {
       const FrameF frame = frameAbout(h.ns);
-      for (int i = 0; i < scene.bsdfSamples; ++i, ++j) {
-        VF u0, u1;
-        loadDraw(draws, j, u0, u1);
-        const V3F local = hemisphereDirection<HemisphereWarp::Cosine>(u0, u1);
-        const V3F w = toWorld(frame, local);
-        const MF active = hn::And(shaded, hn::And(local.z > zero, dot(w, h.ng) > zero));
+      const size_t firstDraw = (spheres + scene.polygons.size()) * size_t(nLight);
+      for (int i = 0; i < nBsdf; ++i) {
+        const SurfaceDirection d =
+            surfaceDirection<HemisphereWarp::Cosine>(scene, g, g.any, frame, draws, firstDraw + size_t(i));
+        const V3F w = d.w;
+        const MF active = hn::And(shaded, hn::And(d.valid, dot(w, h.ng) > zero));
         if (hn::AllFalse(df, active)) continue;
-        const VF pdf = local.z * setF(kInvPi);
-        forEachEmitterAlong(scene, offsetRayOrigin(h.p, h.ng, h.offsetScale, w), w, active,
-                            [&](size_t l, MF lanes, const V3F& Le, const V3F& p, const V3F& n) {
-                              const PacketLight& light = scene.lights[l];
-                              VF pL = zero;
-                              if (scene.lightSamples > 0 && light.radius > 0.f)
-                                pL = kMeasure == LightMeasure::Area ? pdfAreaAsSolidAngle(light, h.p, p, n)
-                                                                    : pdfSolidAngle(light, h.p, w);
-                              const VF weight = misWeight<kHeuristic>(nB * pdf, nL * pL);
-                              addRadiance(lanes, Le, setF(kPi) * weight, bsdfPart);
-                            });
+        forEachEmitterAlong(
+            scene, offsetRayOrigin(h.p, h.ng, h.offsetScale, w), w, active,
+            [&](size_t l, MF lanes, const V3F& Le, const V3F& p, const V3F& n, VF lightIndex) {
+              // MisIntegrator::lightPdf of the light reached: in lanes, or lane by lane.
+              VF pL = zero;
+              if (nLight > 0 && l < std::min(byLane, spheres)) {
+                const PacketLight& light = scene.lights[l];
+                if (light.radius > 0.f)
+                  pL = kMeasure == LightMeasure::Area ? pdfAreaAsSolidAngle(light, h.p, p, n)
+                                                      : pdfSolidAngle(light, h.p, w);
+              } else if (nLight > 0) {
+                PacketShadingLanes reached = shadingPoints();
+                hn::StoreU(hn::IfThenElseZero(lanes, setF(1.f)), df, reached.active);
+                HWY_ALIGN float index[kMaxPacketLanes], pdf[kMaxPacketLanes];
+                PacketColorLanes wl, pl, nl;
+                hn::Store(lightIndex, df, index);
+                storeF3(w, wl.c);
+                storeF3(p, pl.c);
+                storeF3(n, nl.c);
+                queryLightPdfs(*scene.scene, kMeasure, reached, index, wl.c, pl.c, nl.c, laneCount, pdf);
+                pL = hn::Load(df, pdf);
+              }
+              const VF weight = misWeight<kHeuristic>(nB * d.pdf, nL * pL);
+              const V3F sampledLe{Le.x * d.weight.x, Le.y * d.weight.y, Le.z * d.weight.z};
+              addRadiance(lanes, sampledLe, d.cosOverPdf * weight, bsdfPart);
+            });
       }
-      const VF inv = setF(1.f / float(scene.bsdfSamples));
+      const VF inv = setF(1.f / float(nBsdf));
       bsdfPart = scaled(bsdfPart, inv);
     }
     E = {lightPart.x + bsdfPart.x, lightPart.y + bsdfPart.y, lightPart.z + bsdfPart.z};
   }
-  storeRadiance(scene, shaded, h, E, out);
+  storeRadiance(scene, shaded, h, g, E, out);
 }
 
 // AoIntegrator<kWarp>: hemisphere directions about the shading normal, each tested for occlusion up
@@ -471,6 +625,8 @@ void ShadePacket(const PacketScene& scene, const PacketRays& rays, const PacketD
       return shadeHemisphere<HemisphereWarp::Uniform>(scene, rays, draws, out);
     case PacketKernel::HemisphereCosine:
       return shadeHemisphere<HemisphereWarp::Cosine>(scene, rays, draws, out);
+    case PacketKernel::Bsdf:
+      return shadeHemisphere<HemisphereWarp::Cosine, true>(scene, rays, draws, out);
     case PacketKernel::MisAreaBalance:
       return shadeMis<LightMeasure::Area, MisHeuristic::Balance>(scene, rays, draws, out);
     case PacketKernel::MisAreaPower:
@@ -479,6 +635,10 @@ void ShadePacket(const PacketScene& scene, const PacketRays& rays, const PacketD
       return shadeMis<LightMeasure::SolidAngle, MisHeuristic::Balance>(scene, rays, draws, out);
     case PacketKernel::MisSolidAnglePower:
       return shadeMis<LightMeasure::SolidAngle, MisHeuristic::Power>(scene, rays, draws, out);
+    case PacketKernel::MisProjectedSolidAngleBalance:
+      return shadeMis<LightMeasure::ProjectedSolidAngle, MisHeuristic::Balance>(scene, rays, draws, out);
+    case PacketKernel::MisProjectedSolidAnglePower:
+      return shadeMis<LightMeasure::ProjectedSolidAngle, MisHeuristic::Power>(scene, rays, draws, out);
     case PacketKernel::Simple:
       return shadeSimple(scene, rays, out);
     case PacketKernel::AoUniform:

@@ -1,5 +1,10 @@
 #include "core/render/packet_queries.h"
 
+#include <optional>
+
+#include "core/integrators/light_technique.h"
+#include "core/integrators/mis_weight.h"
+#include "core/integrators/polygon_light_technique.h"
 #include "core/integrators/reflection.h"
 #include "core/integrators/sampling_loops.h"
 #include "core/integrators/shading_point.h"
@@ -38,9 +43,39 @@ Vec2 drawOf(const float (&u)[2][kMaxPacketLanes], int k) {
   return Vec2(u[0][k], u[1][k]);
 }
 
+// Lane k's glossy surface, if it has one (glossy non-null and the lane glossy).
+std::optional<GlossyReflection> glossyLane(const Scene& scene, const PacketGlossyLanes* glossy, int k) {
+  if (!glossy || glossy->material[k] < 0) return std::nullopt;
+  Frame frame;
+  frame.s = lane(glossy->s, k), frame.t = lane(glossy->t, k), frame.n = lane(glossy->n, k);
+  return GlossyReflection(scene.materials[size_t(glossy->material[k])].bsdf, frame, lane(glossy->wo, k));
+}
+
+// f(reflection) with lane k's reflection: its glossy surface's, or the diffuse one.
+template <class F>
+auto withReflection(const Scene& scene, const PacketGlossyLanes* glossy, int k, const F& f) {
+  const std::optional<GlossyReflection> g = glossyLane(scene, glossy, k);
+  return g ? f(*g) : f(DiffuseReflection{});
+}
+
+// f(weight) with the weight of a light sample with reflection `reflection`: 1, or MisIntegrator's.
+template <class Reflection, class F>
+auto withLightWeight(const PacketMisWeights* mis, const Reflection& reflection, const F& f) {
+  if (!mis) return f(UnitWeight{});
+  const float nL = mis->lightSamples, nB = mis->bsdfSamples;
+  if (mis->heuristic == MisHeuristic::Balance)
+    return f([&](const LightSample& s, float cosTheta) {
+      return misWeight<MisHeuristic::Balance>(nL * s.pdf, nB * reflection.pdf(s.wi, cosTheta));
+    });
+  return f([&](const LightSample& s, float cosTheta) {
+    return misWeight<MisHeuristic::Power>(nL * s.pdf, nB * reflection.pdf(s.wi, cosTheta));
+  });
+}
+
 template <LightMeasure kMeasure, class Light>
 void addLightIrradiance(const Scene& scene, const Light& light, size_t firstDraw,
-                        const PacketShadingLanes& points, const PacketDraws& draws, int samples, int lanes,
+                        const PacketShadingLanes& points, const PacketGlossyLanes* glossy,
+                        const PacketMisWeights* mis, const PacketDraws& draws, int samples, int lanes,
                         PacketColorLanes& E) {
   const float lightScale = lightScaleOf(light);
   for (int k = 0; k < lanes; ++k) {
@@ -48,29 +83,37 @@ void addLightIrradiance(const Scene& scene, const Light& light, size_t firstDraw
     const ShadingPoint sp = shadingPoint(points, k);
     const LightTechnique<kMeasure, Light> technique(light, sp);
     Color3 e = lane(E.c, k);
-    for (int i = 0; i < samples; ++i)
-      addLightDraw(scene, light, lightScale, technique, sp, DiffuseReflection{},
-                   drawOf(draws.u[firstDraw + size_t(i)], k), UnitWeight{}, e);
+    withReflection(scene, glossy, k, [&](const auto& reflection) {
+      return withLightWeight(mis, reflection, [&](const auto& weight) {
+        for (int i = 0; i < samples; ++i)
+          addLightDraw(scene, light, lightScale, technique, sp, reflection,
+                       drawOf(draws.u[firstDraw + size_t(i)], k), weight, e);
+        return 0;
+      });
+    });
     setLane(E.c, k, e);
   }
 }
 
 template <LightMeasure kMeasure>
 void lightIrradiance(const Scene& scene, size_t firstLight, const PacketShadingLanes& points,
-                     const PacketDraws& draws, int samples, int lanes, PacketColorLanes& E) {
+                     const PacketGlossyLanes* glossy, const PacketMisWeights* mis, const PacketDraws& draws,
+                     int samples, int lanes, PacketColorLanes& E) {
   const size_t spheres = scene.sphereLights.size(), count = scene.areaLightCount();
   for (size_t l = firstLight; l < count; ++l) {
     const size_t firstDraw = l * size_t(samples);
     if (l < spheres)
-      addLightIrradiance<kMeasure>(scene, scene.sphereLights[l], firstDraw, points, draws, samples, lanes, E);
+      addLightIrradiance<kMeasure>(scene, scene.sphereLights[l], firstDraw, points, glossy, mis, draws,
+                                   samples, lanes, E);
     else
-      addLightIrradiance<kMeasure>(scene, scene.polygonLights[l - spheres], firstDraw, points, draws, samples,
-                                   lanes, E);
+      addLightIrradiance<kMeasure>(scene, scene.polygonLights[l - spheres], firstDraw, points, glossy, mis,
+                                   draws, samples, lanes, E);
   }
 }
 
 template <LightMeasure kMeasure>
-void selectedLightSamples(const Scene& scene, const PacketShadingLanes& points, const PacketPickLanes& picks,
+void selectedLightSamples(const Scene& scene, const PacketShadingLanes& points,
+                          const PacketGlossyLanes* glossy, const PacketPickLanes& picks,
                           const float (&u)[2][kMaxPacketLanes], int lanes, PacketColorLanes& out) {
   const size_t spheres = scene.sphereLights.size();
   for (int k = 0; k < lanes; ++k) {
@@ -78,10 +121,12 @@ void selectedLightSamples(const Scene& scene, const PacketShadingLanes& points, 
     if (points.active[k] != 0.f && picks.light[k] >= 0.f) {
       const ShadingPoint sp = shadingPoint(points, k);
       const size_t l = size_t(picks.light[k]);
-      c = l < spheres ? selectedLightSample<kMeasure>(scene, scene.sphereLights[l], sp, DiffuseReflection{},
-                                                      drawOf(u, k), picks.pmf[k])
-                      : selectedLightSample<kMeasure>(scene, scene.polygonLights[l - spheres], sp,
-                                                      DiffuseReflection{}, drawOf(u, k), picks.pmf[k]);
+      c = withReflection(scene, glossy, k, [&](const auto& reflection) {
+        return l < spheres ? selectedLightSample<kMeasure>(scene, scene.sphereLights[l], sp, reflection,
+                                                           drawOf(u, k), picks.pmf[k])
+                           : selectedLightSample<kMeasure>(scene, scene.polygonLights[l - spheres], sp,
+                                                           reflection, drawOf(u, k), picks.pmf[k]);
+      });
     }
     setLane(out.c, k, c);
   }
@@ -90,29 +135,68 @@ void selectedLightSamples(const Scene& scene, const PacketShadingLanes& points, 
 }  // namespace
 
 void queryLightIrradiance(const Scene& scene, LightMeasure measure, size_t firstLight,
-                          const PacketShadingLanes& points, const PacketDraws& draws, int samples, int lanes,
+                          const PacketShadingLanes& points, const PacketGlossyLanes* glossy,
+                          const PacketMisWeights* mis, const PacketDraws& draws, int samples, int lanes,
                           PacketColorLanes& E) {
   switch (measure) {
     case LightMeasure::Area:
-      return lightIrradiance<LightMeasure::Area>(scene, firstLight, points, draws, samples, lanes, E);
+      return lightIrradiance<LightMeasure::Area>(scene, firstLight, points, glossy, mis, draws, samples,
+                                                 lanes, E);
     case LightMeasure::SolidAngle:
-      return lightIrradiance<LightMeasure::SolidAngle>(scene, firstLight, points, draws, samples, lanes, E);
+      return lightIrradiance<LightMeasure::SolidAngle>(scene, firstLight, points, glossy, mis, draws, samples,
+                                                       lanes, E);
     case LightMeasure::ProjectedSolidAngle:
-      return lightIrradiance<LightMeasure::ProjectedSolidAngle>(scene, firstLight, points, draws, samples,
-                                                                lanes, E);
+      return lightIrradiance<LightMeasure::ProjectedSolidAngle>(scene, firstLight, points, glossy, mis, draws,
+                                                                samples, lanes, E);
+  }
+}
+
+namespace {
+
+template <LightMeasure kMeasure>
+void lightPdfs(const Scene& scene, const PacketShadingLanes& points, const float (&light)[kMaxPacketLanes],
+               const float (&w)[3][kMaxPacketLanes], const float (&p)[3][kMaxPacketLanes],
+               const float (&n)[3][kMaxPacketLanes], int lanes, float* pdf) {
+  const size_t spheres = scene.sphereLights.size();
+  for (int k = 0; k < lanes; ++k) {
+    pdf[k] = 0.f;
+    if (points.active[k] == 0.f) continue;
+    const ShadingPoint sp = shadingPoint(points, k);
+    const size_t l = size_t(light[k]);
+    pdf[k] = l < spheres ? LightTechnique<kMeasure, SphereLight>(scene.sphereLights[l], sp)
+                               .pdf(lane(w, k), lane(p, k), lane(n, k))
+                         : LightTechnique<kMeasure, PolygonLight>(scene.polygonLights[l - spheres], sp)
+                               .pdf(lane(w, k), lane(p, k), lane(n, k));
+  }
+}
+
+}  // namespace
+
+void queryLightPdfs(const Scene& scene, LightMeasure measure, const PacketShadingLanes& points,
+                    const float (&light)[kMaxPacketLanes], const float (&w)[3][kMaxPacketLanes],
+                    const float (&p)[3][kMaxPacketLanes], const float (&n)[3][kMaxPacketLanes], int lanes,
+                    float* pdf) {
+  switch (measure) {
+    case LightMeasure::Area:
+      return lightPdfs<LightMeasure::Area>(scene, points, light, w, p, n, lanes, pdf);
+    case LightMeasure::SolidAngle:
+      return lightPdfs<LightMeasure::SolidAngle>(scene, points, light, w, p, n, lanes, pdf);
+    case LightMeasure::ProjectedSolidAngle:
+      return lightPdfs<LightMeasure::ProjectedSolidAngle>(scene, points, light, w, p, n, lanes, pdf);
   }
 }
 
 void querySelectedLightSamples(const Scene& scene, LightMeasure measure, const PacketShadingLanes& points,
-                               const PacketPickLanes& picks, const float (&u)[2][kMaxPacketLanes], int lanes,
-                               PacketColorLanes& out) {
+                               const PacketGlossyLanes* glossy, const PacketPickLanes& picks,
+                               const float (&u)[2][kMaxPacketLanes], int lanes, PacketColorLanes& out) {
   switch (measure) {
     case LightMeasure::Area:
-      return selectedLightSamples<LightMeasure::Area>(scene, points, picks, u, lanes, out);
+      return selectedLightSamples<LightMeasure::Area>(scene, points, glossy, picks, u, lanes, out);
     case LightMeasure::SolidAngle:
-      return selectedLightSamples<LightMeasure::SolidAngle>(scene, points, picks, u, lanes, out);
+      return selectedLightSamples<LightMeasure::SolidAngle>(scene, points, glossy, picks, u, lanes, out);
     case LightMeasure::ProjectedSolidAngle:
-      return selectedLightSamples<LightMeasure::ProjectedSolidAngle>(scene, points, picks, u, lanes, out);
+      return selectedLightSamples<LightMeasure::ProjectedSolidAngle>(scene, points, glossy, picks, u, lanes,
+                                                                     out);
   }
 }
 
@@ -125,7 +209,7 @@ void queryCameraHits(const Scene& scene, const PacketRays& rays, int lanes, Pack
     ray.tMax = rays.tMax[k];
     SurfaceHit hit;
     if (!scene.geometry.intersect(ray, hit)) {
-      out.hit[k] = out.offsetScale[k] = out.shades[k] = 0.f;
+      out.hit[k] = out.offsetScale[k] = out.shades[k] = out.glossy[k] = out.object[k] = 0.f;
       for (auto* v : {&out.p, &out.ng, &out.ns, &out.nsHit, &out.albedoOverPi, &out.emitted})
         setLane(*v, k, Vec3(0.f));
       continue;
@@ -138,9 +222,66 @@ void queryCameraHits(const Scene& scene, const PacketRays& rays, int lanes, Pack
     setLane(out.ns, k, sp.ns);
     setLane(out.nsHit, k, hit.ns);
     out.offsetScale[k] = hit.offsetScale;
-    out.shades[k] = isBlack(material.bsdf.albedo) ? 0.f : 1.f;
+    const bool glossy = !material.bsdf.isDiffuse();
+    // directRadiance's two tests of whether anything is reflected.
+    out.shades[k] = (glossy ? material.bsdf.reflects() : !isBlack(material.bsdf.albedo)) ? 1.f : 0.f;
+    out.glossy[k] = glossy ? 1.f : 0.f;
+    out.object[k] = float(hit.objectId);
     setLane(out.albedoOverPi, k, material.bsdf.albedo * kInvPi);
     setLane(out.emitted, k, emittedAt(scene, material, hit, ray));
+  }
+}
+
+void queryGlossyLanes(const Scene& scene, const PacketRays& rays, const float (&object)[kMaxPacketLanes],
+                      const float (&ns)[3][kMaxPacketLanes], const float (&shaded)[kMaxPacketLanes],
+                      int lanes, PacketGlossyLanes& out) {
+  for (int k = 0; k < lanes; ++k) {
+    out.material[k] = -1;
+    if (shaded[k] == 0.f) continue;
+    const size_t material = size_t(object[k]);
+    if (scene.materials[material].bsdf.isDiffuse()) continue;
+    // GlossyReflection(bsdf, sp, ray.d) of the ShadingPoint's frame.
+    const Frame frame(lane(ns, k));
+    out.material[k] = int32_t(material);
+    setLane(out.s, k, frame.s);
+    setLane(out.t, k, frame.t);
+    setLane(out.n, k, frame.n);
+    setLane(out.wo, k, frame.toLocal(-lane(rays.d, k)));
+  }
+}
+
+void queryGlossyFactors(const Scene& scene, const PacketGlossyLanes& glossy,
+                        const float (&wi)[3][kMaxPacketLanes], const float (&active)[kMaxPacketLanes],
+                        int lanes, PacketColorLanes& f, float* pdf) {
+  for (int k = 0; k < lanes; ++k) {
+    const std::optional<GlossyReflection> g = active[k] != 0.f ? glossyLane(scene, &glossy, k) : std::nullopt;
+    if (pdf) pdf[k] = 0.f;
+    if (!g) {
+      setLane(f.c, k, Color3(1.f));
+      continue;
+    }
+    // reflection(Le, wi) / Le and reflection.pdf(wi, cos θ).
+    const Vec3 w = lane(wi, k);
+    setLane(f.c, k, evalBsdf(*g->bsdf, g->wo, g->frame.toLocal(w)));
+    if (pdf) pdf[k] = g->pdf(w, 0.f);
+  }
+}
+
+void queryGlossySamples(const Scene& scene, const PacketGlossyLanes& glossy,
+                        const float (&u)[2][kMaxPacketLanes], const float (&active)[kMaxPacketLanes],
+                        int lanes, PacketBsdfSampleLanes& out) {
+  for (int k = 0; k < lanes; ++k) {
+    out.valid[k] = 0.f;
+    const std::optional<GlossyReflection> g = active[k] != 0.f ? glossyLane(scene, &glossy, k) : std::nullopt;
+    if (!g) continue;
+    // bsdfSampledRadiance: a positive density and the direction above the shading surface (the
+    // geometric side is the kernel's test).
+    const BsdfSample s = sampleBsdf(*g->bsdf, g->wo, drawOf(u, k));
+    if (!(s.pdf > 0.f) || !(s.wi.z > 0.f)) continue;
+    out.valid[k] = 1.f;
+    out.pdf[k] = s.pdf;
+    setLane(out.w, k, g->frame.toWorld(s.wi));
+    setLane(out.weight, k, s.weight);
   }
 }
 

@@ -21,7 +21,9 @@ struct alignas(64) PacketHitLanes {
   float p[3][kMaxPacketLanes], ng[3][kMaxPacketLanes], ns[3][kMaxPacketLanes];
   float nsHit[3][kMaxPacketLanes];  // SurfaceHit::ns, before the ShadingPoint's flip
   float offsetScale[kMaxPacketLanes];
-  float shades[kMaxPacketLanes];  // the albedo is not black
+  float shades[kMaxPacketLanes];  // PacketObject::shades
+  float glossy[kMaxPacketLanes];  // PacketObject::glossy
+  float object[kMaxPacketLanes];  // the hit's index in Scene::materials
   float albedoOverPi[3][kMaxPacketLanes];
   float emitted[3][kMaxPacketLanes];  // emittedAt
 };
@@ -66,22 +68,72 @@ struct alignas(64) PacketColorLanes {
   float c[3][kMaxPacketLanes];
 };
 
+// The glossy surfaces of a packet's shaded lanes as GlossyReflection holds them: the material, the
+// shading frame (Frame of the facing shading normal) and wo, the direction to the camera in that frame.
+// A lane is glossy where material[k] >= 0.
+struct alignas(64) PacketGlossyLanes {
+  int32_t material[kMaxPacketLanes];
+  float s[3][kMaxPacketLanes], t[3][kMaxPacketLanes], n[3][kMaxPacketLanes];
+  float wo[3][kMaxPacketLanes];
+};
+
+// BSDF samples of glossy lanes (sampleBsdf): the direction in world space, the factor f cos θ / pdf and
+// its density, and whether the sample counts (a positive density and the direction above the shading
+// surface).
+struct alignas(64) PacketBsdfSampleLanes {
+  float w[3][kMaxPacketLanes];
+  float weight[3][kMaxPacketLanes];
+  float pdf[kMaxPacketLanes];
+  float valid[kMaxPacketLanes];
+};
+
 void queryCameraHits(const Scene& scene, const PacketRays& rays, int lanes, PacketHitLanes& out);
+// The glossy lanes among those of `shaded` (nonzero) whose hit is `object` (PacketHitLanes::object):
+// their frames about the facing shading normals ns and the camera rays' wo.
+void queryGlossyLanes(const Scene& scene, const PacketRays& rays, const float (&object)[kMaxPacketLanes],
+                      const float (&ns)[3][kMaxPacketLanes], const float (&shaded)[kMaxPacketLanes],
+                      int lanes, PacketGlossyLanes& out);
+// f(wo, wi) (evalBsdf) of each glossy lane of `active` for the world direction wi, 1 in the other lanes;
+// with pdf (may be null) also pdfBsdf there, 0 in the other lanes.
+void queryGlossyFactors(const Scene& scene, const PacketGlossyLanes& glossy,
+                        const float (&wi)[3][kMaxPacketLanes], const float (&active)[kMaxPacketLanes],
+                        int lanes, PacketColorLanes& f, float* pdf);
+// sampleBsdf of each glossy lane of `active` from its draw u (bsdfSampledRadiance's sample); valid 0 in
+// the other lanes.
+void queryGlossySamples(const Scene& scene, const PacketGlossyLanes& glossy,
+                        const float (&u)[2][kMaxPacketLanes], const float (&active)[kMaxPacketLanes],
+                        int lanes, PacketBsdfSampleLanes& out);
 // SceneGeometry::occluded(ray, skipSphere) of each active lane's segment: blocked[k] is 1 or 0.
 void queryOccluded(const Scene& scene, const PacketSegments& rays, int lanes, int32_t skipSphere,
                    float* blocked);
 void queryEmittersAlong(const Scene& scene, const PacketSegments& rays, int lanes, PacketEmitterLanes& out);
+// MisIntegrator's weighting of light samples: the heuristic and the two techniques' sample counts.
+struct PacketMisWeights {
+  MisHeuristic heuristic;
+  float lightSamples, bsdfSamples;
+};
+
 // everyLightIrradiance's terms of the area lights from `firstLight` on (spheres, then polygons), by the
 // scalar technique of `measure` at each active lane's shading point: its draws are j = light · samples
-// + i of `draws`, and each lane's E goes on from the value it holds, as the scalar sum does.
+// + i of `draws`, and each lane's E goes on from the value it holds, as the scalar sum does. Glossy lanes
+// (glossy may be null: none) carry f in each term, as GlossyReflection does. Each term is weighted by
+// mis (MisIntegrator's light technique), or by 1 where mis is null.
 void queryLightIrradiance(const Scene& scene, LightMeasure measure, size_t firstLight,
-                          const PacketShadingLanes& points, const PacketDraws& draws, int samples, int lanes,
+                          const PacketShadingLanes& points, const PacketGlossyLanes* glossy,
+                          const PacketMisWeights* mis, const PacketDraws& draws, int samples, int lanes,
                           PacketColorLanes& E);
+// MisIntegrator::lightPdf, by the technique of `measure`, of each active lane's direction w reaching area
+// light light[k] (spheres, then polygons) at p with normal n, from the lane's shading point.
+void queryLightPdfs(const Scene& scene, LightMeasure measure, const PacketShadingLanes& points,
+                    const float (&light)[kMaxPacketLanes], const float (&w)[3][kMaxPacketLanes],
+                    const float (&p)[3][kMaxPacketLanes], const float (&n)[3][kMaxPacketLanes], int lanes,
+                    float* pdf);
 // selectedLightSample of the light each active lane picked (picks.light, picks.pmf), from draw u, by the
-// scalar technique of `measure`: out is 0 in the other lanes and where the sample does not light.
+// scalar technique of `measure` (glossy as above): out is 0 in the other lanes and where the sample does
+// not light.
 void querySelectedLightSamples(const Scene& scene, LightMeasure measure, const PacketShadingLanes& points,
-                               const PacketPickLanes& picks, const float (&u)[2][kMaxPacketLanes], int lanes,
-                               PacketColorLanes& out);
+                               const PacketGlossyLanes* glossy, const PacketPickLanes& picks,
+                               const float (&u)[2][kMaxPacketLanes], int lanes, PacketColorLanes& out);
 void queryLightPicks(const Scene& scene, LightSelection selection, const float (&u)[2][kMaxPacketLanes],
                      int lanes, PacketPickLanes& picks);
 

@@ -28,8 +28,8 @@ bool kernelOf(const IntegratorDesc& d, PacketKernel& kernel) {
     case Estimator::Hemisphere:
       kernel = cosine ? PacketKernel::HemisphereCosine : PacketKernel::HemisphereUniform;
       return true;
-    case Estimator::Bsdf:  // the cosine warp on diffuse surfaces (the only ones the kernels shade)
-      kernel = PacketKernel::HemisphereCosine;
+    case Estimator::Bsdf:
+      kernel = PacketKernel::Bsdf;
       return true;
     case Estimator::Light: {
       const bool all = d.lightSelection == LightSelection::All;
@@ -42,15 +42,17 @@ bool kernelOf(const IntegratorDesc& d, PacketKernel& kernel) {
             all ? PacketKernel::LightProjectedSolidAngle : PacketKernel::LightProjectedSolidAngleSelected;
       return true;
     }
-    case Estimator::Mis:
-      if (d.lightMeasure == LightMeasure::ProjectedSolidAngle) return false;
+    case Estimator::Mis: {
+      const bool balance = d.heuristic == MisHeuristic::Balance;
       if (d.lightMeasure == LightMeasure::Area)
-        kernel =
-            d.heuristic == MisHeuristic::Balance ? PacketKernel::MisAreaBalance : PacketKernel::MisAreaPower;
+        kernel = balance ? PacketKernel::MisAreaBalance : PacketKernel::MisAreaPower;
+      else if (d.lightMeasure == LightMeasure::SolidAngle)
+        kernel = balance ? PacketKernel::MisSolidAngleBalance : PacketKernel::MisSolidAnglePower;
       else
-        kernel = d.heuristic == MisHeuristic::Balance ? PacketKernel::MisSolidAngleBalance
-                                                      : PacketKernel::MisSolidAnglePower;
+        kernel =
+            balance ? PacketKernel::MisProjectedSolidAngleBalance : PacketKernel::MisProjectedSolidAnglePower;
       return true;
+    }
   }
   return false;
 }
@@ -116,11 +118,6 @@ std::string packetUnsupportedReason(const RenderJob& job) {
   if (draws > kMaxPacketDraws)
     return "more shading samples per camera sample than a packet carries (" +
            std::to_string(kMaxPacketDraws) + ")";
-  if (d.type == IntegratorType::Ao) return {};  // ambient occlusion sees only the geometry
-  if (!scene.polygonLights.empty() && d.type == IntegratorType::Direct && d.estimator == Estimator::Mis)
-    return "no packet kernel for MIS with polygon lights";
-  for (const SurfaceMaterial& m : scene.materials)
-    if (!m.bsdf.isDiffuse()) return "the scene has a glossy material";
   return {};
 }
 
@@ -175,7 +172,9 @@ PacketScene makePacketScene(const RenderJob& job) {
     PacketObject o{};
     const Color3 a = m.bsdf.albedo * kInvPi;
     o.albedoOverPi[0] = a.x, o.albedoOverPi[1] = a.y, o.albedoOverPi[2] = a.z;
-    o.shades = !isBlack(m.bsdf.albedo);
+    o.glossy = !m.bsdf.isDiffuse();
+    o.shades = o.glossy ? m.bsdf.reflects() : !isBlack(m.bsdf.albedo);  // directRadiance's two tests
+    p.anyGlossy = p.anyGlossy || o.glossy;
     o.emits = m.sphereLight >= 0;
     o.light = m.sphereLight;
     if (o.emits) {

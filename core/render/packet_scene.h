@@ -1,5 +1,5 @@
 // A scene as the packet kernels read it (packet_kernels.cpp): flat arrays of spheres, parallelograms,
-// per-object diffuse materials and lights, copied once per render from a Scene the packet path
+// per-object materials and lights, copied once per render from a Scene the packet path
 // supports (or, for geometry in a BVH, the Scene whose SceneGeometry the kernels query). Plain data only, so
 // the kernels (compiled once per instruction set) include nothing that another translation unit could inline
 // with other flags.
@@ -27,11 +27,13 @@ struct PacketQuad {
   int32_t polygonLight;  // the polygon light both its triangles are (index into PacketScene::polygons), or -1
 };
 
-// What a camera ray finds at an object: albedo/π (0 for a black albedo: nothing is shaded there) and,
-// for an emitting sphere, its radiance towards a viewer on its outer side.
+// What a camera ray finds at an object: albedo/π (0 for a black albedo: nothing is shaded there), whether
+// its BSDF is glossy (evaluated and sampled lane by lane by the scalar BSDF, packet_queries.h) and, for an
+// emitting sphere, its radiance towards a viewer on its outer side.
 struct PacketObject {
   float albedoOverPi[3];
-  bool shades;  // albedo not black
+  bool shades;  // something is reflected: a diffuse albedo that is not black, a glossy BSDF that reflects
+  bool glossy;
   bool emits;
   bool radianceNonBlack;
   float radiance[3];
@@ -77,15 +79,18 @@ enum class PacketKernel : uint8_t {
   LightProjectedSolidAngle,          // direct by light sampling, projected solid angle, every light
   LightProjectedSolidAngleSelected,  // ... one light picked per sample
   HemisphereUniform,                 // direct by uniform hemisphere directions
-  HemisphereCosine,      // direct by cosine hemisphere directions (also `bsdf` on diffuse surfaces)
-  MisAreaBalance,        // MIS of area light sampling and the cosine hemisphere, balance heuristic
+  HemisphereCosine,                  // direct by cosine hemisphere directions
+  Bsdf,                  // direct by the surface's own directions (the cosine hemisphere on diffuse surfaces)
+  MisAreaBalance,        // MIS of area light sampling and the surface's directions, balance heuristic
   MisAreaPower,          // ... power heuristic
-  MisSolidAngleBalance,  // MIS of solid-angle light sampling and the cosine hemisphere, balance
+  MisSolidAngleBalance,  // MIS of solid-angle light sampling and the surface's directions, balance
   MisSolidAnglePower,    // ... power heuristic
-  Simple,                // point and directional lights only
-  AoUniform,             // ambient occlusion, uniform hemisphere
-  AoCosine,              // ambient occlusion, cosine hemisphere
-  Normals,               // the absolute shading normal
+  MisProjectedSolidAngleBalance,  // MIS of projected-solid-angle light sampling and the surface's, balance
+  MisProjectedSolidAnglePower,    // ... power heuristic
+  Simple,                         // point and directional lights only
+  AoUniform,                      // ambient occlusion, uniform hemisphere
+  AoCosine,                       // ambient occlusion, cosine hemisphere
+  Normals,                        // the absolute shading normal
 };
 
 // `repeats` sampler requests of `n` stratified draws each (next2D(i, n) for i < n), or of n draws of
@@ -106,6 +111,7 @@ struct PacketScene {
   std::vector<PacketSphere> spheres;
   std::vector<PacketQuad> quads;
   std::vector<PacketObject> objects;
+  bool anyGlossy = false;           // some object's BSDF is glossy
   std::vector<PacketLight> lights;  // sphere lights
   // Polygon lights (Scene::polygonLights, after the sphere lights in the area lights' order): sampled in
   // lanes by area; by the solid angle and projected solid angle lane by lane with the scalar techniques
@@ -126,8 +132,6 @@ struct PacketScene {
   int drawCount() const;
 };
 
-// Whether the kernels ask `g` for every ray (shapes in a BVH, triangles tested one by one) rather than
-// hold the geometry themselves (only spheres and parallelograms in flat loops).
 // Whether the kernels query the scene's SceneGeometry for every ray: when its shapes are not all flat
 // spheres and parallelograms, or when a polygon light is not one of those parallelograms whole.
 bool packetGeometryQueried(const Scene& scene);
@@ -135,8 +139,6 @@ bool packetGeometryQueried(const Scene& scene);
 // The most light draws (lights × samples) a packet carries.
 inline constexpr int kMaxPacketDraws = 256;
 
-// Empty when the packet path renders `job` exactly as the scalar row loop would; otherwise why not
-// (the job then renders one camera sample at a time).
 // The first area light (spheres, then polygons) whose samples by `measure` the packet kernels leave to
 // the scalar techniques lane by lane: none by area, the polygon lights by solid angle, every light by
 // the projected solid angle (maps that need atan2, sin, cos or asin).
@@ -146,7 +148,8 @@ size_t firstAreaLightSampledByLane(LightMeasure measure, const Scene& scene);
 std::string packetUnsupportedReason(const RenderJob& job);
 // Why the row loop renders `job` one camera sample at a time (empty when it takes packets): no kernel
 // computes it, or the kernel would be no faster because both its rays and its light samples go one lane
-// at a time (a queried scene whose light measure samples its lights lane by lane).
+// at a time (direct light sampling in a queried scene whose measure samples its lights lane by lane; MIS
+// keeps its surface samples in lanes and is measured no slower there).
 std::string packetPathDeclinedReason(const RenderJob& job);
 // The packet scene of a job for which packetUnsupportedReason is empty.
 PacketScene makePacketScene(const RenderJob& job);
