@@ -200,9 +200,10 @@ struct PacketHit {
   V3F p, ng, ns;  // ng and ns flipped to the ray's side (ShadingPoint)
   V3F nsHit;      // the shading normal as the geometry gives it (SurfaceHit::ns)
   VF offsetScale;
-  MF shades;  // PacketObject::shades
-  MF glossy;  // PacketObject::glossy
-  VF object;  // the index of the hit's object (material)
+  MF shades;   // PacketObject::shades
+  MF glossy;   // PacketObject::glossy
+  MF emitter;  // PacketObject::emitter
+  VF object;   // the index of the hit's object (material)
   V3F albedoOverPi;
   V3F emitted;  // emittedAt
 };
@@ -213,6 +214,7 @@ HWY_INLINE void setObject(const PacketScene& scene, uint32_t index, MF m, const 
   h.albedoOverPi = select(m, setF3(object.albedoOverPi), h.albedoOverPi);
   if (object.shades) h.shades = hn::Or(h.shades, m);
   if (object.glossy) h.glossy = hn::Or(h.glossy, m);
+  if (object.emitter) h.emitter = hn::Or(h.emitter, m);
   h.object = hn::IfThenElse(m, setF(float(index)), h.object);
   if (object.emits) {
     // SphereLight::eval: the outer side only.
@@ -236,7 +238,7 @@ HWY_INLINE PacketHit fillHit(const PacketScene& scene, const Nearest& n, const V
   const VF zero = hn::Zero(df);
   h.p = h.ng = h.ns = h.albedoOverPi = h.emitted = {zero, zero, zero};
   h.offsetScale = h.object = zero;
-  h.shades = h.glossy = hn::FirstN(df, 0);
+  h.shades = h.glossy = h.emitter = hn::FirstN(df, 0);
   h.hit = n.hit;
   const V3D along = pointAlong(o, d, n.t);
   for (size_t j = 0; j < scene.quads.size(); ++j) {
@@ -291,6 +293,7 @@ HWY_INLINE PacketHit queriedHit(const Scene& scene, const PacketRays& rays) {
   h.offsetScale = hn::LoadU(df, lanes.offsetScale);
   h.shades = loadMask(lanes.shades);
   h.glossy = loadMask(lanes.glossy);
+  h.emitter = loadMask(lanes.emitter);
   h.object = hn::LoadU(df, lanes.object);
   h.albedoOverPi = loadF3(lanes.albedoOverPi);
   h.emitted = loadF3(lanes.emitted);

@@ -177,6 +177,38 @@ HWY_INLINE void storeRadiance(const PacketScene& scene, MF shaded, const PacketH
   storeF3(select(shaded, L, h.emitted), out.L);
 }
 
+// luminance (vec.h).
+HWY_INLINE VF luminance(const V3F& c) {
+  return setF(0.212671f) * c.x + setF(0.715160f) * c.y + setF(0.072169f) * c.z;
+}
+
+// MisLightShareIntegrator's channels from the techniques' estimates: per shaded lane the luminance of
+// the light technique's part (R), of the surface's (G) and of the rest (B: the emission and the delta
+// lights), each part times albedo/π on a diffuse surface; on an emitter the whole estimate in B; the
+// emission's luminance in B elsewhere.
+HWY_INLINE void storeLightShare(const PacketScene& scene, MF shaded, const PacketHit& h,
+                                const GlossySurfaces& g, const V3F& lightPart, const V3F& bsdfPart,
+                                PacketRadiance& out) {
+  const DF df;
+  const VF one = setF(1.f);
+  const V3F delta = deltaIrradiance(scene, h, shaded, g);
+  const V3F scale = g.any ? select(g.lanes, V3F{one, one, one}, h.albedoOverPi) : h.albedoOverPi;
+  auto scaled3 = [&](const V3F& v) { return V3F{scale.x * v.x, scale.y * v.y, scale.z * v.z}; };
+  const V3F L = h.emitted;
+  const V3F whole = scaled3(V3F{delta.x + (lightPart.x + bsdfPart.x), delta.y + (lightPart.y + bsdfPart.y),
+                                delta.z + (lightPart.z + bsdfPart.z)});
+  const V3F rest = scaled3(delta);
+  const MF emitter = hn::And(shaded, h.emitter), shares = hn::AndNot(h.emitter, shaded);
+  const VF R = hn::IfThenElseZero(shares, luminance(scaled3(lightPart)));
+  const VF G = hn::IfThenElseZero(shares, luminance(scaled3(bsdfPart)));
+  VF B = luminance(L);
+  B = hn::IfThenElse(shares, luminance(V3F{L.x + rest.x, L.y + rest.y, L.z + rest.z}), B);
+  B = hn::IfThenElse(emitter, luminance(V3F{L.x + whole.x, L.y + whole.y, L.z + whole.z}), B);
+  hn::StoreU(R, df, out.L[0]);
+  hn::StoreU(G, df, out.L[1]);
+  hn::StoreU(B, df, out.L[2]);
+}
+
 // SimpleIntegrator: the delta lights alone.
 HWY_INLINE void shadeSimple(const PacketScene& scene, const PacketRays& rays, PacketRadiance& out) {
   const DF df;
@@ -463,13 +495,15 @@ HWY_INLINE VF misWeight(VF a, VF b) {
 // surface's own directions (the cosine hemisphere on diffuse lanes, the BSDF's sampler on glossy ones),
 // each sample weighted by the heuristic of the two densities. Light samples and light densities the
 // lanes cannot compute exactly (firstAreaLightSampledByLane) come from the scalar techniques lane by lane.
+// With PacketScene::lightShare, MisLightShareIntegrator's channels instead of the radiance.
 template <LightMeasure kMeasure, MisHeuristic kHeuristic>
 HWY_INLINE void shadeMis(const PacketScene& scene, const PacketRays& rays, const PacketDraws& draws,
                          PacketRadiance& out) {
   const DF df;
   const PacketHit h = cameraHit(scene, rays);
   const VF zero = hn::Zero(df);
-  V3F E{zero, zero, zero};
+  // The two techniques' weighted estimates (MisIntegrator::techniques).
+  V3F lightPart{zero, zero, zero}, bsdfPart{zero, zero, zero};
   const MF shaded = hn::And(h.hit, h.shades);
   GlossySurfaces g;
   findGlossy(scene, rays, h, shaded, g);
@@ -479,7 +513,6 @@ HWY_INLINE void shadeMis(const PacketScene& scene, const PacketRays& rays, const
     const VF nL = setF(float(nLight)), nB = setF(float(nBsdf));
     const size_t spheres = scene.lights.size(), byLane = scene.firstLightByLane;
     const int laneCount = int(hn::Lanes(df));
-    V3F lightPart{zero, zero, zero}, bsdfPart{zero, zero, zero};
     // The shading points for the lane-by-lane queries, stored when first needed.
     PacketShadingLanes points;
     bool pointsStored = false;
@@ -557,9 +590,10 @@ HWY_INLINE void shadeMis(const PacketScene& scene, const PacketRays& rays, const
       const VF inv = setF(1.f / float(nBsdf));
       bsdfPart = scaled(bsdfPart, inv);
     }
-    E = {lightPart.x + bsdfPart.x, lightPart.y + bsdfPart.y, lightPart.z + bsdfPart.z};
   }
-  storeRadiance(scene, shaded, h, g, E, out);
+  if (scene.lightShare) return storeLightShare(scene, shaded, h, g, lightPart, bsdfPart, out);
+  storeRadiance(scene, shaded, h, g,
+                V3F{lightPart.x + bsdfPart.x, lightPart.y + bsdfPart.y, lightPart.z + bsdfPart.z}, out);
 }
 
 // AoIntegrator<kWarp>: hemisphere directions about the shading normal, each tested for occlusion up

@@ -209,7 +209,7 @@ void queryCameraHits(const Scene& scene, const PacketRays& rays, int lanes, Pack
     ray.tMax = rays.tMax[k];
     SurfaceHit hit;
     if (!scene.geometry.intersect(ray, hit)) {
-      out.hit[k] = out.offsetScale[k] = out.shades[k] = out.glossy[k] = out.object[k] = 0.f;
+      out.hit[k] = out.offsetScale[k] = out.shades[k] = out.glossy[k] = out.emitter[k] = out.object[k] = 0.f;
       for (auto* v : {&out.p, &out.ng, &out.ns, &out.nsHit, &out.albedoOverPi, &out.emitted})
         setLane(*v, k, Vec3(0.f));
       continue;
@@ -226,6 +226,7 @@ void queryCameraHits(const Scene& scene, const PacketRays& rays, int lanes, Pack
     // directRadiance's two tests of whether anything is reflected.
     out.shades[k] = (glossy ? material.bsdf.reflects() : !isBlack(material.bsdf.albedo)) ? 1.f : 0.f;
     out.glossy[k] = glossy ? 1.f : 0.f;
+    out.emitter[k] = material.emits() ? 1.f : 0.f;
     out.object[k] = float(hit.objectId);
     setLane(out.albedoOverPi, k, material.bsdf.albedo * kInvPi);
     setLane(out.emitted, k, emittedAt(scene, material, hit, ray));

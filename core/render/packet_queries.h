@@ -21,9 +21,10 @@ struct alignas(64) PacketHitLanes {
   float p[3][kMaxPacketLanes], ng[3][kMaxPacketLanes], ns[3][kMaxPacketLanes];
   float nsHit[3][kMaxPacketLanes];  // SurfaceHit::ns, before the ShadingPoint's flip
   float offsetScale[kMaxPacketLanes];
-  float shades[kMaxPacketLanes];  // PacketObject::shades
-  float glossy[kMaxPacketLanes];  // PacketObject::glossy
-  float object[kMaxPacketLanes];  // the hit's index in Scene::materials
+  float shades[kMaxPacketLanes];   // PacketObject::shades
+  float glossy[kMaxPacketLanes];   // PacketObject::glossy
+  float emitter[kMaxPacketLanes];  // PacketObject::emitter
+  float object[kMaxPacketLanes];   // the hit's index in Scene::materials
   float albedoOverPi[3][kMaxPacketLanes];
   float emitted[3][kMaxPacketLanes];  // emittedAt
 };

@@ -155,7 +155,7 @@ TestScene packetTestScene(float scale, bool deltaLights = false, Geometry geomet
 }
 
 std::shared_ptr<const RenderJob> jobFor(const TestScene& t, const IntegratorDesc& strategy, int samples,
-                                        SamplerKind sampler) {
+                                        SamplerKind sampler, RenderOutput output = RenderOutput::Radiance) {
   RenderSettings s;
   CameraDesc& cam = s.camera;
   const Vec3 origin = Vec3(2.6f, 1.4f, 3.4f) * t.scale, target = Vec3(0.f, -0.2f, 0.f) * t.scale;
@@ -171,7 +171,7 @@ std::shared_ptr<const RenderJob> jobFor(const TestScene& t, const IntegratorDesc
   s.integrator = withSamples(strategy, samples);
   s.integrator.lightSamples = samples;     // MIS: `samples` of each light,
   s.integrator.bsdfSamples = samples % 3;  // and 1 or 0 (the light technique alone) of the surface's
-  return std::make_shared<RenderJob>(t.scene, s, RenderLimits{});
+  return std::make_shared<RenderJob>(t.scene, s, RenderLimits{}, output);
 }
 
 RowRenderer packetRows(const RenderJob& job) {
@@ -217,7 +217,8 @@ class PacketRowLoopOn : public testing::TestWithParam<Geometry> {};
 
 // Each lane computes exactly what the scalar integrator computes, so the film is the scalar loop's bit
 // for bit: on every instruction set this CPU has, for every strategy with a kernel, every sampler,
-// one and several shading samples (MIS: 1 and 3 per light with 1 and 0 of the surface's), with and
+// one and several shading samples (MIS: 1 and 3 per light with 1 and 0 of the surface's, and its
+// light-share channels at scale 1), with and
 // without point and directional lights, at 1e-4, 1 and 1e4 scene units, with the geometry in the
 // kernels' flat loops and queried from SceneGeometry, with and without polygon lights (delta lights
 // are not repeated there: they add nothing new beside polygon lights), and with glossy materials (with
@@ -240,12 +241,17 @@ TEST_P(PacketRowLoopOn, EqualsTheScalarLoopBitForBit) {
               SCOPED_TRACE(target + " " + samplerKindName(sampler) + " samples " + std::to_string(samples) +
                            " " + strategyLabel(strategy) + " scale " + std::to_string(scale) +
                            (deltaLights ? " with point and directional lights" : ""));
-              const auto job = jobFor(t, strategy, samples, sampler);
-              ASSERT_EQ(packetUnsupportedReason(*job), "");
-              const std::vector<double> packets = renderSums(job, true, 2),
-                                        scalar = renderSums(job, false, 2);
-              ASSERT_EQ(packets.size(), scalar.size());
-              EXPECT_EQ(packets, scalar);
+              // MIS also as its light-share channels (at one scale: they add no geometry).
+              for (const RenderOutput output : {RenderOutput::Radiance, RenderOutput::MisLightShare}) {
+                if (output == RenderOutput::MisLightShare && (!offersLightShare(strategy) || scale != 1.f))
+                  continue;
+                const auto job = jobFor(t, strategy, samples, sampler, output);
+                ASSERT_EQ(packetUnsupportedReason(*job), "");
+                const std::vector<double> packets = renderSums(job, true, 2),
+                                          scalar = renderSums(job, false, 2);
+                ASSERT_EQ(packets.size(), scalar.size());
+                EXPECT_EQ(packets, scalar) << (output == RenderOutput::MisLightShare ? "light share" : "");
+              }
             }
       }
     }
@@ -297,8 +303,11 @@ TEST(PacketRowLoop, SupportsItsStrategies) {
   job->settings.integrator.samples = kMaxPacketDraws;  // 6 lights × 256 draws do not fit a packet
   EXPECT_NE(packetUnsupportedReason(*job), "");
   job->settings.integrator.samples = 1;
-  job->output = RenderOutput::MisLightShare;
-  EXPECT_NE(packetUnsupportedReason(*job), "");
+  job->output = RenderOutput::MisLightShare;  // renders radiance for this strategy, as the scalar loop does
+  EXPECT_EQ(packetUnsupportedReason(*job), "");
+  job->settings.integrator = directByMis(LightMeasure::Area, MisHeuristic::Power);
+  EXPECT_EQ(packetUnsupportedReason(*job), "");
+  job->settings.integrator = directByLight(LightMeasure::Area);
   job->output = RenderOutput::Radiance;
   // Glossy materials by every strategy.
   auto glossy = std::make_shared<Scene>();

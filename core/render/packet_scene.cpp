@@ -108,7 +108,6 @@ std::vector<DrawRequests> drawRequestsOf(const IntegratorDesc& d, int lights) {
 
 std::string packetUnsupportedReason(const RenderJob& job) {
   const IntegratorDesc& d = job.settings.integrator;
-  if (job.output != RenderOutput::Radiance) return "the job renders an output other than radiance";
   PacketKernel kernel;
   if (!kernelOf(d, kernel)) return "no packet kernel for " + strategyLabel(d);
   const Scene& scene = *job.scene;
@@ -158,6 +157,8 @@ PacketScene makePacketScene(const RenderJob& job) {
   p.bsdfSamples = job.settings.integrator.bsdfSamples;
   p.draws = drawRequestsOf(job.settings.integrator, int(scene.areaLightCount()));
   p.rayLengthBound = scene.rayLengthBound;
+  // A light-share job of a strategy without that output renders radiance, as the scalar loop does.
+  p.lightShare = job.output == RenderOutput::MisLightShare && offersLightShare(job.settings.integrator);
   for (size_t i = 0; i < g.spheres().size() && !p.geometryQueried; ++i) {
     const Sphere& s = g.spheres()[i];
     p.spheres.push_back({{s.center.x, s.center.y, s.center.z},
@@ -173,6 +174,7 @@ PacketScene makePacketScene(const RenderJob& job) {
     const Color3 a = m.bsdf.albedo * kInvPi;
     o.albedoOverPi[0] = a.x, o.albedoOverPi[1] = a.y, o.albedoOverPi[2] = a.z;
     o.glossy = !m.bsdf.isDiffuse();
+    o.emitter = m.emits();
     o.shades = o.glossy ? m.bsdf.reflects() : !isBlack(m.bsdf.albedo);  // directRadiance's two tests
     p.anyGlossy = p.anyGlossy || o.glossy;
     o.emits = m.sphereLight >= 0;

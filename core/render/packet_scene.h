@@ -34,6 +34,7 @@ struct PacketObject {
   float albedoOverPi[3];
   bool shades;  // something is reflected: a diffuse albedo that is not black, a glossy BSDF that reflects
   bool glossy;
+  bool emitter;  // a sphere or polygon light (SurfaceMaterial::emits)
   bool emits;
   bool radianceNonBlack;
   float radiance[3];
@@ -127,6 +128,8 @@ struct PacketScene {
   int lightSamples = 0;  // MIS: per light
   int bsdfSamples = 0;   // MIS
   float rayLengthBound = 0;  // how far ambient occlusion looks
+  // The MIS kernels render MisLightShareIntegrator's channels instead of radiance.
+  bool lightShare = false;
   // The sampler draws of one camera sample after the filter's, in the integrator's order.
   std::vector<DrawRequests> draws;
   int drawCount() const;
