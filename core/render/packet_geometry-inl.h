@@ -201,9 +201,9 @@ struct PacketHit {
   V3F nsHit;      // the shading normal as the geometry gives it (SurfaceHit::ns)
   VF offsetScale;
   MF shades;   // PacketObject::shades
-  MF glossy;   // PacketObject::glossy
-  MF emitter;  // PacketObject::emitter
-  VF object;   // the index of the hit's object (material)
+  MF glossy;   // PacketObject::glossy (kept in scenes with a glossy material)
+  MF emitter;  // PacketObject::emitter (kept for the light-share view)
+  VF object;   // the index of the hit's object (material; kept as glossy)
   V3F albedoOverPi;
   V3F emitted;  // emittedAt
 };
@@ -213,9 +213,12 @@ HWY_INLINE void setObject(const PacketScene& scene, uint32_t index, MF m, const 
   const PacketObject& object = scene.objects[index];
   h.albedoOverPi = select(m, setF3(object.albedoOverPi), h.albedoOverPi);
   if (object.shades) h.shades = hn::Or(h.shades, m);
-  if (object.glossy) h.glossy = hn::Or(h.glossy, m);
-  if (object.emitter) h.emitter = hn::Or(h.emitter, m);
-  h.object = hn::IfThenElse(m, setF(float(index)), h.object);
+  // What only glossy scenes and the light-share view read.
+  if (scene.anyGlossy) {
+    if (object.glossy) h.glossy = hn::Or(h.glossy, m);
+    h.object = hn::IfThenElse(m, setF(float(index)), h.object);
+  }
+  if (scene.lightShare && object.emitter) h.emitter = hn::Or(h.emitter, m);
   if (object.emits) {
     // SphereLight::eval: the outer side only.
     const MF facing = hn::And(m, dot(ngUnflipped, rayD) < hn::Zero(DF()));

@@ -82,8 +82,11 @@ struct GlossySurfaces {
 HWY_INLINE void findGlossy(const PacketScene& scene, const PacketRays& rays, const PacketHit& h, MF shaded,
                            GlossySurfaces& g) {
   const DF df;
+  g.any = false;
+  g.lanes = hn::FirstN(df, 0);
+  if (!scene.anyGlossy) return;
   g.lanes = hn::And(shaded, h.glossy);
-  g.any = scene.anyGlossy && !hn::AllFalse(df, g.lanes);
+  g.any = !hn::AllFalse(df, g.lanes);
   if (!g.any) return;
   HWY_ALIGN float object[kMaxPacketLanes], active[kMaxPacketLanes];
   PacketColorLanes ns;
