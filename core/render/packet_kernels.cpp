@@ -54,6 +54,10 @@ HWY_INLINE void loadDraw(const PacketDraws& draws, size_t j, VF& u0, VF& u1) {
 HWY_INLINE V3F scaled(const V3F& v, VF f) {
   return {v.x * f, v.y * f, v.z * f};
 }
+// a · b per component (Color3's product).
+HWY_INLINE V3F times(const V3F& a, const V3F& b) {
+  return {a.x * b.x, a.y * b.y, a.z * b.z};
+}
 
 // A direction about +z by warp kWarp (Warp::squareToCosineHemisphere or squareToUniformHemisphere).
 template <HemisphereWarp kWarp>
@@ -112,8 +116,7 @@ HWY_INLINE V3F reflected(const PacketScene& scene, const GlossySurfaces& g, MF m
   hn::Store(hn::IfThenElseZero(glossy, setF(1.f)), df, active);
   queryGlossyFactors(*scene.scene, g.data, w.c, active, int(hn::Lanes(df)), f, glossyPdf ? pdf : nullptr);
   if (glossyPdf) *glossyPdf = hn::IfThenElseZero(glossy, hn::Load(df, pdf));
-  const V3F fl = loadF3(f.c);
-  return {Le.x * fl.x, Le.y * fl.y, Le.z * fl.z};
+  return times(Le, loadF3(f.c));
 }
 
 // deltaIrradiance (direct_lighting.h): each point and directional light traced once, reflection(Li, wi)
@@ -196,14 +199,14 @@ HWY_INLINE void storeLightShare(const PacketScene& scene, MF shaded, const Packe
   const VF one = setF(1.f);
   const V3F delta = deltaIrradiance(scene, h, shaded, g);
   const V3F scale = g.any ? select(g.lanes, V3F{one, one, one}, h.albedoOverPi) : h.albedoOverPi;
-  auto scaled3 = [&](const V3F& v) { return V3F{scale.x * v.x, scale.y * v.y, scale.z * v.z}; };
   const V3F L = h.emitted;
-  const V3F whole = scaled3(V3F{delta.x + (lightPart.x + bsdfPart.x), delta.y + (lightPart.y + bsdfPart.y),
-                                delta.z + (lightPart.z + bsdfPart.z)});
-  const V3F rest = scaled3(delta);
+  const V3F whole =
+      times(scale, V3F{delta.x + (lightPart.x + bsdfPart.x), delta.y + (lightPart.y + bsdfPart.y),
+                       delta.z + (lightPart.z + bsdfPart.z)});
+  const V3F rest = times(scale, delta);
   const MF emitter = hn::And(shaded, h.emitter), shares = hn::AndNot(h.emitter, shaded);
-  const VF R = hn::IfThenElseZero(shares, luminance(scaled3(lightPart)));
-  const VF G = hn::IfThenElseZero(shares, luminance(scaled3(bsdfPart)));
+  const VF R = hn::IfThenElseZero(shares, luminance(times(scale, lightPart)));
+  const VF G = hn::IfThenElseZero(shares, luminance(times(scale, bsdfPart)));
   VF B = luminance(L);
   B = hn::IfThenElse(shares, luminance(V3F{L.x + rest.x, L.y + rest.y, L.z + rest.z}), B);
   B = hn::IfThenElse(emitter, luminance(V3F{L.x + whole.x, L.y + whole.y, L.z + whole.z}), B);
@@ -284,6 +287,39 @@ HWY_INLINE void storeShading(const PacketHit& h, MF m, PacketShadingLanes& point
   hn::StoreU(hn::IfThenElseZero(m, setF(1.f)), DF(), points.active);
 }
 
+// everyLightIrradiance's sum (before the mean) in the shaded lanes: `samples` draws of each area light
+// (spheres, then polygons) by the measure, each term reflection(Le, wi) · factor(s, cos θ, glossy density;
+// computed only with kGlossyPdf); the lights the lanes cannot sample exactly (firstLightByLane on) by the
+// scalar techniques lane by lane, weighted by mis (1 where null).
+template <LightMeasure kMeasure, bool kGlossyPdf, class Factor>
+HWY_INLINE void addEveryLight(const PacketScene& scene, const PacketHit& h, const GlossySurfaces& g,
+                              MF shaded, const PacketDraws& draws, int samples, const Factor& factor,
+                              const PacketMisWeights* mis, V3F& E) {
+  const size_t byLane = scene.firstLightByLane, spheres = scene.lights.size();
+  for (size_t l = 0; l < std::min(byLane, spheres); ++l)
+    for (int i = 0; i < samples; ++i)
+      addLightSample<kMeasure, kGlossyPdf>(scene, scene.lights[l], h, g, shaded, draws,
+                                           l * size_t(samples) + size_t(i), factor, E);
+  if constexpr (kMeasure == LightMeasure::Area)
+    for (size_t l = 0; l < scene.polygons.size(); ++l) {
+      if (scene.polygons[l].skipped) continue;
+      const PolygonLanes light = broadcast(scene.polygons[l]);
+      for (int i = 0; i < samples; ++i)
+        addPolygonAreaSample<kGlossyPdf>(scene, light, h, g, shaded, draws,
+                                         (spheres + l) * size_t(samples) + size_t(i), factor, E);
+    }
+  if (byLane < spheres + scene.polygons.size()) {
+    // The rest of the sum, lane by lane, going on from the lanes' sums so far.
+    PacketShadingLanes points;
+    storeShading(h, shaded, points);
+    PacketColorLanes sums;
+    storeF3(E, sums.c);
+    queryLightIrradiance(*scene.scene, kMeasure, byLane, points, g.any ? &g.data : nullptr, mis, draws,
+                         samples, int(hn::Lanes(DF())), sums);
+    E = loadF3(sums.c);
+  }
+}
+
 // LightDirectIntegrator<measure, All> through directRadiance: every light, every sample, shadow
 // tested; the mean over the samples, times albedo/π, plus the emission at the hit.
 template <LightMeasure kMeasure>
@@ -299,31 +335,7 @@ HWY_INLINE void shadeDirect(const PacketScene& scene, const PacketRays& rays, co
   if (!hn::AllFalse(df, shaded)) {
     const int samples = scene.samples;
     const auto cosOverPdf = [](const PacketLightSample& s, VF cosTheta, VF) { return cosTheta / s.pdf; };
-    const size_t byLane = scene.firstLightByLane;
-    const size_t spheres = scene.lights.size();
-    if constexpr (kMeasure != LightMeasure::ProjectedSolidAngle)
-      for (size_t l = 0; l < std::min(byLane, spheres); ++l)
-        for (int i = 0; i < samples; ++i)
-          addLightSample<kMeasure>(scene, scene.lights[l], h, g, shaded, draws,
-                                   l * size_t(samples) + size_t(i), cosOverPdf, E);
-    if constexpr (kMeasure == LightMeasure::Area)
-      for (size_t l = 0; l < scene.polygons.size(); ++l) {
-        if (scene.polygons[l].skipped) continue;
-        const PolygonLanes light = broadcast(scene.polygons[l]);
-        for (int i = 0; i < samples; ++i)
-          addPolygonAreaSample(scene, light, h, g, shaded, draws, (spheres + l) * size_t(samples) + size_t(i),
-                               cosOverPdf, E);
-      }
-    if (byLane < spheres + scene.polygons.size()) {
-      // The rest of the sum, lane by lane, going on from the lanes' sums so far.
-      PacketShadingLanes points;
-      storeShading(h, shaded, points);
-      PacketColorLanes sums;
-      storeF3(E, sums.c);
-      queryLightIrradiance(*scene.scene, kMeasure, byLane, points, g.any ? &g.data : nullptr, nullptr, draws,
-                           samples, int(hn::Lanes(df)), sums);
-      E = loadF3(sums.c);
-    }
+    addEveryLight<kMeasure, false>(scene, h, g, shaded, draws, samples, cosOverPdf, nullptr, E);
     const VF invSamples = setF(1.f / float(samples));
     // directRadiance: L + albedo/π · (delta lights' 0 + the estimate).
     E = scaled(E, invSamples);
@@ -475,8 +487,7 @@ HWY_INLINE void shadeHemisphere(const PacketScene& scene, const PacketRays& rays
                           [&](size_t, MF lanes, const V3F& Le, const V3F&, const V3F&, VF) {
                             // The BSDF's samples carry f cos θ / pdf; f of the warps' is evaluated.
                             const V3F reflectedLe =
-                                bsdfSampled ? V3F{Le.x * d.weight.x, Le.y * d.weight.y, Le.z * d.weight.z}
-                                            : reflected(scene, g, lanes, Le, d.w);
+                                bsdfSampled ? times(Le, d.weight) : reflected(scene, g, lanes, Le, d.w);
                             addRadiance(lanes, reflectedLe, d.cosOverPdf, E);
                           });
     }
@@ -531,26 +542,8 @@ HWY_INLINE void shadeMis(const PacketScene& scene, const PacketRays& rays, const
         const VF weight = misWeight<kHeuristic>(nL * s.pdf, nB * surfacePdf);
         return cosTheta / s.pdf * weight;
       };
-      for (size_t l = 0; l < std::min(byLane, spheres); ++l)
-        for (int i = 0; i < nLight; ++i)
-          addLightSample<kMeasure, true>(scene, scene.lights[l], h, g, shaded, draws,
-                                         l * size_t(nLight) + size_t(i), misFactor, lightPart);
-      if constexpr (kMeasure == LightMeasure::Area)
-        for (size_t l = 0; l < scene.polygons.size(); ++l) {
-          if (scene.polygons[l].skipped) continue;
-          const PolygonLanes light = broadcast(scene.polygons[l]);
-          for (int i = 0; i < nLight; ++i)
-            addPolygonAreaSample<true>(scene, light, h, g, shaded, draws,
-                                       (spheres + l) * size_t(nLight) + size_t(i), misFactor, lightPart);
-        }
-      if (byLane < spheres + scene.polygons.size()) {
-        PacketColorLanes sums;
-        storeF3(lightPart, sums.c);
-        const PacketMisWeights weights{kHeuristic, float(nLight), float(nBsdf)};
-        queryLightIrradiance(*scene.scene, kMeasure, byLane, shadingPoints(), g.any ? &g.data : nullptr,
-                             &weights, draws, nLight, laneCount, sums);
-        lightPart = loadF3(sums.c);
-      }
+      const PacketMisWeights weights{kHeuristic, float(nLight), float(nBsdf)};
+      addEveryLight<kMeasure, true>(scene, h, g, shaded, draws, nLight, misFactor, &weights, lightPart);
       const VF inv = setF(1.f / float(nLight));
       lightPart = scaled(lightPart, inv);
     }
@@ -586,8 +579,7 @@ HWY_INLINE void shadeMis(const PacketScene& scene, const PacketRays& rays, const
                 pL = hn::Load(df, pdf);
               }
               const VF weight = misWeight<kHeuristic>(nB * d.pdf, nL * pL);
-              const V3F sampledLe{Le.x * d.weight.x, Le.y * d.weight.y, Le.z * d.weight.z};
-              addRadiance(lanes, sampledLe, d.cosOverPdf * weight, bsdfPart);
+              addRadiance(lanes, times(Le, d.weight), d.cosOverPdf * weight, bsdfPart);
             });
       }
       const VF inv = setF(1.f / float(nBsdf));
