@@ -77,7 +77,7 @@ void BM_TwoSpheresPlane_Occluded(benchmark::State& state) {
 }
 BENCHMARK(BM_TwoSpheresPlane_Occluded)->Arg(0)->Arg(2);
 
-// ---- Brute force vs Embree on small triangle soups (justifies kBruteForceMaxTriangles) ----------
+// ---- Brute force vs Embree on small triangle and parallelogram soups (kBruteForceMaxPrimitives) --
 TriangleMesh triangleSoup(int n) {
   std::mt19937 rng(3);
   std::uniform_real_distribution<float> u(-1.f, 1.f);
@@ -133,6 +133,38 @@ void BM_SmallRockBruteForce(benchmark::State& s) {
 void BM_SmallRockEmbree(benchmark::State& s) {
   smallRockBench(s, AccelMode::Embree);
 }
+// n random parallelograms, each two triangles sharing a diagonal (the flat loop tests each pair once).
+TriangleMesh parallelogramSoup(int n) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(-1.f, 1.f);
+  TriangleMesh m;
+  for (int i = 0; i < n; ++i) {
+    const Vec3 c(u(rng), u(rng), u(rng)), e0 = 0.3f * Vec3(u(rng), u(rng), u(rng)),
+                                          e1 = 0.3f * Vec3(u(rng), u(rng), u(rng));
+    for (const Vec3& p : {c, c + e0, c + e0 + e1, c + e1}) m.positions.push_back(p);
+    const unsigned b = 4 * i;
+    m.triangles.push_back({b, b + 1, b + 2});
+    m.triangles.push_back({b, b + 2, b + 3});
+  }
+  return m;
+}
+void parallelogramSoupBench(benchmark::State& state, AccelMode mode) {
+  SceneGeometry g;
+  g.addMesh(parallelogramSoup(static_cast<int>(state.range(0))), 0);
+  g.build(mode);
+  if (mode == AccelMode::BruteForce && g.parallelogramCount() != size_t(state.range(0)))
+    state.SkipWithError("the soup's triangles did not pair");
+  intersectBench(state, g);
+}
+void BM_ParallelogramsBruteForce(benchmark::State& s) {
+  parallelogramSoupBench(s, AccelMode::BruteForce);
+}
+void BM_ParallelogramsEmbree(benchmark::State& s) {
+  parallelogramSoupBench(s, AccelMode::Embree);
+}
+BENCHMARK(BM_ParallelogramsBruteForce)->Arg(2)->Arg(4)->Arg(8)->Arg(16)->Arg(32);
+BENCHMARK(BM_ParallelogramsEmbree)->Arg(2)->Arg(4)->Arg(8)->Arg(16)->Arg(32);
+
 BENCHMARK(BM_SmallRockBruteForce)->Arg(0)->Arg(1);
 BENCHMARK(BM_SmallRockEmbree)->Arg(0)->Arg(1);
 BENCHMARK(BM_TrianglesBruteForce)->Arg(2)->Arg(8)->Arg(16)->Arg(32)->Arg(64)->Arg(128)->Arg(256);

@@ -3,7 +3,6 @@
 #include <embree3/rtcore.h>
 
 #include <cmath>
-#include <cstdlib>
 #include <cstring>
 #include <string>
 #include <utility>
@@ -112,6 +111,19 @@ void SceneGeometry::addMesh(const TriangleMesh& mesh, uint32_t objectId) {
   }
 }
 
+void SceneGeometry::pairFlatTriangles() {
+  for (uint32_t m = 0; m < meshes_.size(); ++m) {
+    const TriangleMesh& mesh = meshes_[m];
+    std::vector<uint32_t> leftover;
+    pairParallelograms(mesh, m, quads_, leftover);
+    for (uint32_t i : leftover) {
+      const glm::uvec3 t = mesh.triangles[i];
+      const Vec3 &p0 = mesh.positions[t.x], &p1 = mesh.positions[t.y], &p2 = mesh.positions[t.z];
+      flat_.push_back({p0, p1, p2, m, i, trianglePlane(p0, p1, p2)});
+    }
+  }
+}
+
 void SceneGeometry::build(AccelMode mode, AccelMode sphereMode) {
   scene_.reset();
   device_.reset();
@@ -120,28 +132,26 @@ void SceneGeometry::build(AccelMode mode, AccelMode sphereMode) {
   flatSphereCount_ = 0;
   quads_.clear();
   flat_.clear();
+  // The flat loop's primitives: each mesh's triangles paired into parallelograms where they form
+  // one, the rest one by one. Pairing is quadratic, so it is only tried where the flat loop can win.
+  const bool paired = triangleCount_ > 0 && mode != AccelMode::Embree &&
+                      (mode == AccelMode::BruteForce || triangleCount_ <= 2 * kBruteForceMaxPrimitives);
+  if (paired) pairFlatTriangles();
   const bool useEmbree =
       triangleCount_ > 0 &&
-      (mode == AccelMode::Embree || (mode == AccelMode::Auto && triangleCount_ > kBruteForceMaxTriangles));
+      (mode == AccelMode::Embree ||
+       (mode == AccelMode::Auto && (!paired || quads_.size() + flat_.size() > kBruteForceMaxPrimitives)));
+  if (useEmbree) {
+    quads_.clear();
+    flat_.clear();
+  }
   if (sphereMode == AccelMode::Auto) sphereMode = sphereAccelFromEnvironment();
   const bool spheresInBvh =
       !spheres_.empty() && (sphereMode == AccelMode::Embree ||
                             (sphereMode == AccelMode::Auto && spheres_.size() > kBruteForceMaxSpheres));
-  if (!useEmbree) {
-    for (uint32_t m = 0; m < meshes_.size(); ++m) {
-      const TriangleMesh& mesh = meshes_[m];
-      std::vector<uint32_t> leftover;
-      pairParallelograms(mesh, m, quads_, leftover);
-      for (uint32_t i : leftover) {
-        const glm::uvec3 t = mesh.triangles[i];
-        const Vec3 &p0 = mesh.positions[t.x], &p1 = mesh.positions[t.y], &p2 = mesh.positions[t.z];
-        flat_.push_back({p0, p1, p2, m, i, trianglePlane(p0, p1, p2)});
-      }
-    }
-    if (!spheresInBvh) {
-      flatSphereCount_ = spheres_.size();
-      return;
-    }
+  if (!useEmbree && !spheresInBvh) {
+    flatSphereCount_ = spheres_.size();
+    return;
   }
 
   RTCDevice device = rtcNewDevice(nullptr);

@@ -23,17 +23,21 @@
 namespace penumbra {
 
 enum class AccelMode : uint8_t {
-  Auto,        // brute force up to kBruteForceMaxTriangles triangles, Embree above
+  Auto,        // brute force up to kBruteForceMaxPrimitives flat primitives, Embree above
   BruteForce,  // always the flat loop (tests, tiny scenes)
   Embree,      // always Embree (if there is at least one triangle)
 };
 
-// Up to this many triangles the flat loop is used (bench/geometry_bench.cpp, one 2 GHz core, ns/ray):
+// Up to this many flat primitives (parallelograms, and triangles that pair into none) the flat loop
+// is used (bench/geometry_bench.cpp, one 2 GHz core, ns/ray):
 //   2-sphere + 2-triangle-plane scene: flat 85, Embree for the plane 144 (Embree's fixed cost per call);
-//   random overlapping soups (worst case for the loop): N=2 55 vs 44, N=8 108 vs 85, N=16 204 vs 94;
-//   closed rock mesh, N=20: 309 vs 187; N=80: 1221 vs 213.
-// The loop costs ~10 ns per triangle, Embree ~40 ns fixed plus a slow log(N): crossover near 8.
-inline constexpr size_t kBruteForceMaxTriangles = 8;
+//   random overlapping soups (worst case for the loop): triangles N=2 22 vs 31, N=8 50 vs 58, N=16 85
+//   vs 71; parallelograms N=4 60 vs 49, N=8 114 vs 55; closed rock mesh, N=20: 309 vs 187.
+// The loop costs ~5 ns per triangle and ~14 ns per parallelogram, Embree ~40 ns fixed plus a slow
+// log(N). Whole scenes favour the loop more than soups: Veach's MIS scene (6 parallelograms, 4 sphere
+// lights) renders 1.35× faster through the loop one sample at a time and 2.7× in packets, whose lanes
+// test parallelograms together where Embree takes rays one at a time (docs/performance.md).
+inline constexpr size_t kBruteForceMaxPrimitives = 8;
 
 // Up to this many spheres the flat loop is used, above it the spheres go into the BVH
 // (bench/geometry_bench.cpp, BM_Spheres*; figures in docs/performance.md).
@@ -94,6 +98,8 @@ class SceneGeometry {
   // occluded() outside the BVH: the flat loops of spheres and parallelograms, and of triangles.
   bool occludedByFlatShapes(const Ray& ray, int32_t skipSphere) const;
   bool occludedByFlatTriangles(const Ray& ray) const;
+  // Fills quads_ and flat_ from the meshes: triangle pairs forming a parallelogram, the rest alone.
+  void pairFlatTriangles();
 
   struct FlatTriangle {
     Vec3 p0, p1, p2;
