@@ -32,6 +32,7 @@
 
 #include <hwy/highway.h>
 
+#include "core/render/packet_bsdf-inl.h"
 #include "core/render/packet_geometry-inl.h"
 #include "core/render/packet_lights-inl.h"
 #include "core/render/packet_math-inl.h"
@@ -74,12 +75,13 @@ HWY_INLINE void addRadiance(MF m, const float (&Le)[3], VF factor, V3F& E) {
   addRadiance(m, setF3(Le), factor, E);
 }
 
-// The glossy surfaces among a packet's shaded lanes, whose BSDF the scalar code evaluates and samples lane
-// by lane (GlossyReflection; queryGlossyFactors, queryGlossySamples).
+// The glossy surfaces among a packet's shaded lanes: their BSDFs are evaluated and
+// sampled in lanes (packet_bsdf-inl.h).
 struct GlossySurfaces {
   MF lanes;  // the shaded lanes whose surface is glossy
   bool any;  // lanes is not empty (the rest is filled only then)
   PacketGlossyLanes data;
+  GlossyBsdfLanes bsdf;  // data in registers
 };
 
 // The glossy lanes among `shaded`, with their frames and wo.
@@ -98,25 +100,24 @@ HWY_INLINE void findGlossy(const PacketScene& scene, const PacketRays& rays, con
   hn::Store(hn::IfThenElseZero(g.lanes, setF(1.f)), df, active);
   storeF3(h.ns, ns.c);
   queryGlossyLanes(*scene.scene, rays, object, ns.c, active, int(hn::Lanes(df)), g.data);
+  g.bsdf = loadGlossyBsdf(g.data);
 }
 
 // reflection(Le, wi) (reflection.h) in the lanes of m: Le f(wo, wi) on glossy surfaces, Le on diffuse
 // ones (whose f is applied to the whole estimate); the other lanes keep Le. With glossyPdf, also the
 // glossy lanes' GlossyReflection::pdf of wi there (0 elsewhere).
-HWY_INLINE V3F reflected(const PacketScene& scene, const GlossySurfaces& g, MF m, const V3F& Le,
-                         const V3F& wi, VF* glossyPdf = nullptr) {
+HWY_INLINE V3F reflected(const GlossySurfaces& g, MF m, const V3F& Le, const V3F& wi,
+                         VF* glossyPdf = nullptr) {
   const DF df;
   if (glossyPdf) *glossyPdf = hn::Zero(df);
   if (!g.any) return Le;
   const MF glossy = hn::And(m, g.lanes);
   if (hn::AllFalse(df, glossy)) return Le;
-  PacketColorLanes w, f;
-  HWY_ALIGN float active[kMaxPacketLanes], pdf[kMaxPacketLanes];
-  storeF3(wi, w.c);
-  hn::Store(hn::IfThenElseZero(glossy, setF(1.f)), df, active);
-  queryGlossyFactors(*scene.scene, g.data, w.c, active, int(hn::Lanes(df)), f, glossyPdf ? pdf : nullptr);
-  if (glossyPdf) *glossyPdf = hn::IfThenElseZero(glossy, hn::Load(df, pdf));
-  return times(Le, loadF3(f.c));
+  V3F f;
+  VF pdf;
+  evalGlossy(g.bsdf, glossy, wi, f, glossyPdf ? &pdf : nullptr);
+  if (glossyPdf) *glossyPdf = hn::IfThenElseZero(glossy, pdf);
+  return select(glossy, times(Le, f), Le);
 }
 
 // deltaIrradiance (direct_lighting.h): each point and directional light traced once, reflection(Li, wi)
@@ -150,7 +151,7 @@ HWY_INLINE V3F deltaIrradiance(const PacketScene& scene, const PacketHit& h, MF 
     const VF tMax = length - setF(2.f * kRayOffsetScale) * maxOf(setF(light.scale), h.offsetScale);
     lit = hn::AndNot(occluded(scene, origin, w, tMax, -1, lit), lit);
     if (hn::AllFalse(df, lit)) continue;
-    addRadiance(lit, reflected(scene, g, lit, Li, wi), cosTheta, E);
+    addRadiance(lit, reflected(g, lit, Li, wi), cosTheta, E);
   }
   for (const PacketDirectionalLight& light : scene.directionalLights) {
     if (light.black) continue;
@@ -161,7 +162,7 @@ HWY_INLINE V3F deltaIrradiance(const PacketScene& scene, const PacketHit& h, MF 
     const V3F origin = offsetRayOrigin(h.p, h.ng, h.offsetScale, wi);
     lit = hn::AndNot(occluded(scene, origin, wi, setF(scene.rayLengthBound), -1, lit), lit);
     if (hn::AllFalse(df, lit)) continue;
-    addRadiance(lit, reflected(scene, g, lit, setF3(light.irradiance), wi), cosTheta, E);
+    addRadiance(lit, reflected(g, lit, setF3(light.irradiance), wi), cosTheta, E);
   }
   return E;
 }
@@ -258,7 +259,7 @@ HWY_INLINE void addLightSample(const PacketScene& scene, const PacketLight& ligh
   const MF lit = reachesLight(scene, h, m, s, setF(light.scale), light.geometrySphere, cosTheta);
   if (hn::AllFalse(DF(), lit)) return;
   VF glossyPdf;
-  const V3F Le = reflected(scene, g, lit, setF3(light.radiance), s.wi, kGlossyPdf ? &glossyPdf : nullptr);
+  const V3F Le = reflected(g, lit, setF3(light.radiance), s.wi, kGlossyPdf ? &glossyPdf : nullptr);
   addRadiance(lit, Le, factor(s, cosTheta, kGlossyPdf ? glossyPdf : hn::Zero(DF())), E);
 }
 
@@ -274,7 +275,7 @@ HWY_INLINE void addPolygonAreaSample(const PacketScene& scene, const PolygonLane
   const MF lit = reachesLight(scene, h, m, s, light.scale, -1, cosTheta);
   if (hn::AllFalse(DF(), lit)) return;
   VF glossyPdf;
-  const V3F Le = reflected(scene, g, lit, light.radiance, s.wi, kGlossyPdf ? &glossyPdf : nullptr);
+  const V3F Le = reflected(g, lit, light.radiance, s.wi, kGlossyPdf ? &glossyPdf : nullptr);
   addRadiance(lit, Le, factor(s, cosTheta, kGlossyPdf ? glossyPdf : hn::Zero(DF())), E);
 }
 
@@ -433,9 +434,8 @@ struct SurfaceDirection {
 };
 
 template <HemisphereWarp kWarp>
-HWY_INLINE SurfaceDirection surfaceDirection(const PacketScene& scene, const GlossySurfaces& g,
-                                             bool bsdfSampled, const FrameF& frame, const PacketDraws& draws,
-                                             size_t j) {
+HWY_INLINE SurfaceDirection surfaceDirection(const GlossySurfaces& g, bool bsdfSampled, const FrameF& frame,
+                                             const PacketDraws& draws, size_t j) {
   const DF df;
   VF u0, u1;
   loadDraw(draws, j, u0, u1);
@@ -446,16 +446,13 @@ HWY_INLINE SurfaceDirection surfaceDirection(const PacketScene& scene, const Glo
                      kWarp == HemisphereWarp::Cosine ? setF(kPi) : setF(2.f * kPi) * local.z,
                      kWarp == HemisphereWarp::Cosine ? local.z * setF(kInvPi) : setF(0.5f * kInvPi),
                      {one, one, one}};
-  if (!bsdfSampled) return d;
-  PacketBsdfSampleLanes bs;
-  HWY_ALIGN float glossy[kMaxPacketLanes];
-  hn::Store(hn::IfThenElseZero(g.lanes, one), df, glossy);
-  queryGlossySamples(*scene.scene, g.data, draws.u[j], glossy, int(hn::Lanes(df)), bs);
-  d.w = select(g.lanes, loadF3(bs.w), d.w);
-  d.valid = hn::Or(hn::And(g.lanes, loadMask(bs.valid)), hn::AndNot(g.lanes, d.valid));
+  if (!bsdfSampled || !g.any) return d;
+  const GlossySample s = sampleGlossy(g.bsdf, g.lanes, u0, u1);
+  d.w = select(g.lanes, toWorld(g.bsdf.frame, s.wi), d.w);
+  d.valid = hn::Or(hn::And(g.lanes, s.valid), hn::AndNot(g.lanes, d.valid));
   d.cosOverPdf = hn::IfThenElse(g.lanes, one, d.cosOverPdf);
-  d.pdf = hn::IfThenElse(g.lanes, hn::LoadU(df, bs.pdf), d.pdf);
-  d.weight = select(g.lanes, loadF3(bs.weight), d.weight);
+  d.pdf = hn::IfThenElse(g.lanes, s.pdf, d.pdf);
+  d.weight = select(g.lanes, s.weight, d.weight);
   return d;
 }
 
@@ -479,7 +476,7 @@ HWY_INLINE void shadeHemisphere(const PacketScene& scene, const PacketRays& rays
     const int samples = scene.samples;
     const bool bsdfSampled = kBsdf && g.any;
     for (int i = 0; i < samples; ++i) {
-      const SurfaceDirection d = surfaceDirection<kWarp>(scene, g, bsdfSampled, frame, draws, size_t(i));
+      const SurfaceDirection d = surfaceDirection<kWarp>(g, bsdfSampled, frame, draws, size_t(i));
       // leavesSurface(sp, w, cos θ).
       const MF active = hn::And(shaded, hn::And(d.valid, dot(d.w, h.ng) > zero));
       if (hn::AllFalse(df, active)) continue;
@@ -487,7 +484,7 @@ HWY_INLINE void shadeHemisphere(const PacketScene& scene, const PacketRays& rays
                           [&](size_t, MF lanes, const V3F& Le, const V3F&, const V3F&, VF) {
                             // The BSDF's samples carry f cos θ / pdf; f of the warps' is evaluated.
                             const V3F reflectedLe =
-                                bsdfSampled ? times(Le, d.weight) : reflected(scene, g, lanes, Le, d.w);
+                                bsdfSampled ? times(Le, d.weight) : reflected(g, lanes, Le, d.w);
                             addRadiance(lanes, reflectedLe, d.cosOverPdf, E);
                           });
     }
@@ -552,7 +549,7 @@ HWY_INLINE void shadeMis(const PacketScene& scene, const PacketRays& rays, const
       const size_t firstDraw = (spheres + scene.polygons.size()) * size_t(nLight);
       for (int i = 0; i < nBsdf; ++i) {
         const SurfaceDirection d =
-            surfaceDirection<HemisphereWarp::Cosine>(scene, g, g.any, frame, draws, firstDraw + size_t(i));
+            surfaceDirection<HemisphereWarp::Cosine>(g, g.any, frame, draws, firstDraw + size_t(i));
         const V3F w = d.w;
         const MF active = hn::And(shaded, hn::And(d.valid, dot(w, h.ng) > zero));
         if (hn::AllFalse(df, active)) continue;

@@ -236,11 +236,22 @@ void queryCameraHits(const Scene& scene, const PacketRays& rays, int lanes, Pack
 void queryGlossyLanes(const Scene& scene, const PacketRays& rays, const float (&object)[kMaxPacketLanes],
                       const float (&ns)[3][kMaxPacketLanes], const float (&shaded)[kMaxPacketLanes],
                       int lanes, PacketGlossyLanes& out) {
+  static const Bsdf kBlack = makeMicrofacet(Color3(0.f), 1.f, 1.f, 1.f);
   for (int k = 0; k < lanes; ++k) {
     out.material[k] = -1;
-    if (shaded[k] == 0.f) continue;
     const size_t material = size_t(object[k]);
-    if (scene.materials[material].bsdf.isDiffuse()) continue;
+    const bool glossy = shaded[k] != 0.f && !scene.materials[material].bsdf.isDiffuse();
+    const Bsdf& b = glossy ? scene.materials[material].bsdf : kBlack;
+    out.conductor[k] = b.type == BsdfType::RoughConductor ? 1.f : 0.f;
+    out.ggx[k] =
+        b.type == BsdfType::RoughConductor && b.distribution == MicrofacetDistribution::Ggx ? 1.f : 0.f;
+    out.alpha[k] = b.alpha;
+    out.ks[k] = b.ks;
+    out.extIOR[k] = b.extIOR;
+    out.intIOR[k] = b.intIOR;
+    setLane(out.kd, k, b.albedo);
+    setLane(out.R, k, b.specularReflectance);
+    if (!glossy) continue;
     // GlossyReflection(bsdf, sp, ray.d) of the ShadingPoint's frame.
     const Frame frame(lane(ns, k));
     out.material[k] = int32_t(material);
@@ -248,41 +259,6 @@ void queryGlossyLanes(const Scene& scene, const PacketRays& rays, const float (&
     setLane(out.t, k, frame.t);
     setLane(out.n, k, frame.n);
     setLane(out.wo, k, frame.toLocal(-lane(rays.d, k)));
-  }
-}
-
-void queryGlossyFactors(const Scene& scene, const PacketGlossyLanes& glossy,
-                        const float (&wi)[3][kMaxPacketLanes], const float (&active)[kMaxPacketLanes],
-                        int lanes, PacketColorLanes& f, float* pdf) {
-  for (int k = 0; k < lanes; ++k) {
-    const std::optional<GlossyReflection> g = active[k] != 0.f ? glossyLane(scene, &glossy, k) : std::nullopt;
-    if (pdf) pdf[k] = 0.f;
-    if (!g) {
-      setLane(f.c, k, Color3(1.f));
-      continue;
-    }
-    // reflection(Le, wi) / Le and reflection.pdf(wi, cos θ).
-    const Vec3 w = lane(wi, k);
-    setLane(f.c, k, evalBsdf(*g->bsdf, g->wo, g->frame.toLocal(w)));
-    if (pdf) pdf[k] = g->pdf(w, 0.f);
-  }
-}
-
-void queryGlossySamples(const Scene& scene, const PacketGlossyLanes& glossy,
-                        const float (&u)[2][kMaxPacketLanes], const float (&active)[kMaxPacketLanes],
-                        int lanes, PacketBsdfSampleLanes& out) {
-  for (int k = 0; k < lanes; ++k) {
-    out.valid[k] = 0.f;
-    const std::optional<GlossyReflection> g = active[k] != 0.f ? glossyLane(scene, &glossy, k) : std::nullopt;
-    if (!g) continue;
-    // bsdfSampledRadiance: a positive density and the direction above the shading surface (the
-    // geometric side is the kernel's test).
-    const BsdfSample s = sampleBsdf(*g->bsdf, g->wo, drawOf(u, k));
-    if (!(s.pdf > 0.f) || !(s.wi.z > 0.f)) continue;
-    out.valid[k] = 1.f;
-    out.pdf[k] = s.pdf;
-    setLane(out.w, k, g->frame.toWorld(s.wi));
-    setLane(out.weight, k, s.weight);
   }
 }
 

@@ -70,22 +70,18 @@ struct alignas(64) PacketColorLanes {
 };
 
 // The glossy surfaces of a packet's shaded lanes as GlossyReflection holds them: the material, the
-// shading frame (Frame of the facing shading normal) and wo, the direction to the camera in that frame.
-// A lane is glossy where material[k] >= 0.
+// shading frame (Frame of the facing shading normal) and wo, the direction to the camera in that frame,
+// and the material's Bsdf fields the lanes evaluate it with (flags 1 or 0). A lane is glossy where
+// material[k] >= 0; the other lanes hold a black microfacet BSDF.
 struct alignas(64) PacketGlossyLanes {
   int32_t material[kMaxPacketLanes];
   float s[3][kMaxPacketLanes], t[3][kMaxPacketLanes], n[3][kMaxPacketLanes];
   float wo[3][kMaxPacketLanes];
-};
-
-// BSDF samples of glossy lanes (sampleBsdf): the direction in world space, the factor f cos θ / pdf and
-// its density, and whether the sample counts (a positive density and the direction above the shading
-// surface).
-struct alignas(64) PacketBsdfSampleLanes {
-  float w[3][kMaxPacketLanes];
-  float weight[3][kMaxPacketLanes];
-  float pdf[kMaxPacketLanes];
-  float valid[kMaxPacketLanes];
+  float conductor[kMaxPacketLanes];  // roughconductor (else microfacet)
+  float ggx[kMaxPacketLanes];        // a GGX roughconductor (else Beckmann)
+  float alpha[kMaxPacketLanes], ks[kMaxPacketLanes], extIOR[kMaxPacketLanes], intIOR[kMaxPacketLanes];
+  float kd[3][kMaxPacketLanes];  // Bsdf::albedo
+  float R[3][kMaxPacketLanes];   // Bsdf::specularReflectance
 };
 
 void queryCameraHits(const Scene& scene, const PacketRays& rays, int lanes, PacketHitLanes& out);
@@ -94,16 +90,6 @@ void queryCameraHits(const Scene& scene, const PacketRays& rays, int lanes, Pack
 void queryGlossyLanes(const Scene& scene, const PacketRays& rays, const float (&object)[kMaxPacketLanes],
                       const float (&ns)[3][kMaxPacketLanes], const float (&shaded)[kMaxPacketLanes],
                       int lanes, PacketGlossyLanes& out);
-// f(wo, wi) (evalBsdf) of each glossy lane of `active` for the world direction wi, 1 in the other lanes;
-// with pdf (may be null) also pdfBsdf there, 0 in the other lanes.
-void queryGlossyFactors(const Scene& scene, const PacketGlossyLanes& glossy,
-                        const float (&wi)[3][kMaxPacketLanes], const float (&active)[kMaxPacketLanes],
-                        int lanes, PacketColorLanes& f, float* pdf);
-// sampleBsdf of each glossy lane of `active` from its draw u (bsdfSampledRadiance's sample); valid 0 in
-// the other lanes.
-void queryGlossySamples(const Scene& scene, const PacketGlossyLanes& glossy,
-                        const float (&u)[2][kMaxPacketLanes], const float (&active)[kMaxPacketLanes],
-                        int lanes, PacketBsdfSampleLanes& out);
 // SceneGeometry::occluded(ray, skipSphere) of each active lane's segment: blocked[k] is 1 or 0.
 void queryOccluded(const Scene& scene, const PacketSegments& rays, int lanes, int32_t skipSphere,
                    float* blocked);
