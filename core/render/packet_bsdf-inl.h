@@ -1,7 +1,9 @@
 // The glossy BSDFs of core/materials/bsdf.cpp (microfacet, roughconductor) in lanes, each lane with its
 // own material: f(wo, wi), its density and its sampling. exp (Beckmann's D), log1p (Beckmann's normals)
 // and sin and cos (GGX's visible normals) are libm's, called lane by lane; the rest is the scalar
-// functions' operations in lanes, branches as masks.
+// functions' operations in lanes, branches as masks. Below them, what the kernels see of a packet's
+// surfaces: which lanes are glossy (findGlossy), reflection(Le, wi) per lane (reflected), and a
+// direction sampled about each shading normal by a warp or the BSDF (surfaceDirection).
 // Part of the packet kernels: included by packet_kernels.cpp once per instruction set (Highway's
 // re-inclusion toggle below), inside that set's namespace.
 #if defined(PENUMBRA_PACKET_BSDF_INL_H_) == defined(HWY_TARGET_TOGGLE)
@@ -131,7 +133,8 @@ HWY_INLINE void evalGlossyLocal(const GlossyBsdfLanes& b, MF m, const V3F& wi, V
   const V3F h = normalized(V3F{wo.x + wi.x, wo.y + wi.y, wo.z + wi.z});
   const VF D = microfacetD(b.ggx, h, b.alpha, hn::And(above, b.specular));
   // microfacetSpecular.
-  const VF G = microfacetG1(b.ggx, wi, h, b.alpha) * microfacetG1(b.ggx, wo, h, b.alpha);
+  const VF G1o = microfacetG1(b.ggx, wo, h, b.alpha);  // also the visible normals' density
+  const VF G = microfacetG1(b.ggx, wi, h, b.alpha) * G1o;
   const VF spec = hn::IfThenElseZero(D != zero, D * G / (setF(4.f) * wi.z * wo.z));
   // evalAbove: kd/π + ks spec F (microfacet), R spec (roughconductor).
   const VF F = fresnelDielectric(dot(h, wi), b.extIOR, b.intIOR);
@@ -145,7 +148,7 @@ HWY_INLINE void evalGlossyLocal(const GlossyBsdfLanes& b, MF m, const V3F& wi, V
   if (!pdf) return;
   // pdfAbove: specularPdf is the reflected density of the sampled normals (all normals, D cos θh, or
   // GGX's visible normals).
-  const VF visiblePdf = microfacetG1(b.ggx, wo, h, b.alpha) * atLeastZero(dot(wo, h)) * D / wo.z;
+  const VF visiblePdf = G1o * atLeastZero(dot(wo, h)) * D / wo.z;
   const VF normalPdf = hn::IfThenElse(b.ggx, visiblePdf, D * h.z);
   const VF c = hn::Abs(dot(wi, h));
   const VF specularPdf = hn::IfThenElseZero(c > zero, normalPdf / (setF(4.f) * c));
@@ -236,6 +239,101 @@ HWY_INLINE GlossySample sampleGlossy(const GlossyBsdfLanes& b, MF m, VF u0, VF u
   const MF finite = hn::Abs(s.weight.x + s.weight.y + s.weight.z) < setF(INFINITY);
   s.valid = hn::And(valid, hn::And(nonNegative, finite));
   return s;
+}
+
+// ---- The kernels' view of a packet's surfaces ----------------------------------------------------
+
+// The glossy surfaces among a packet's shaded lanes, whose BSDFs the functions above evaluate and
+// sample.
+struct GlossySurfaces {
+  MF lanes;  // the shaded lanes whose surface is glossy
+  bool any;  // lanes is not empty (the rest is filled only then)
+  PacketGlossyLanes data;
+  GlossyBsdfLanes bsdf;  // data in registers
+};
+
+// The glossy lanes among `shaded`, with their frames and wo.
+HWY_INLINE void findGlossy(const PacketScene& scene, const PacketRays& rays, const PacketHit& h, MF shaded,
+                           GlossySurfaces& g) {
+  const DF df;
+  g.any = false;
+  g.lanes = hn::FirstN(df, 0);
+  if (!scene.anyGlossy) return;
+  g.lanes = hn::And(shaded, h.glossy);
+  g.any = !hn::AllFalse(df, g.lanes);
+  if (!g.any) return;
+  HWY_ALIGN float object[kMaxPacketLanes], active[kMaxPacketLanes];
+  PacketColorLanes ns;
+  hn::Store(h.object, df, object);
+  hn::Store(hn::IfThenElseZero(g.lanes, setF(1.f)), df, active);
+  storeF3(h.ns, ns.c);
+  queryGlossyLanes(*scene.scene, rays, object, ns.c, active, int(hn::Lanes(df)), g.data);
+  g.bsdf = loadGlossyBsdf(g.data);
+}
+
+// reflection(Le, wi) (reflection.h) in the lanes of m: Le f(wo, wi) on glossy surfaces, Le on diffuse
+// ones (whose f is applied to the whole estimate); the other lanes keep Le. With glossyPdf, also the
+// glossy lanes' GlossyReflection::pdf of wi there (0 elsewhere).
+HWY_INLINE V3F reflected(const GlossySurfaces& g, MF m, const V3F& Le, const V3F& wi,
+                         VF* glossyPdf = nullptr) {
+  const DF df;
+  if (glossyPdf) *glossyPdf = hn::Zero(df);
+  if (!g.any) return Le;
+  const MF glossy = hn::And(m, g.lanes);
+  if (hn::AllFalse(df, glossy)) return Le;
+  V3F f;
+  VF pdf;
+  evalGlossy(g.bsdf, glossy, wi, f, glossyPdf ? &pdf : nullptr);
+  if (glossyPdf) *glossyPdf = hn::IfThenElseZero(glossy, pdf);
+  return select(glossy, times(Le, f), Le);
+}
+
+// Sampler draw j of every lane.
+HWY_INLINE void loadDraw(const PacketDraws& draws, size_t j, VF& u0, VF& u1) {
+  const DF df;
+  u0 = hn::LoadU(df, draws.u[j][0]);
+  u1 = hn::LoadU(df, draws.u[j][1]);
+}
+
+// A direction about +z by warp kWarp (Warp::squareToCosineHemisphere or squareToUniformHemisphere).
+template <HemisphereWarp kWarp>
+HWY_INLINE V3F hemisphereDirection(VF u0, VF u1) {
+  return kWarp == HemisphereWarp::Cosine ? squareToCosineHemisphere(u0, u1)
+                                         : directionFromOneMinusCos(u0, u1);
+}
+
+// A direction sampled about the shading normal from draw j: by warp kWarp, or on glossy lanes (with
+// bsdfSampled) by the BSDF's sampler (bsdfSampledRadiance). Le · weight · cosOverPdf is its
+// contribution on a diffuse lane before f (reflection.h) and on a glossy BSDF-sampled one.
+struct SurfaceDirection {
+  V3F w;
+  MF valid;       // leavesSurface's test of the local direction (the geometric side is the caller's)
+  VF cosOverPdf;  // π for the cosine warp, 2π cos θ for the uniform one, 1 on BSDF-sampled lanes
+  VF pdf;         // the solid-angle density (the cosine warp's or the BSDF's)
+  V3F weight;     // 1, or the BSDF sample's f cos θ / pdf
+};
+
+template <HemisphereWarp kWarp>
+HWY_INLINE SurfaceDirection surfaceDirection(const GlossySurfaces& g, bool bsdfSampled, const FrameF& frame,
+                                             const PacketDraws& draws, size_t j) {
+  const DF df;
+  VF u0, u1;
+  loadDraw(draws, j, u0, u1);
+  const V3F local = hemisphereDirection<kWarp>(u0, u1);
+  const VF one = setF(1.f);
+  SurfaceDirection d{toWorld(frame, local),
+                     local.z > hn::Zero(df),
+                     kWarp == HemisphereWarp::Cosine ? setF(kPi) : setF(2.f * kPi) * local.z,
+                     kWarp == HemisphereWarp::Cosine ? local.z * setF(kInvPi) : setF(0.5f * kInvPi),
+                     {one, one, one}};
+  if (!bsdfSampled || !g.any) return d;
+  const GlossySample s = sampleGlossy(g.bsdf, g.lanes, u0, u1);
+  d.w = select(g.lanes, toWorld(g.bsdf.frame, s.wi), d.w);
+  d.valid = hn::Or(hn::And(g.lanes, s.valid), hn::AndNot(g.lanes, d.valid));
+  d.cosOverPdf = hn::IfThenElse(g.lanes, one, d.cosOverPdf);
+  d.pdf = hn::IfThenElse(g.lanes, s.pdf, d.pdf);
+  d.weight = select(g.lanes, s.weight, d.weight);
+  return d;
 }
 
 }  // namespace HWY_NAMESPACE

@@ -44,80 +44,9 @@ namespace {
 
 namespace hn = hwy::HWY_NAMESPACE;
 
-// Sampler draw j of every lane.
-HWY_INLINE void loadDraw(const PacketDraws& draws, size_t j, VF& u0, VF& u1) {
-  const DF df;
-  u0 = hn::LoadU(df, draws.u[j][0]);
-  u1 = hn::LoadU(df, draws.u[j][1]);
-}
-
-// v · f per component.
-HWY_INLINE V3F scaled(const V3F& v, VF f) {
-  return {v.x * f, v.y * f, v.z * f};
-}
-// a · b per component (Color3's product).
-HWY_INLINE V3F times(const V3F& a, const V3F& b) {
-  return {a.x * b.x, a.y * b.y, a.z * b.z};
-}
-
-// A direction about +z by warp kWarp (Warp::squareToCosineHemisphere or squareToUniformHemisphere).
-template <HemisphereWarp kWarp>
-HWY_INLINE V3F hemisphereDirection(VF u0, VF u1) {
-  return kWarp == HemisphereWarp::Cosine ? squareToCosineHemisphere(u0, u1)
-                                         : directionFromOneMinusCos(u0, u1);
-}
-
 // E += Le · factor in the lanes of m (E unchanged elsewhere).
 HWY_INLINE void addRadiance(MF m, const V3F& Le, VF factor, V3F& E) {
   E = select(m, V3F{E.x + Le.x * factor, E.y + Le.y * factor, E.z + Le.z * factor}, E);
-}
-HWY_INLINE void addRadiance(MF m, const float (&Le)[3], VF factor, V3F& E) {
-  addRadiance(m, setF3(Le), factor, E);
-}
-
-// The glossy surfaces among a packet's shaded lanes: their BSDFs are evaluated and
-// sampled in lanes (packet_bsdf-inl.h).
-struct GlossySurfaces {
-  MF lanes;  // the shaded lanes whose surface is glossy
-  bool any;  // lanes is not empty (the rest is filled only then)
-  PacketGlossyLanes data;
-  GlossyBsdfLanes bsdf;  // data in registers
-};
-
-// The glossy lanes among `shaded`, with their frames and wo.
-HWY_INLINE void findGlossy(const PacketScene& scene, const PacketRays& rays, const PacketHit& h, MF shaded,
-                           GlossySurfaces& g) {
-  const DF df;
-  g.any = false;
-  g.lanes = hn::FirstN(df, 0);
-  if (!scene.anyGlossy) return;
-  g.lanes = hn::And(shaded, h.glossy);
-  g.any = !hn::AllFalse(df, g.lanes);
-  if (!g.any) return;
-  HWY_ALIGN float object[kMaxPacketLanes], active[kMaxPacketLanes];
-  PacketColorLanes ns;
-  hn::Store(h.object, df, object);
-  hn::Store(hn::IfThenElseZero(g.lanes, setF(1.f)), df, active);
-  storeF3(h.ns, ns.c);
-  queryGlossyLanes(*scene.scene, rays, object, ns.c, active, int(hn::Lanes(df)), g.data);
-  g.bsdf = loadGlossyBsdf(g.data);
-}
-
-// reflection(Le, wi) (reflection.h) in the lanes of m: Le f(wo, wi) on glossy surfaces, Le on diffuse
-// ones (whose f is applied to the whole estimate); the other lanes keep Le. With glossyPdf, also the
-// glossy lanes' GlossyReflection::pdf of wi there (0 elsewhere).
-HWY_INLINE V3F reflected(const GlossySurfaces& g, MF m, const V3F& Le, const V3F& wi,
-                         VF* glossyPdf = nullptr) {
-  const DF df;
-  if (glossyPdf) *glossyPdf = hn::Zero(df);
-  if (!g.any) return Le;
-  const MF glossy = hn::And(m, g.lanes);
-  if (hn::AllFalse(df, glossy)) return Le;
-  V3F f;
-  VF pdf;
-  evalGlossy(g.bsdf, glossy, wi, f, glossyPdf ? &pdf : nullptr);
-  if (glossyPdf) *glossyPdf = hn::IfThenElseZero(glossy, pdf);
-  return select(glossy, times(Le, f), Le);
 }
 
 // deltaIrradiance (direct_lighting.h): each point and directional light traced once, reflection(Li, wi)
@@ -420,40 +349,6 @@ HWY_INLINE void shadeSelected(const PacketScene& scene, const PacketRays& rays, 
     E = scaled(E, invSamples);
   }
   storeRadiance(scene, shaded, h, g, E, out);
-}
-
-// A direction sampled about the shading normal from draw j: by warp kWarp, or on glossy lanes (with
-// bsdfSampled) by the BSDF's sampler (bsdfSampledRadiance). Le · weight · cosOverPdf is its
-// contribution on a diffuse lane before f (reflection.h) and on a glossy BSDF-sampled one.
-struct SurfaceDirection {
-  V3F w;
-  MF valid;       // leavesSurface's test of the local direction (the geometric side is the caller's)
-  VF cosOverPdf;  // π for the cosine warp, 2π cos θ for the uniform one, 1 on BSDF-sampled lanes
-  VF pdf;         // the solid-angle density (the cosine warp's or the BSDF's)
-  V3F weight;     // 1, or the BSDF sample's f cos θ / pdf
-};
-
-template <HemisphereWarp kWarp>
-HWY_INLINE SurfaceDirection surfaceDirection(const GlossySurfaces& g, bool bsdfSampled, const FrameF& frame,
-                                             const PacketDraws& draws, size_t j) {
-  const DF df;
-  VF u0, u1;
-  loadDraw(draws, j, u0, u1);
-  const V3F local = hemisphereDirection<kWarp>(u0, u1);
-  const VF one = setF(1.f);
-  SurfaceDirection d{toWorld(frame, local),
-                     local.z > hn::Zero(df),
-                     kWarp == HemisphereWarp::Cosine ? setF(kPi) : setF(2.f * kPi) * local.z,
-                     kWarp == HemisphereWarp::Cosine ? local.z * setF(kInvPi) : setF(0.5f * kInvPi),
-                     {one, one, one}};
-  if (!bsdfSampled || !g.any) return d;
-  const GlossySample s = sampleGlossy(g.bsdf, g.lanes, u0, u1);
-  d.w = select(g.lanes, toWorld(g.bsdf.frame, s.wi), d.w);
-  d.valid = hn::Or(hn::And(g.lanes, s.valid), hn::AndNot(g.lanes, d.valid));
-  d.cosOverPdf = hn::IfThenElse(g.lanes, one, d.cosOverPdf);
-  d.pdf = hn::IfThenElse(g.lanes, s.pdf, d.pdf);
-  d.weight = select(g.lanes, s.weight, d.weight);
-  return d;
 }
 
 // HemisphereDirectIntegrator<kWarp> through directRadiance, and with kBsdf BsdfDirectIntegrator (the

@@ -81,6 +81,15 @@ HWY_INLINE V3 select(M m, const V3& a, const V3& b) {
 HWY_INLINE VF maxOf(VF a, VF b) {
   return hn::IfThenElse(a < b, b, a);
 }
+// v · f per component.
+HWY_INLINE V3F scaled(const V3F& v, VF f) {
+  return {v.x * f, v.y * f, v.z * f};
+}
+// a · b per component (Color3's product).
+HWY_INLINE V3F times(const V3F& a, const V3F& b) {
+  return {a.x * b.x, a.y * b.y, a.z * b.z};
+}
+
 // maxAbsComponent.
 HWY_INLINE VF maxAbs(const V3F& v) {
   return maxOf(hn::Abs(v.x), maxOf(hn::Abs(v.y), hn::Abs(v.z)));
