@@ -71,6 +71,23 @@ void sphereOccluded(const RTCOccludedFunctionNArguments* args) {
 
 }  // namespace
 
+// Embree picks the widest kernels the CPU runs: 16-wide rays (AVX-512), 8-wide (AVX, AVX2), 4-wide
+// (SSE); AVX and AVX2, and SSE2 and SSE4.2, are told apart by the CPU's own flags as Embree tells them.
+std::string embreeKernelIsa() {
+  static const std::string isa = [] {
+    RTCDevice device = rtcNewDevice(nullptr);
+    if (!device) return std::string("none");
+    const bool ray16 = rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_NATIVE_RAY16_SUPPORTED) != 0;
+    const bool ray8 = rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_NATIVE_RAY8_SUPPORTED) != 0;
+    rtcReleaseDevice(device);
+    if (ray16) return std::string("avx512");
+    if (ray8)
+      return std::string(__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") ? "avx2" : "avx");
+    return std::string(__builtin_cpu_supports("sse4.2") ? "sse4.2" : "sse2");
+  }();
+  return isa;
+}
+
 AccelMode sphereAccelFromEnvironment() {
   const char* value = std::getenv("PENUMBRA_SPHERE_ACCEL");
   if (!value || !*value || std::strcmp(value, "auto") == 0) return AccelMode::Auto;

@@ -10,6 +10,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "core/geometry/bounds.h"
@@ -47,6 +48,12 @@ inline constexpr size_t kBruteForceMaxSpheres = 32;
 // PENUMBRA_SPHERE_ACCEL (unset or "auto": Auto; "bvh": Embree; "brute-force": BruteForce), so tests
 // and `penumbra check` can force either path on every scene. Throws penumbra::Error on another value.
 AccelMode sphereAccelFromEnvironment();
+
+// The instruction set of the kernels Embree traverses with on this machine ("avx512", "avx2", "avx",
+// "sse4.2" or "sse2"). Embree's kernels for different instruction sets round ray-triangle hits
+// differently, so an image of a scene traced by Embree is bit for bit the same only between machines
+// that report the same name here.
+std::string embreeKernelIsa();
 
 class SceneGeometry {
  public:
