@@ -12,10 +12,8 @@
 namespace penumbra {
 namespace {
 
-// Below this Ω⊥ the pdf cos θ / Ω⊥ could exceed float's range.
-constexpr double kMinProjectedSolidAngle = 0x1p-120;
-// Float directions carry ~2^-24 relative error per component (see SphereLight::pdfSolidAngle).
-constexpr double kDirectionSlack = 0x1p-22;
+constexpr double kMinProjectedSolidAngle = ProjectedSphereCap::kMinProjectedSolidAngle;
+constexpr double kDirectionSlack = ProjectedSphereCap::kDirectionSlack;
 
 double sqrtNonNeg(double v) {
   return std::sqrt(std::max(v, 0.0));

@@ -47,6 +47,10 @@ struct ProjectedSphereCap {
   // or the bracket shrinks to a few ulps, or after kMaxInversionSteps steps.
   static constexpr double kAreaTolerance = 1e-10;
   static constexpr int kMaxInversionSteps = 40;
+  // Below this Ω⊥ the pdf cos θ / Ω⊥ could exceed float's range: nothing is sampled.
+  static constexpr double kMinProjectedSolidAngle = 0x1p-120;
+  // Float directions carry ~2^-24 relative error per component (see SphereLight::pdfSolidAngle).
+  static constexpr double kDirectionSlack = 0x1p-22;
 
   // Plain data without default values (a cap is constructed per shading point and light; default
   // values would fill it twice): init() sets the fields of the map it chooses when it returns true

@@ -36,6 +36,7 @@
 #include "core/render/packet_geometry-inl.h"
 #include "core/render/packet_lights-inl.h"
 #include "core/render/packet_math-inl.h"
+#include "core/render/packet_projected_cap-inl.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace penumbra {
@@ -172,19 +173,42 @@ HWY_INLINE MF reachesLight(const PacketScene& scene, const PacketHit& h, MF m, c
   return hn::AndNot(occluded(scene, origin, s.wi, tMax, skipSphere, lit), lit);
 }
 
-// Light-sampling draw j towards sphere light `light` in the lanes of m: E += reflection(Le, wi) ·
-// factor(s, cos θ, the glossy lanes' BSDF density of wi) where it lights (a light of black radiance or
-// no size is never sampled: its draws are skipped). The density is computed only with kGlossyPdf (0
-// otherwise).
+// LightTechnique<kMeasure, SphereLight> of sphere light l at a packet's shading points: sample(draws, j)
+// draws the light sample of draw j in every lane (by area and solid angle; by the projected solid angle
+// ProjectedCapTechnique, set up once for the lanes of `active`).
+template <LightMeasure kMeasure>
+struct SphereTechnique {
+  const PacketLight& light;
+  V3F x;
+  SphereTechnique(const PacketScene& scene, size_t l, const PacketHit& h, MF /*active*/)
+      : light(scene.lights[l]), x(h.p) {}
+  PacketLightSample sample(const PacketDraws& draws, size_t j) const {
+    VF u0, u1;
+    loadDraw(draws, j, u0, u1);
+    return kMeasure == LightMeasure::Area ? sampleArea(light, x, u0, u1) : sampleSolidAngle(light, x, u0, u1);
+  }
+};
+template <>
+struct SphereTechnique<LightMeasure::ProjectedSolidAngle> : ProjectedCapTechnique {
+  using ProjectedCapTechnique::ProjectedCapTechnique;
+};
+
+// A sphere light the kernels sample: one of non-black radiance and positive size (the others' draws
+// are skipped, as the scalar techniques skip them).
+HWY_INLINE bool sampled(const PacketLight& light) {
+  return !light.black && light.radius > 0.f;
+}
+
+// Light-sampling draw j of `technique` towards sphere light `light` in the lanes of m: E +=
+// reflection(Le, wi) · factor(s, cos θ, the glossy lanes' BSDF density of wi) where it lights. The
+// density is computed only with kGlossyPdf (0 otherwise).
 template <LightMeasure kMeasure, bool kGlossyPdf = false, class Factor>
-HWY_INLINE void addLightSample(const PacketScene& scene, const PacketLight& light, const PacketHit& h,
+HWY_INLINE void addLightSample(const PacketScene& scene, const PacketLight& light,
+                               const SphereTechnique<kMeasure>& technique, const PacketHit& h,
                                const GlossySurfaces& g, MF m, const PacketDraws& draws, size_t j,
                                const Factor& factor, V3F& E) {
-  if (light.black || !(light.radius > 0.f)) return;
-  VF u0, u1, cosTheta;
-  loadDraw(draws, j, u0, u1);
-  const PacketLightSample s =
-      kMeasure == LightMeasure::Area ? sampleArea(light, h.p, u0, u1) : sampleSolidAngle(light, h.p, u0, u1);
+  VF cosTheta;
+  const PacketLightSample s = technique.sample(draws, j);
   const MF lit = reachesLight(scene, h, m, s, setF(light.scale), light.geometrySphere, cosTheta);
   if (hn::AllFalse(DF(), lit)) return;
   VF glossyPdf;
@@ -226,10 +250,14 @@ HWY_INLINE void addEveryLight(const PacketScene& scene, const PacketHit& h, cons
                               MF shaded, const PacketDraws& draws, int samples, const Factor& factor,
                               const PacketMisWeights* mis, V3F& E) {
   const size_t byLane = scene.firstLightByLane, spheres = scene.lights.size();
-  for (size_t l = 0; l < std::min(byLane, spheres); ++l)
+  for (size_t l = 0; l < std::min(byLane, spheres); ++l) {
+    const PacketLight& light = scene.lights[l];
+    if (!sampled(light)) continue;
+    const SphereTechnique<kMeasure> technique(scene, l, h, shaded);
     for (int i = 0; i < samples; ++i)
-      addLightSample<kMeasure, kGlossyPdf>(scene, scene.lights[l], h, g, shaded, draws,
+      addLightSample<kMeasure, kGlossyPdf>(scene, light, technique, h, g, shaded, draws,
                                            l * size_t(samples) + size_t(i), factor, E);
+  }
   if constexpr (kMeasure == LightMeasure::Area)
     for (size_t l = 0; l < scene.polygons.size(); ++l) {
       if (scene.polygons[l].skipped) continue;
@@ -264,8 +292,10 @@ HWY_INLINE void shadeDirect(const PacketScene& scene, const PacketRays& rays, co
   findGlossy(scene, rays, h, shaded, g);
   if (!hn::AllFalse(df, shaded)) {
     const int samples = scene.samples;
-    const auto cosOverPdf = [](const PacketLightSample& s, VF cosTheta, VF) { return cosTheta / s.pdf; };
-    addEveryLight<kMeasure, false>(scene, h, g, shaded, draws, samples, cosOverPdf, nullptr, E);
+    const auto factor = [](const PacketLightSample& s, VF cosTheta, VF) {
+      return cosOverPdf<kMeasure>(s, cosTheta);
+    };
+    addEveryLight<kMeasure, false>(scene, h, g, shaded, draws, samples, factor, nullptr, E);
     const VF invSamples = setF(1.f / float(samples));
     // directRadiance: L + albedo/π · (delta lights' 0 + the estimate).
     E = scaled(E, invSamples);
@@ -307,8 +337,8 @@ HWY_INLINE void shadeSelected(const PacketScene& scene, const PacketRays& rays, 
       const VD pmf = hn::LoadU(dd, picks.pmf);
       const float byLane = float(scene.firstLightByLane);
       const MF pickedByLane = hn::And(shaded, picked >= setF(byLane));
-      const auto cosOverSelectedPdf = [&](const PacketLightSample& s, VF cosTheta, VF) {
-        return demote(promote(cosTheta) / (promote(s.pdf) * pmf));
+      const auto selectedFactor = [&](const PacketLightSample& s, VF cosTheta, VF) {
+        return cosOverSelectedPdf<kMeasure>(s, cosTheta, pmf);
       };
       if constexpr (kMeasure == LightMeasure::Area)
         if (!scene.polygons.empty()) {
@@ -323,7 +353,7 @@ HWY_INLINE void shadeSelected(const PacketScene& scene, const PacketRays& rays, 
           const MF pickedPolygon = hn::And(shaded, hn::Load(df, polygon) >= hn::Zero(df));
           if (!hn::AllFalse(df, pickedPolygon))
             addPolygonAreaSample(scene, gatherPolygons(scene.polygons, polygon), h, g, pickedPolygon, draws,
-                                 lightDraw, cosOverSelectedPdf, E);
+                                 lightDraw, selectedFactor, E);
         }
       if (!hn::AllFalse(df, pickedByLane)) {
         // The lanes whose light the scalar technique samples, each adding its one sample.
@@ -341,8 +371,11 @@ HWY_INLINE void shadeSelected(const PacketScene& scene, const PacketRays& rays, 
         bool seen = false;
         for (size_t e = 0; e < k && !seen; ++e) seen = picks.light[e] == l;
         if (seen) continue;
-        addLightSample<kMeasure>(scene, scene.lights[size_t(l)], h, g, hn::And(shaded, picked == setF(l)),
-                                 draws, lightDraw, cosOverSelectedPdf, E);
+        const PacketLight& light = scene.lights[size_t(l)];
+        if (!sampled(light)) continue;
+        const MF lanesOfLight = hn::And(shaded, picked == setF(l));
+        addLightSample<kMeasure>(scene, light, SphereTechnique<kMeasure>(scene, size_t(l), h, lanesOfLight),
+                                 h, g, lanesOfLight, draws, lightDraw, selectedFactor, E);
       }
     }
     const VF invSamples = setF(1.f / float(scene.samples));
@@ -432,7 +465,7 @@ HWY_INLINE void shadeMis(const PacketScene& scene, const PacketRays& rays, const
         // Reflection::pdf: the cosine hemisphere's on diffuse lanes, the BSDF's on glossy ones.
         const VF surfacePdf = hn::IfThenElse(g.lanes, glossyPdf, cosTheta * setF(kInvPi));
         const VF weight = misWeight<kHeuristic>(nL * s.pdf, nB * surfacePdf);
-        return cosTheta / s.pdf * weight;
+        return cosOverPdf<kMeasure>(s, cosTheta) * weight;
       };
       const PacketMisWeights weights{kHeuristic, float(nLight), float(nBsdf)};
       addEveryLight<kMeasure, true>(scene, h, g, shaded, draws, nLight, misFactor, &weights, lightPart);
@@ -453,14 +486,25 @@ HWY_INLINE void shadeMis(const PacketScene& scene, const PacketRays& rays, const
             [&](size_t l, MF lanes, const V3F& Le, const V3F& p, const V3F& n, VF lightIndex) {
               // MisIntegrator::lightPdf of the light reached: in lanes, or lane by lane.
               VF pL = zero;
+              MF byScalar = hn::FirstN(df, 0);
               if (nLight > 0 && l < std::min(byLane, spheres)) {
                 const PacketLight& light = scene.lights[l];
-                if (light.radius > 0.f)
-                  pL = kMeasure == LightMeasure::Area ? pdfAreaAsSolidAngle(light, h.p, p, n)
-                                                      : pdfSolidAngle(light, h.p, w);
+                if (light.radius > 0.f) {
+                  if constexpr (kMeasure == LightMeasure::ProjectedSolidAngle) {
+                    const ProjectedCapLanes cap = projectedCap(light, h.p, h.ns, lanes);
+                    pL = pdfProjectedCap(cap, w);
+                    byScalar = cap.byScalar;
+                  } else {
+                    pL = kMeasure == LightMeasure::Area ? pdfAreaAsSolidAngle(light, h.p, p, n)
+                                                        : pdfSolidAngle(light, h.p, w);
+                  }
+                }
               } else if (nLight > 0) {
+                byScalar = lanes;
+              }
+              if (!hn::AllFalse(df, byScalar)) {
                 PacketShadingLanes reached = shadingPoints();
-                hn::StoreU(hn::IfThenElseZero(lanes, setF(1.f)), df, reached.active);
+                hn::StoreU(hn::IfThenElseZero(byScalar, setF(1.f)), df, reached.active);
                 HWY_ALIGN float index[kMaxPacketLanes], pdf[kMaxPacketLanes];
                 PacketColorLanes wl, pl, nl;
                 hn::Store(lightIndex, df, index);
@@ -468,7 +512,7 @@ HWY_INLINE void shadeMis(const PacketScene& scene, const PacketRays& rays, const
                 storeF3(p, pl.c);
                 storeF3(n, nl.c);
                 queryLightPdfs(*scene.scene, kMeasure, reached, index, wl.c, pl.c, nl.c, laneCount, pdf);
-                pL = hn::Load(df, pdf);
+                pL = hn::IfThenElse(byScalar, hn::Load(df, pdf), pL);
               }
               const VF weight = misWeight<kHeuristic>(nB * d.pdf, nL * pL);
               addRadiance(lanes, times(Le, d.weight), d.cosOverPdf * weight, bsdfPart);

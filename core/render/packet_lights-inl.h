@@ -24,12 +24,28 @@ namespace penumbra {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
-// A light sample for every lane: the lanes where it is valid with a positive pdf and radiance.
+// A light sample for every lane: the lanes where it is valid with a positive pdf and radiance; for
+// projected-solid-angle samples also the estimate factor cos θ / pdf they carry instead of the quotient
+// (the Ω⊥ of LightTechnique's cosOverPdf).
 struct PacketLightSample {
   MF valid;
   V3F wi;
   VF dist, pdf;
+  VF projected;
 };
+
+// LightTechnique::cosOverPdf of the measure.
+template <LightMeasure kMeasure>
+HWY_INLINE VF cosOverPdf(const PacketLightSample& s, VF cosTheta) {
+  if constexpr (kMeasure == LightMeasure::ProjectedSolidAngle) return s.projected;
+  return cosTheta / s.pdf;
+}
+// LightTechnique::cosOverSelectedPdf of the measure, for a light picked with probability pmf.
+template <LightMeasure kMeasure>
+HWY_INLINE VF cosOverSelectedPdf(const PacketLightSample& s, VF cosTheta, VD pmf) {
+  if constexpr (kMeasure == LightMeasure::ProjectedSolidAngle) return demote(promote(s.projected) / pmf);
+  return demote(promote(cosTheta) / (promote(s.pdf) * pmf));
+}
 
 // SphereLight::sampleArea (with Warp::squareToUniformSphere).
 HWY_INLINE PacketLightSample sampleArea(const PacketLight& light, const V3F& x, VF u0, VF u1) {
@@ -60,6 +76,7 @@ HWY_INLINE PacketLightSample sampleArea(const PacketLight& light, const V3F& x, 
   s.valid = hn::And(toF(valid), s.pdf > hn::Zero(df));
   s.wi = demote(V3D{toP.x * invDist, toP.y * invDist, toP.z * invDist});
   s.dist = demote(dist);
+  s.projected = hn::Zero(df);
   return s;
 }
 
@@ -131,6 +148,7 @@ HWY_INLINE PacketLightSample sampleSolidAngle(const PacketLight& light, const V3
   out.dist = demote(hn::Sqrt(dot(toP, toP)));
   out.pdf = demote(setD(1.0) / (setD(2.0 * kPiD) * oneMinusCos));
   out.valid = hn::And(toF(valid), out.pdf > hn::Zero(DF()));
+  out.projected = hn::Zero(DF());
   return out;
 }
 
@@ -235,6 +253,7 @@ HWY_INLINE PacketLightSample samplePolygonArea(const PolygonLanes& light, const 
   s.valid = hn::And(toF(faces), s.pdf > hn::Zero(DF()));
   s.wi = demote(V3D{d.x / dist, d.y / dist, d.z / dist});
   s.dist = demote(dist);
+  s.projected = hn::Zero(DF());
   return s;
 }
 

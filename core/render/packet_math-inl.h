@@ -137,8 +137,11 @@ HWY_INLINE V3F directionFromOneMinusCos(VF w, VF u) {
   return {sinTheta * cosPhi, sinTheta * sinPhi, setF(1.f) - w};
 }
 
-// Warp::squareToCosineHemisphere through concentricPoint (core/sampling/warp_util.h).
-HWY_INLINE V3F squareToCosineHemisphere(VF u0, VF u1) {
+// concentricPoint (core/sampling/warp_util.h): the concentric disk's point (x, y) of (u0, u1), and rho.
+struct DiskPointF {
+  VF x, y, rho;
+};
+HWY_INLINE DiskPointF concentricPoint(VF u0, VF u1) {
   const VF eps = setF(0x1p-24f);
   const VF a = (setF(2.f) * u0 - setF(1.f)) + eps, b = (setF(2.f) * u1 - setF(1.f)) + eps;
   const MF aDominant = hn::Abs(a) > hn::Abs(b);
@@ -147,10 +150,15 @@ HWY_INLINE V3F squareToCosineHemisphere(VF u0, VF u1) {
   const MF centre = r == zero;  // a == b == 0: the point (0, 0) with rho 0
   VF s, c;
   sinCosQuarterPi(setF(kPiOver4) * (hn::IfThenElse(aDominant, b, a) / r), s, c);
-  const VF rho = hn::IfThenElseZero(hn::Not(centre), hn::Abs(r));
-  const VF x = hn::IfThenElseZero(hn::Not(centre), r * hn::IfThenElse(aDominant, c, s));
-  const VF y = hn::IfThenElseZero(hn::Not(centre), r * hn::IfThenElse(aDominant, s, c));
-  return {x, y, safeSqrt((setF(1.f) - rho) * (setF(1.f) + rho))};
+  return {hn::IfThenElseZero(hn::Not(centre), r * hn::IfThenElse(aDominant, c, s)),
+          hn::IfThenElseZero(hn::Not(centre), r * hn::IfThenElse(aDominant, s, c)),
+          hn::IfThenElseZero(hn::Not(centre), hn::Abs(r))};
+}
+
+// Warp::squareToCosineHemisphere through concentricPoint.
+HWY_INLINE V3F squareToCosineHemisphere(VF u0, VF u1) {
+  const DiskPointF d = concentricPoint(u0, u1);
+  return {d.x, d.y, safeSqrt((setF(1.f) - d.rho) * (setF(1.f) + d.rho))};
 }
 
 // Frame (core/math/frame.h): Duff et al.'s basis about unit n, and toWorld.

@@ -200,6 +200,23 @@ void querySelectedLightSamples(const Scene& scene, LightMeasure measure, const P
   }
 }
 
+void queryProjectedCapSamples(const Scene& scene, size_t light, const PacketShadingLanes& points,
+                              const float (&u)[2][kMaxPacketLanes], int lanes, PacketCapSampleLanes& out) {
+  for (int k = 0; k < lanes; ++k) {
+    out.pdf[k] = out.projected[k] = out.dist[k] = 0.f;
+    setLane(out.wi, k, Vec3(0.f));
+    if (points.active[k] == 0.f) continue;
+    const LightTechnique<LightMeasure::ProjectedSolidAngle, SphereLight> technique(scene.sphereLights[light],
+                                                                                   shadingPoint(points, k));
+    if (!technique.canSample()) continue;
+    const LightSample s = technique.sample(drawOf(u, k));
+    setLane(out.wi, k, s.wi);
+    out.dist[k] = s.dist;
+    out.pdf[k] = s.pdf;
+    out.projected[k] = technique.cosOverPdf(s, 0.f);
+  }
+}
+
 void queryCameraHits(const Scene& scene, const PacketRays& rays, int lanes, PacketHitLanes& out) {
   for (int k = 0; k < lanes; ++k) {
     Ray ray;

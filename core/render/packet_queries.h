@@ -121,6 +121,16 @@ void queryLightPdfs(const Scene& scene, LightMeasure measure, const PacketShadin
 void querySelectedLightSamples(const Scene& scene, LightMeasure measure, const PacketShadingLanes& points,
                                const PacketGlossyLanes* glossy, const PacketPickLanes& picks,
                                const float (&u)[2][kMaxPacketLanes], int lanes, PacketColorLanes& out);
+// LightTechnique<ProjectedSolidAngle, SphereLight>'s sample of sphere light `light` from draw u at each
+// active lane's shading point (for the caps the kernels leave to the scalar map): the direction,
+// distance and pdf of the sample, and projected, the cap's Ω⊥ as the technique rounds it (its
+// cosOverPdf). pdf is 0 where the cap cannot be sampled, and in inactive lanes.
+struct alignas(64) PacketCapSampleLanes {
+  float wi[3][kMaxPacketLanes];
+  float dist[kMaxPacketLanes], pdf[kMaxPacketLanes], projected[kMaxPacketLanes];
+};
+void queryProjectedCapSamples(const Scene& scene, size_t light, const PacketShadingLanes& points,
+                              const float (&u)[2][kMaxPacketLanes], int lanes, PacketCapSampleLanes& out);
 void queryLightPicks(const Scene& scene, LightSelection selection, const float (&u)[2][kMaxPacketLanes],
                      int lanes, PacketPickLanes& picks);
 

@@ -125,9 +125,8 @@ size_t firstAreaLightSampledByLane(LightMeasure measure, const Scene& scene) {
     case LightMeasure::Area:
       return scene.areaLightCount();
     case LightMeasure::SolidAngle:
-      return scene.sphereLights.size();
     case LightMeasure::ProjectedSolidAngle:
-      return 0;
+      return scene.sphereLights.size();
   }
   return 0;
 }

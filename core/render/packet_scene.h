@@ -116,7 +116,7 @@ struct PacketScene {
   std::vector<PacketLight> lights;  // sphere lights
   // Polygon lights (Scene::polygonLights, after the sphere lights in the area lights' order): sampled in
   // lanes by area; by the solid angle and projected solid angle lane by lane with the scalar techniques
-  // (packet_queries.h), as are sphere lights by the projected solid angle.
+  // (packet_queries.h).
   std::vector<PacketPolygonLight> polygons;
   // The first area light (spheres, then polygons) the kernels leave to the scalar techniques
   // (firstAreaLightSampledByLane).
@@ -143,8 +143,10 @@ bool packetGeometryQueried(const Scene& scene);
 inline constexpr int kMaxPacketDraws = 256;
 
 // The first area light (spheres, then polygons) whose samples by `measure` the packet kernels leave to
-// the scalar techniques lane by lane: none by area, the polygon lights by solid angle, every light by
-// the projected solid angle (maps that need atan2, sin, cos or asin).
+// the scalar techniques lane by lane: none by area, the polygon lights by the solid angle and the
+// projected solid angle (spherical polygons' maps, which need atan2, sin, cos or asin). Sphere lights by
+// the projected solid angle are sampled in lanes where their cap is wholly above the horizon and lane by
+// lane where it straddles it (packet_projected_cap-inl.h).
 size_t firstAreaLightSampledByLane(LightMeasure measure, const Scene& scene);
 
 // Why no packet kernel computes `job` (empty when one does).

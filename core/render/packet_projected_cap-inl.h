@@ -1,0 +1,175 @@
+// Projected-solid-angle sampling of sphere lights in the packet kernels (ProjectedSphereCap, lane by
+// lane as it computes it): a cap wholly above a lane's horizon is set up and sampled in lanes (its map
+// is the concentric disk scaled onto an ellipse, in closed form); a cap that straddles the horizon
+// (whose maps need arcsines and an iterative inversion) or whose centre lies along the normal (whose
+// frame comes from orthonormalBasis) is left to the scalar cap, lane by lane, for those lanes only.
+// Part of the packet kernels: included by packet_kernels.cpp once per instruction set (Highway's
+// re-inclusion toggle below), inside that set's namespace.
+#if defined(PENUMBRA_PACKET_PROJECTED_CAP_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef PENUMBRA_PACKET_PROJECTED_CAP_INL_H_
+#undef PENUMBRA_PACKET_PROJECTED_CAP_INL_H_
+#else
+#define PENUMBRA_PACKET_PROJECTED_CAP_INL_H_
+#endif
+
+#include <hwy/highway.h>
+
+#include "core/lights/projected_cap.h"
+#include "core/render/packet_bsdf-inl.h"
+#include "core/render/packet_geometry-inl.h"
+#include "core/render/packet_lights-inl.h"
+#include "core/render/packet_math-inl.h"
+#include "core/render/packet_queries.h"
+#include "core/render/packet_scene.h"
+
+HWY_BEFORE_NAMESPACE();
+namespace penumbra {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+// glm::cross in double lanes.
+HWY_INLINE V3D cross(const V3D& a, const V3D& b) {
+  return {a.y * b.z - b.y * a.z, a.z * b.x - b.z * a.x, a.x * b.y - b.x * a.y};
+}
+
+// std::sqrt(std::max(v, 0.0)) (projected_cap.cpp's sqrtNonNeg): NaN stays NaN as there.
+HWY_INLINE VD sqrtNonNeg(VD v) {
+  const VD zero = hn::Zero(DD());
+  return hn::Sqrt(hn::IfThenElse(v < zero, zero, v));
+}
+
+// ProjectedSphereCap::init of one sphere light at each lane's shading point, for the ellipse map.
+struct ProjectedCapLanes {
+  V3D origin, toCenter, ex, ey, ez;
+  VD d2, distance, sinAlpha, xc, a, b, k;
+  VD invProjectedSolidAngle;
+  VF projected;  // Ω⊥ as LightTechnique rounds it (0 where nothing is sampled in lanes)
+  MD inLanes;    // set up in lanes with something to sample
+  MF byScalar;   // left to the scalar cap: straddling the horizon, or no frame from the cross product
+};
+
+HWY_INLINE ProjectedCapLanes projectedCap(const PacketLight& light, const V3F& x, const V3F& n, MF active) {
+  const DD dd;
+  const VD zero = hn::Zero(dd);
+  const VD r = setD(double(light.radius));
+  ProjectedCapLanes c;
+  c.origin = promote(x);
+  c.toCenter = {setD(double(light.center[0])) - c.origin.x, setD(double(light.center[1])) - c.origin.y,
+                setD(double(light.center[2])) - c.origin.z};
+  c.ez = promote(n);
+  const V3D side = cross(c.ez, c.toCenter);
+  c.d2 = dot(c.toCenter, c.toCenter);
+  const VD side2 = dot(side, side);
+  const VD d = hn::Sqrt(c.d2), sideLength = hn::Sqrt(side2), tangentLength = sqrtNonNeg(c.d2 - r * r);
+  c.distance = d;
+  // Outside the light at a finite distance (the light's radius is positive: kernels skip it otherwise).
+  MD ok = hn::And(toD(active), hn::And(d >= r, d < setD(INFINITY)));
+  const VD invD = setD(1.0) / d;
+  c.sinAlpha = r * invD;
+  const VD cosAlpha = tangentLength * invD;
+  const VD cosCentre = dot(c.toCenter, c.ez) * invD;
+  ok = hn::AndNot(cosCentre <= hn::Neg(c.sinAlpha), ok);  // entirely below the horizon
+  const VD sinCentre = sideLength * invD;
+  const VD invSideLength = setD(1.0) / sideLength;
+  c.ey = {side.x * invSideLength, side.y * invSideLength, side.z * invSideLength};
+  c.ex = cross(c.ey, c.ez);
+  c.xc = cosAlpha * sinCentre;
+  c.a = c.sinAlpha * cosCentre;
+  c.b = c.sinAlpha;
+  c.k = c.sinAlpha * c.sinAlpha + cosAlpha * cosAlpha * cosCentre * cosCentre;
+  const MD straddling = cosCentre < c.sinAlpha;
+  const MD scalar = hn::And(ok, hn::Or(straddling, hn::Not(sideLength > zero)));
+  c.byScalar = toF(scalar);
+  // The ellipse's area π a b: sphere_cap.h's first case.
+  const VD area = setD(kPiD) * c.a * c.b;
+  c.inLanes = hn::And(hn::AndNot(scalar, ok), area >= setD(ProjectedSphereCap::kMinProjectedSolidAngle));
+  c.invProjectedSolidAngle = setD(1.0) / area;
+  c.projected = demote(hn::IfThenElseZero(c.inLanes, area));
+  return c;
+}
+
+// ProjectedSphereCap::sample on the ellipse map (Peters & Dachsbacher's affine image of the concentric
+// disk, lifted by Nusselt's analogy), in the lanes of c.inLanes.
+HWY_INLINE PacketLightSample sampleProjectedCap(const PacketLight& light, const ProjectedCapLanes& c, VF u0,
+                                                VF u1) {
+  const DiskPointF disk = concentricPoint(u0, u1);
+  const VD dx = c.a * promote(disk.x), y = c.b * promote(disk.y);
+  const VD z = sqrtNonNeg(c.k - y * y - dx * (setD(2.0) * c.xc + dx));
+  const VD along = c.xc + dx;
+  const V3D w{along * c.ex.x + y * c.ey.x + z * c.ez.x, along * c.ex.y + y * c.ey.y + z * c.ez.y,
+              along * c.ex.z + y * c.ey.z + z * c.ez.z};
+  // The near intersection with the sphere, as ProjectedSphereCap::sample computes it.
+  const VD r = setD(double(light.radius));
+  const VD tca = dot(w, c.toCenter);
+  const V3D perp{c.toCenter.x - tca * w.x, c.toCenter.y - tca * w.y, c.toCenter.z - tca * w.z};
+  const VD h = sqrtNonNeg(r * r - dot(perp, perp));
+  const VD dist = (c.d2 - r * r) / (tca + h);
+  PacketLightSample s;
+  s.wi = demote(w);
+  s.dist = demote(dist);
+  s.pdf = demote(z * c.invProjectedSolidAngle);
+  s.projected = c.projected;
+  s.valid = hn::And(toF(c.inLanes), s.pdf > hn::Zero(DF()));
+  return s;
+}
+
+// LightTechnique<ProjectedSolidAngle, SphereLight> of one light at a packet's shading points: set up
+// once per light and packet, then sampled per draw; the lanes left to the scalar cap are sampled by
+// queryProjectedCapSamples and merged in.
+struct ProjectedCapTechnique {
+  const PacketScene& scene;
+  const PacketLight& light;
+  size_t index;  // the light's among the sphere lights
+  ProjectedCapLanes cap;
+  bool anyScalar;
+  PacketShadingLanes points;  // the scalar lanes' shading points (stored where anyScalar)
+
+  ProjectedCapTechnique(const PacketScene& s, size_t l, const PacketHit& h, MF active)
+      : scene(s), light(s.lights[l]), index(l), cap(projectedCap(light, h.p, h.ns, active)) {
+    anyScalar = !hn::AllFalse(DF(), cap.byScalar);
+    if (!anyScalar) return;
+    storeF3(h.p, points.p);
+    storeF3(h.ng, points.ng);
+    storeF3(h.ns, points.ns);
+    hn::StoreU(h.offsetScale, DF(), points.offsetScale);
+    hn::StoreU(hn::IfThenElseZero(cap.byScalar, setF(1.f)), DF(), points.active);
+  }
+
+  PacketLightSample sample(const PacketDraws& draws, size_t j) const {
+    const DF df;
+    VF u0, u1;
+    loadDraw(draws, j, u0, u1);
+    PacketLightSample s = sampleProjectedCap(light, cap, u0, u1);
+    if (!anyScalar) return s;
+    PacketCapSampleLanes scalar;
+    queryProjectedCapSamples(*scene.scene, index, points, draws.u[j], int(hn::Lanes(df)), scalar);
+    const MF m = cap.byScalar;
+    s.wi = select(m, loadF3(scalar.wi), s.wi);
+    s.dist = hn::IfThenElse(m, hn::LoadU(df, scalar.dist), s.dist);
+    s.pdf = hn::IfThenElse(m, hn::LoadU(df, scalar.pdf), s.pdf);
+    s.projected = hn::IfThenElse(m, hn::LoadU(df, scalar.projected), s.projected);
+    s.valid = hn::Or(s.valid, hn::And(m, s.pdf > hn::Zero(df)));
+    return s;
+  }
+};
+
+// ProjectedSphereCap::pdf (the float direction's, with its cap test widened by kDirectionSlack) of unit
+// direction wF in the lanes of c.inLanes, 0 elsewhere.
+HWY_INLINE VF pdfProjectedCap(const ProjectedCapLanes& c, const V3F& wF) {
+  const VD zero = hn::Zero(DD());
+  const V3D w = promote(wF);
+  const VD len2 = dot(w, w);
+  const V3D x = cross(w, c.toCenter);
+  const VD sinMax = c.sinAlpha + setD(ProjectedSphereCap::kDirectionSlack);
+  const VD cosTheta = dot(w, c.ez) / hn::Sqrt(len2);
+  const MD inside = hn::And(hn::And(c.inLanes, len2 > zero),
+                            hn::And(hn::Not(dot(w, c.toCenter) <= zero),
+                                    hn::Not(dot(x, x) > sinMax * sinMax * len2 * c.distance * c.distance)));
+  return demote(hn::IfThenElseZero(hn::And(inside, cosTheta > zero), cosTheta * c.invProjectedSolidAngle));
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace penumbra
+HWY_AFTER_NAMESPACE();
+
+#endif
