@@ -162,11 +162,6 @@ HWY_INLINE void evalGlossy(const GlossyBsdfLanes& b, MF m, const V3F& wiWorld, V
   evalGlossyLocal(b, m, toLocal(b.frame, wiWorld), f, pdf);
 }
 
-// glm::cross.
-HWY_INLINE V3F cross(const V3F& x, const V3F& y) {
-  return {x.y * y.z - y.y * x.z, x.z * y.x - y.z * x.x, x.x * y.y - y.x * x.y};
-}
-
 // reflectAbout (microfacet_distribution.h): v mirrored about the unit normal n.
 HWY_INLINE V3F reflectAbout(const V3F& v, const V3F& n) {
   const VF twice = setF(2.f) * dot(v, n);

@@ -208,6 +208,15 @@ struct PacketHit {
   V3F emitted;  // emittedAt
 };
 
+// The shading points of the lanes of m, for the queries.
+HWY_INLINE void storeShading(const PacketHit& h, MF m, PacketShadingLanes& points) {
+  storeF3(h.p, points.p);
+  storeF3(h.ng, points.ng);
+  storeF3(h.ns, points.ns);
+  hn::StoreU(h.offsetScale, DF(), points.offsetScale);
+  hn::StoreU(hn::IfThenElseZero(m, setF(1.f)), DF(), points.active);
+}
+
 HWY_INLINE void setObject(const PacketScene& scene, uint32_t index, MF m, const V3F& rayD,
                           const V3F& ngUnflipped, PacketHit& h) {
   const PacketObject& object = scene.objects[index];

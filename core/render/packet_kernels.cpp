@@ -36,7 +36,7 @@
 #include "core/render/packet_geometry-inl.h"
 #include "core/render/packet_lights-inl.h"
 #include "core/render/packet_math-inl.h"
-#include "core/render/packet_projected_cap-inl.h"
+#include "core/render/packet_sphere_techniques-inl.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace penumbra {
@@ -173,32 +173,6 @@ HWY_INLINE MF reachesLight(const PacketScene& scene, const PacketHit& h, MF m, c
   return hn::AndNot(occluded(scene, origin, s.wi, tMax, skipSphere, lit), lit);
 }
 
-// LightTechnique<kMeasure, SphereLight> of sphere light l at a packet's shading points: sample(draws, j)
-// draws the light sample of draw j in every lane (by area and solid angle; by the projected solid angle
-// ProjectedCapTechnique, set up once for the lanes of `active`).
-template <LightMeasure kMeasure>
-struct SphereTechnique {
-  const PacketLight& light;
-  V3F x;
-  SphereTechnique(const PacketScene& scene, size_t l, const PacketHit& h, MF /*active*/)
-      : light(scene.lights[l]), x(h.p) {}
-  PacketLightSample sample(const PacketDraws& draws, size_t j) const {
-    VF u0, u1;
-    loadDraw(draws, j, u0, u1);
-    return kMeasure == LightMeasure::Area ? sampleArea(light, x, u0, u1) : sampleSolidAngle(light, x, u0, u1);
-  }
-};
-template <>
-struct SphereTechnique<LightMeasure::ProjectedSolidAngle> : ProjectedCapTechnique {
-  using ProjectedCapTechnique::ProjectedCapTechnique;
-};
-
-// A sphere light the kernels sample: one of non-black radiance and positive size (the others' draws
-// are skipped, as the scalar techniques skip them).
-HWY_INLINE bool sampled(const PacketLight& light) {
-  return !light.black && light.radius > 0.f;
-}
-
 // Light-sampling draw j of `technique` towards sphere light `light` in the lanes of m: E +=
 // reflection(Le, wi) · factor(s, cos θ, the glossy lanes' BSDF density of wi) where it lights. The
 // density is computed only with kGlossyPdf (0 otherwise).
@@ -230,15 +204,6 @@ HWY_INLINE void addPolygonAreaSample(const PacketScene& scene, const PolygonLane
   VF glossyPdf;
   const V3F Le = reflected(g, lit, light.radiance, s.wi, kGlossyPdf ? &glossyPdf : nullptr);
   addRadiance(lit, Le, factor(s, cosTheta, kGlossyPdf ? glossyPdf : hn::Zero(DF())), E);
-}
-
-// The shading points of the lanes of m, for the queries.
-HWY_INLINE void storeShading(const PacketHit& h, MF m, PacketShadingLanes& points) {
-  storeF3(h.p, points.p);
-  storeF3(h.ng, points.ng);
-  storeF3(h.ns, points.ns);
-  hn::StoreU(h.offsetScale, DF(), points.offsetScale);
-  hn::StoreU(hn::IfThenElseZero(m, setF(1.f)), DF(), points.active);
 }
 
 // everyLightIrradiance's sum (before the mean) in the shaded lanes: `samples` draws of each area light
@@ -486,25 +451,12 @@ HWY_INLINE void shadeMis(const PacketScene& scene, const PacketRays& rays, const
             [&](size_t l, MF lanes, const V3F& Le, const V3F& p, const V3F& n, VF lightIndex) {
               // MisIntegrator::lightPdf of the light reached: in lanes, or lane by lane.
               VF pL = zero;
-              MF byScalar = hn::FirstN(df, 0);
               if (nLight > 0 && l < std::min(byLane, spheres)) {
-                const PacketLight& light = scene.lights[l];
-                if (light.radius > 0.f) {
-                  if constexpr (kMeasure == LightMeasure::ProjectedSolidAngle) {
-                    const ProjectedCapLanes cap = projectedCap(light, h.p, h.ns, lanes);
-                    pL = pdfProjectedCap(cap, w);
-                    byScalar = cap.byScalar;
-                  } else {
-                    pL = kMeasure == LightMeasure::Area ? pdfAreaAsSolidAngle(light, h.p, p, n)
-                                                        : pdfSolidAngle(light, h.p, w);
-                  }
-                }
+                if (scene.lights[l].radius > 0.f)
+                  pL = SphereTechnique<kMeasure>(scene, l, h, lanes).pdf(w, p, n);
               } else if (nLight > 0) {
-                byScalar = lanes;
-              }
-              if (!hn::AllFalse(df, byScalar)) {
                 PacketShadingLanes reached = shadingPoints();
-                hn::StoreU(hn::IfThenElseZero(byScalar, setF(1.f)), df, reached.active);
+                hn::StoreU(hn::IfThenElseZero(lanes, setF(1.f)), df, reached.active);
                 HWY_ALIGN float index[kMaxPacketLanes], pdf[kMaxPacketLanes];
                 PacketColorLanes wl, pl, nl;
                 hn::Store(lightIndex, df, index);
@@ -512,7 +464,7 @@ HWY_INLINE void shadeMis(const PacketScene& scene, const PacketRays& rays, const
                 storeF3(p, pl.c);
                 storeF3(n, nl.c);
                 queryLightPdfs(*scene.scene, kMeasure, reached, index, wl.c, pl.c, nl.c, laneCount, pdf);
-                pL = hn::IfThenElse(byScalar, hn::Load(df, pdf), pL);
+                pL = hn::Load(df, pdf);
               }
               const VF weight = misWeight<kHeuristic>(nB * d.pdf, nL * pL);
               addRadiance(lanes, times(Le, d.weight), d.cosOverPdf * weight, bsdfPart);

@@ -172,8 +172,7 @@ HWY_INLINE VF pdfSolidAngle(const PacketLight& light, const V3F& x, const V3F& w
   const V3D w = promote(wF);
   const VD zero = hn::Zero(DD());
   const VD cosW = dot(w, cone.wc);
-  const V3D c{w.y * cone.wc.z - w.z * cone.wc.y, w.z * cone.wc.x - w.x * cone.wc.z,
-              w.x * cone.wc.y - w.y * cone.wc.x};  // glm::cross(w, wc)
+  const V3D c = cross(w, cone.wc);
   const VD sin2W = dot(c, c) / dot(w, w);
   // Inside the cone up to the rounding of a float direction (kDirectionSlack).
   const VD sinMax = hn::Sqrt(cone.sin2Max) + setD(SphereLight::kDirectionSlack);

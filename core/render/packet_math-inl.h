@@ -73,6 +73,11 @@ template <class V3>
 HWY_INLINE auto dot(const V3& a, const V3& b) {
   return a.x * b.x + a.y * b.y + a.z * b.z;
 }
+// glm::cross.
+template <class V3>
+HWY_INLINE V3 cross(const V3& x, const V3& y) {
+  return {x.y * y.z - y.y * x.z, x.z * y.x - y.z * x.x, x.x * y.y - y.x * x.y};
+}
 template <class V3, class M>
 HWY_INLINE V3 select(M m, const V3& a, const V3& b) {
   return {hn::IfThenElse(m, a.x, b.x), hn::IfThenElse(m, a.y, b.y), hn::IfThenElse(m, a.z, b.z)};

@@ -146,7 +146,7 @@ inline constexpr int kMaxPacketDraws = 256;
 // the scalar techniques lane by lane: none by area, the polygon lights by the solid angle and the
 // projected solid angle (spherical polygons' maps, which need atan2, sin, cos or asin). Sphere lights by
 // the projected solid angle are sampled in lanes where their cap is wholly above the horizon and lane by
-// lane where it straddles it (packet_projected_cap-inl.h).
+// lane where it straddles it (packet_sphere_techniques-inl.h).
 size_t firstAreaLightSampledByLane(LightMeasure measure, const Scene& scene);
 
 // Why no packet kernel computes `job` (empty when one does).

@@ -1,15 +1,17 @@
-// Projected-solid-angle sampling of sphere lights in the packet kernels (ProjectedSphereCap, lane by
-// lane as it computes it): a cap wholly above a lane's horizon is set up and sampled in lanes (its map
-// is the concentric disk scaled onto an ellipse, in closed form); a cap that straddles the horizon
-// (whose maps need arcsines and an iterative inversion) or whose centre lies along the normal (whose
-// frame comes from orthonormalBasis) is left to the scalar cap, lane by lane, for those lanes only.
+// The light-sampling techniques of sphere lights in the packet kernels (LightTechnique<measure,
+// SphereLight> in lanes): by area and solid angle through packet_lights-inl.h; by the projected solid
+// angle through ProjectedSphereCap, mirrored lane by lane: a cap wholly above a lane's horizon is set
+// up and sampled in lanes (its map is the concentric disk scaled onto an ellipse, in closed form); a
+// cap that straddles the horizon (whose maps need arcsines and an iterative inversion) or whose centre
+// lies along the normal (whose frame comes from orthonormalBasis) is left to the scalar cap, lane by
+// lane, for those lanes only.
 // Part of the packet kernels: included by packet_kernels.cpp once per instruction set (Highway's
 // re-inclusion toggle below), inside that set's namespace.
-#if defined(PENUMBRA_PACKET_PROJECTED_CAP_INL_H_) == defined(HWY_TARGET_TOGGLE)
-#ifdef PENUMBRA_PACKET_PROJECTED_CAP_INL_H_
-#undef PENUMBRA_PACKET_PROJECTED_CAP_INL_H_
+#if defined(PENUMBRA_PACKET_SPHERE_TECHNIQUES_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef PENUMBRA_PACKET_SPHERE_TECHNIQUES_INL_H_
+#undef PENUMBRA_PACKET_SPHERE_TECHNIQUES_INL_H_
 #else
-#define PENUMBRA_PACKET_PROJECTED_CAP_INL_H_
+#define PENUMBRA_PACKET_SPHERE_TECHNIQUES_INL_H_
 #endif
 
 #include <hwy/highway.h>
@@ -26,11 +28,6 @@ HWY_BEFORE_NAMESPACE();
 namespace penumbra {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
-
-// glm::cross in double lanes.
-HWY_INLINE V3D cross(const V3D& a, const V3D& b) {
-  return {a.y * b.z - b.y * a.z, a.z * b.x - b.z * a.x, a.x * b.y - b.x * a.y};
-}
 
 // std::sqrt(std::max(v, 0.0)) (projected_cap.cpp's sqrtNonNeg): NaN stays NaN as there.
 HWY_INLINE VD sqrtNonNeg(VD v) {
@@ -113,13 +110,28 @@ HWY_INLINE PacketLightSample sampleProjectedCap(const PacketLight& light, const 
   return s;
 }
 
-// LightTechnique<ProjectedSolidAngle, SphereLight> of one light at a packet's shading points: set up
-// once per light and packet, then sampled per draw; the lanes left to the scalar cap are sampled by
-// queryProjectedCapSamples and merged in.
+// ProjectedSphereCap::pdf (the float direction's, with its cap test widened by kDirectionSlack) of unit
+// direction wF in the lanes of c.inLanes, 0 elsewhere.
+HWY_INLINE VF pdfProjectedCap(const ProjectedCapLanes& c, const V3F& wF) {
+  const VD zero = hn::Zero(DD());
+  const V3D w = promote(wF);
+  const VD len2 = dot(w, w);
+  const V3D x = cross(w, c.toCenter);
+  const VD sinMax = c.sinAlpha + setD(ProjectedSphereCap::kDirectionSlack);
+  const VD cosTheta = dot(w, c.ez) / hn::Sqrt(len2);
+  const MD inside = hn::And(hn::And(c.inLanes, len2 > zero),
+                            hn::And(hn::Not(dot(w, c.toCenter) <= zero),
+                                    hn::Not(dot(x, x) > sinMax * sinMax * len2 * c.distance * c.distance)));
+  return demote(hn::IfThenElseZero(hn::And(inside, cosTheta > zero), cosTheta * c.invProjectedSolidAngle));
+}
+
+// LightTechnique<ProjectedSolidAngle, SphereLight> of one light at the shading points of a packet's
+// lanes `active`: set up once, then sampled per draw (sample) or asked a direction's density (pdf); the
+// lanes left to the scalar cap get theirs from queryProjectedCapSamples and queryLightPdfs, merged in.
 struct ProjectedCapTechnique {
   const PacketScene& scene;
   const PacketLight& light;
-  size_t index;  // the light's among the sphere lights
+  size_t index;  // the light's among the sphere lights (and the area lights)
   ProjectedCapLanes cap;
   bool anyScalar;
   PacketShadingLanes points;  // the scalar lanes' shading points (stored where anyScalar)
@@ -127,12 +139,7 @@ struct ProjectedCapTechnique {
   ProjectedCapTechnique(const PacketScene& s, size_t l, const PacketHit& h, MF active)
       : scene(s), light(s.lights[l]), index(l), cap(projectedCap(light, h.p, h.ns, active)) {
     anyScalar = !hn::AllFalse(DF(), cap.byScalar);
-    if (!anyScalar) return;
-    storeF3(h.p, points.p);
-    storeF3(h.ng, points.ng);
-    storeF3(h.ns, points.ns);
-    hn::StoreU(h.offsetScale, DF(), points.offsetScale);
-    hn::StoreU(hn::IfThenElseZero(cap.byScalar, setF(1.f)), DF(), points.active);
+    if (anyScalar) storeShading(h, cap.byScalar, points);
   }
 
   PacketLightSample sample(const PacketDraws& draws, size_t j) const {
@@ -151,23 +158,52 @@ struct ProjectedCapTechnique {
     s.valid = hn::Or(s.valid, hn::And(m, s.pdf > hn::Zero(df)));
     return s;
   }
+
+  // The density of unit direction w, which reached the light at p with normal n.
+  VF pdf(const V3F& w, const V3F& p, const V3F& n) const {
+    const DF df;
+    const VF inLanes = pdfProjectedCap(cap, w);
+    if (!anyScalar) return inLanes;
+    HWY_ALIGN float light[kMaxPacketLanes], pdf[kMaxPacketLanes];
+    hn::Store(setF(float(index)), df, light);
+    PacketColorLanes wl, pl, nl;
+    storeF3(w, wl.c);
+    storeF3(p, pl.c);
+    storeF3(n, nl.c);
+    queryLightPdfs(*scene.scene, LightMeasure::ProjectedSolidAngle, points, light, wl.c, pl.c, nl.c,
+                   int(hn::Lanes(df)), pdf);
+    return hn::IfThenElse(cap.byScalar, hn::Load(df, pdf), inLanes);
+  }
 };
 
-// ProjectedSphereCap::pdf (the float direction's, with its cap test widened by kDirectionSlack) of unit
-// direction wF in the lanes of c.inLanes, 0 elsewhere.
-HWY_INLINE VF pdfProjectedCap(const ProjectedCapLanes& c, const V3F& wF) {
-  const VD zero = hn::Zero(DD());
-  const V3D w = promote(wF);
-  const VD len2 = dot(w, w);
-  const V3D x = cross(w, c.toCenter);
-  const VD sinMax = c.sinAlpha + setD(ProjectedSphereCap::kDirectionSlack);
-  const VD cosTheta = dot(w, c.ez) / hn::Sqrt(len2);
-  const MD inside = hn::And(hn::And(c.inLanes, len2 > zero),
-                            hn::And(hn::Not(dot(w, c.toCenter) <= zero),
-                                    hn::Not(dot(x, x) > sinMax * sinMax * len2 * c.distance * c.distance)));
-  return demote(hn::IfThenElseZero(hn::And(inside, cosTheta > zero), cosTheta * c.invProjectedSolidAngle));
-}
+// LightTechnique<kMeasure, SphereLight> of sphere light l at the shading points of a packet's lanes
+// `active`: sample(draws, j) draws the light sample of draw j in every lane, pdf(w, p, n) is the
+// density of a direction w that reached the light at p with normal n.
+template <LightMeasure kMeasure>
+struct SphereTechnique {
+  const PacketLight& light;
+  V3F x;
+  SphereTechnique(const PacketScene& scene, size_t l, const PacketHit& h, MF /*active*/)
+      : light(scene.lights[l]), x(h.p) {}
+  PacketLightSample sample(const PacketDraws& draws, size_t j) const {
+    VF u0, u1;
+    loadDraw(draws, j, u0, u1);
+    return kMeasure == LightMeasure::Area ? sampleArea(light, x, u0, u1) : sampleSolidAngle(light, x, u0, u1);
+  }
+  VF pdf(const V3F& w, const V3F& p, const V3F& n) const {
+    return kMeasure == LightMeasure::Area ? pdfAreaAsSolidAngle(light, x, p, n) : pdfSolidAngle(light, x, w);
+  }
+};
+template <>
+struct SphereTechnique<LightMeasure::ProjectedSolidAngle> : ProjectedCapTechnique {
+  using ProjectedCapTechnique::ProjectedCapTechnique;
+};
 
+// A sphere light the kernels sample: one of non-black radiance and positive size (the others' draws
+// are skipped, as the scalar techniques skip them).
+HWY_INLINE bool sampled(const PacketLight& light) {
+  return !light.black && light.radius > 0.f;
+}
 }  // namespace HWY_NAMESPACE
 }  // namespace penumbra
 HWY_AFTER_NAMESPACE();
