@@ -36,6 +36,7 @@
 #include "core/render/packet_geometry-inl.h"
 #include "core/render/packet_lights-inl.h"
 #include "core/render/packet_math-inl.h"
+#include "core/render/packet_polygon_techniques-inl.h"
 #include "core/render/packet_sphere_techniques-inl.h"
 
 HWY_BEFORE_NAMESPACE();
@@ -173,73 +174,66 @@ HWY_INLINE MF reachesLight(const PacketScene& scene, const PacketHit& h, MF m, c
   return hn::AndNot(occluded(scene, origin, s.wi, tMax, skipSphere, lit), lit);
 }
 
-// Light-sampling draw j of `technique` towards sphere light `light` in the lanes of m: E +=
-// reflection(Le, wi) · factor(s, cos θ, the glossy lanes' BSDF density of wi) where it lights. The
-// density is computed only with kGlossyPdf (0 otherwise).
+// Light-sampling draw j of `technique` in the lanes of m, towards lights of radiance Le whose shadow rays
+// stop lightScale-relative short of them and skip sphere skipSphere (-1: none): E += reflection(Le, wi)
+// · factor(s, cos θ, the glossy lanes' BSDF density of wi) where it lights. The density is computed only
+// with kGlossyPdf (0 otherwise).
+template <bool kGlossyPdf = false, class Technique, class Factor>
+HWY_INLINE void addLightDraw(const PacketScene& scene, const Technique& technique, VF lightScale,
+                             int32_t skipSphere, const V3F& Le, const PacketHit& h, const GlossySurfaces& g,
+                             MF m, const PacketDraws& draws, size_t j, const Factor& factor, V3F& E) {
+  VF cosTheta;
+  const PacketLightSample s = technique.sample(draws, j);
+  const MF lit = reachesLight(scene, h, m, s, lightScale, skipSphere, cosTheta);
+  if (hn::AllFalse(DF(), lit)) return;
+  VF glossyPdf;
+  const V3F reflectedLe = reflected(g, lit, Le, s.wi, kGlossyPdf ? &glossyPdf : nullptr);
+  addRadiance(lit, reflectedLe, factor(s, cosTheta, kGlossyPdf ? glossyPdf : hn::Zero(DF())), E);
+}
+
+// Draw j of sphere light `light` by `technique` (addLightDraw).
 template <LightMeasure kMeasure, bool kGlossyPdf = false, class Factor>
 HWY_INLINE void addLightSample(const PacketScene& scene, const PacketLight& light,
                                const SphereTechnique<kMeasure>& technique, const PacketHit& h,
                                const GlossySurfaces& g, MF m, const PacketDraws& draws, size_t j,
                                const Factor& factor, V3F& E) {
-  VF cosTheta;
-  const PacketLightSample s = technique.sample(draws, j);
-  const MF lit = reachesLight(scene, h, m, s, setF(light.scale), light.geometrySphere, cosTheta);
-  if (hn::AllFalse(DF(), lit)) return;
-  VF glossyPdf;
-  const V3F Le = reflected(g, lit, setF3(light.radiance), s.wi, kGlossyPdf ? &glossyPdf : nullptr);
-  addRadiance(lit, Le, factor(s, cosTheta, kGlossyPdf ? glossyPdf : hn::Zero(DF())), E);
+  addLightDraw<kGlossyPdf>(scene, technique, setF(light.scale), light.geometrySphere, setF3(light.radiance),
+                           h, g, m, draws, j, factor, E);
 }
 
-// Area-sampling draw j towards the polygon light of each lane of m (PolygonLight::sampleArea): E +=
-// reflection(Le, wi) · factor(s, cos θ, the glossy density as for addLightSample) where it lights.
-template <bool kGlossyPdf = false, class Factor>
-HWY_INLINE void addPolygonAreaSample(const PacketScene& scene, const PolygonLanes& light, const PacketHit& h,
-                                     const GlossySurfaces& g, MF m, const PacketDraws& draws, size_t j,
-                                     const Factor& factor, V3F& E) {
-  VF u0, u1, cosTheta;
-  loadDraw(draws, j, u0, u1);
-  const PacketLightSample s = samplePolygonArea(light, h.p, u0, u1);
-  const MF lit = reachesLight(scene, h, m, s, light.scale, -1, cosTheta);
-  if (hn::AllFalse(DF(), lit)) return;
-  VF glossyPdf;
-  const V3F Le = reflected(g, lit, light.radiance, s.wi, kGlossyPdf ? &glossyPdf : nullptr);
-  addRadiance(lit, Le, factor(s, cosTheta, kGlossyPdf ? glossyPdf : hn::Zero(DF())), E);
+// Draw j of each lane's polygon light by `technique` (addLightDraw).
+template <LightMeasure kMeasure, bool kGlossyPdf = false, class Factor>
+HWY_INLINE void addPolygonSample(const PacketScene& scene, const PolygonTechnique<kMeasure>& technique,
+                                 const PacketHit& h, const GlossySurfaces& g, MF m, const PacketDraws& draws,
+                                 size_t j, const Factor& factor, V3F& E) {
+  addLightDraw<kGlossyPdf>(scene, technique, technique.light.scale, -1, technique.light.radiance, h, g, m,
+                           draws, j, factor, E);
 }
 
 // everyLightIrradiance's sum (before the mean) in the shaded lanes: `samples` draws of each area light
 // (spheres, then polygons) by the measure, each term reflection(Le, wi) · factor(s, cos θ, glossy density;
-// computed only with kGlossyPdf); the lights the lanes cannot sample exactly (firstLightByLane on) by the
-// scalar techniques lane by lane, weighted by mis (1 where null).
+// computed only with kGlossyPdf).
 template <LightMeasure kMeasure, bool kGlossyPdf, class Factor>
 HWY_INLINE void addEveryLight(const PacketScene& scene, const PacketHit& h, const GlossySurfaces& g,
                               MF shaded, const PacketDraws& draws, int samples, const Factor& factor,
-                              const PacketMisWeights* mis, V3F& E) {
-  const size_t byLane = scene.firstLightByLane, spheres = scene.lights.size();
-  for (size_t l = 0; l < std::min(byLane, spheres); ++l) {
+                              V3F& E) {
+  const size_t spheres = scene.lights.size(), perLight = size_t(samples);
+  for (size_t l = 0; l < spheres; ++l) {
     const PacketLight& light = scene.lights[l];
     if (!sampled(light)) continue;
-    const SphereTechnique<kMeasure> technique(scene, l, h, shaded);
-    for (int i = 0; i < samples; ++i)
-      addLightSample<kMeasure, kGlossyPdf>(scene, light, technique, h, g, shaded, draws,
-                                           l * size_t(samples) + size_t(i), factor, E);
+    const SphereTechnique<kMeasure> technique(scene, l, h, shaded, (l + 1) * perLight);
+    for (size_t i = 0; i < perLight; ++i)
+      addLightSample<kMeasure, kGlossyPdf>(scene, light, technique, h, g, shaded, draws, l * perLight + i,
+                                           factor, E);
   }
-  if constexpr (kMeasure == LightMeasure::Area)
-    for (size_t l = 0; l < scene.polygons.size(); ++l) {
-      if (scene.polygons[l].skipped) continue;
-      const PolygonLanes light = broadcast(scene.polygons[l]);
-      for (int i = 0; i < samples; ++i)
-        addPolygonAreaSample<kGlossyPdf>(scene, light, h, g, shaded, draws,
-                                         (spheres + l) * size_t(samples) + size_t(i), factor, E);
-    }
-  if (byLane < spheres + scene.polygons.size()) {
-    // The rest of the sum, lane by lane, going on from the lanes' sums so far.
-    PacketShadingLanes points;
-    storeShading(h, shaded, points);
-    PacketColorLanes sums;
-    storeF3(E, sums.c);
-    queryLightIrradiance(*scene.scene, kMeasure, byLane, points, g.any ? &g.data : nullptr, mis, draws,
-                         samples, int(hn::Lanes(DF())), sums);
-    E = loadF3(sums.c);
+  for (size_t l = 0; l < scene.polygons.size(); ++l) {
+    if (scene.polygons[l].skipped) continue;
+    const PolygonLanes light = broadcast(scene.polygons[l]);
+    const size_t first = (spheres + l) * perLight;
+    const PolygonTechnique<kMeasure> technique(scene, light, broadcastIndex(spheres + l).data(), h, shaded,
+                                               first + perLight);
+    for (size_t i = 0; i < perLight; ++i)
+      addPolygonSample<kMeasure, kGlossyPdf>(scene, technique, h, g, shaded, draws, first + i, factor, E);
   }
 }
 
@@ -260,7 +254,7 @@ HWY_INLINE void shadeDirect(const PacketScene& scene, const PacketRays& rays, co
     const auto factor = [](const PacketLightSample& s, VF cosTheta, VF) {
       return cosOverPdf<kMeasure>(s, cosTheta);
     };
-    addEveryLight<kMeasure, false>(scene, h, g, shaded, draws, samples, factor, nullptr, E);
+    addEveryLight<kMeasure, false>(scene, h, g, shaded, draws, samples, factor, E);
     const VF invSamples = setF(1.f / float(samples));
     // directRadiance: L + albedo/π · (delta lights' 0 + the estimate).
     E = scaled(E, invSamples);
@@ -300,46 +294,38 @@ HWY_INLINE void shadeSelected(const PacketScene& scene, const PacketRays& rays, 
       pickLights(scene, h, shaded, draws, pickDraw, picks);
       const VF picked = hn::LoadU(df, picks.light);
       const VD pmf = hn::LoadU(dd, picks.pmf);
-      const float byLane = float(scene.firstLightByLane);
-      const MF pickedByLane = hn::And(shaded, picked >= setF(byLane));
       const auto selectedFactor = [&](const PacketLightSample& s, VF cosTheta, VF) {
         return cosOverSelectedPdf<kMeasure>(s, cosTheta, pmf);
       };
-      if constexpr (kMeasure == LightMeasure::Area)
-        if (!scene.polygons.empty()) {
-          // Every lane that picked a polygon light, each sampling its own.
-          const float spheres = float(scene.lights.size());
-          alignas(64) float polygon[kMaxPacketLanes];
-          for (size_t k = 0; k < lanes; ++k) {
-            const float l = picks.light[k];
-            const bool lights = l >= spheres && !scene.polygons[size_t(l - spheres)].skipped;
-            polygon[k] = lights ? l - spheres : -1.f;
-          }
-          const MF pickedPolygon = hn::And(shaded, hn::Load(df, polygon) >= hn::Zero(df));
-          if (!hn::AllFalse(df, pickedPolygon))
-            addPolygonAreaSample(scene, gatherPolygons(scene.polygons, polygon), h, g, pickedPolygon, draws,
-                                 lightDraw, selectedFactor, E);
+      if (!scene.polygons.empty()) {
+        // Every lane that picked a polygon light, each sampling its own.
+        const float spheres = float(scene.lights.size());
+        alignas(64) float polygon[kMaxPacketLanes];
+        for (size_t k = 0; k < lanes; ++k) {
+          const float l = picks.light[k];
+          const bool lights = l >= spheres && !scene.polygons[size_t(l - spheres)].skipped;
+          polygon[k] = lights ? l - spheres : -1.f;
         }
-      if (!hn::AllFalse(df, pickedByLane)) {
-        // The lanes whose light the scalar technique samples, each adding its one sample.
-        PacketShadingLanes points;
-        storeShading(h, pickedByLane, points);
-        PacketColorLanes sample;
-        querySelectedLightSamples(*scene.scene, kMeasure, points, g.any ? &g.data : nullptr, picks,
-                                  draws.u[lightDraw], int(lanes), sample);
-        addRadiance(pickedByLane, loadF3(sample.c), setF(1.f), E);
+        const MF pickedPolygon = hn::And(shaded, hn::Load(df, polygon) >= hn::Zero(df));
+        if (!hn::AllFalse(df, pickedPolygon)) {
+          const PolygonLanes light = gatherPolygons(scene.polygons, polygon);
+          addPolygonSample(
+              scene, PolygonTechnique<kMeasure>(scene, light, picks.light, h, pickedPolygon, lightDraw + 1),
+              h, g, pickedPolygon, draws, lightDraw, selectedFactor, E);
+        }
       }
       // Each light some lane picked, once (lanes picking one light are handled together).
       for (size_t k = 0; k < lanes; ++k) {
         const float l = picks.light[k];
-        if (l < 0.f || l >= byLane || size_t(l) >= scene.lights.size()) continue;
+        if (l < 0.f || size_t(l) >= scene.lights.size()) continue;
         bool seen = false;
         for (size_t e = 0; e < k && !seen; ++e) seen = picks.light[e] == l;
         if (seen) continue;
         const PacketLight& light = scene.lights[size_t(l)];
         if (!sampled(light)) continue;
         const MF lanesOfLight = hn::And(shaded, picked == setF(l));
-        addLightSample<kMeasure>(scene, light, SphereTechnique<kMeasure>(scene, size_t(l), h, lanesOfLight),
+        addLightSample<kMeasure>(scene, light,
+                                 SphereTechnique<kMeasure>(scene, size_t(l), h, lanesOfLight, lightDraw + 1),
                                  h, g, lanesOfLight, draws, lightDraw, selectedFactor, E);
       }
     }
@@ -398,7 +384,8 @@ HWY_INLINE VF misWeight(VF a, VF b) {
 // MisIntegrator<measure, heuristic> through directRadiance: every light sampled by the measure and the
 // surface's own directions (the cosine hemisphere on diffuse lanes, the BSDF's sampler on glossy ones),
 // each sample weighted by the heuristic of the two densities. Light samples and light densities the
-// lanes cannot compute exactly (firstAreaLightSampledByLane) come from the scalar techniques lane by lane.
+// lanes cannot compute exactly come from the scalar techniques lane by lane (ScalarLightSamples,
+// queryLightPdfs).
 // With PacketScene::lightShare, MisLightShareIntegrator's channels instead of the radiance.
 template <LightMeasure kMeasure, MisHeuristic kHeuristic>
 HWY_INLINE void shadeMis(const PacketScene& scene, const PacketRays& rays, const PacketDraws& draws,
@@ -415,7 +402,7 @@ HWY_INLINE void shadeMis(const PacketScene& scene, const PacketRays& rays, const
   if (!hn::AllFalse(df, shaded) && (!scene.lights.empty() || !scene.polygons.empty())) {
     const int nLight = scene.lightSamples, nBsdf = scene.bsdfSamples;
     const VF nL = setF(float(nLight)), nB = setF(float(nBsdf));
-    const size_t spheres = scene.lights.size(), byLane = scene.firstLightByLane;
+    const size_t spheres = scene.lights.size();
     const int laneCount = int(hn::Lanes(df));
     // The shading points for the lane-by-lane queries, stored when first needed.
     PacketShadingLanes points;
@@ -432,8 +419,7 @@ HWY_INLINE void shadeMis(const PacketScene& scene, const PacketRays& rays, const
         const VF weight = misWeight<kHeuristic>(nL * s.pdf, nB * surfacePdf);
         return cosOverPdf<kMeasure>(s, cosTheta) * weight;
       };
-      const PacketMisWeights weights{kHeuristic, float(nLight), float(nBsdf)};
-      addEveryLight<kMeasure, true>(scene, h, g, shaded, draws, nLight, misFactor, &weights, lightPart);
+      addEveryLight<kMeasure, true>(scene, h, g, shaded, draws, nLight, misFactor, lightPart);
       const VF inv = setF(1.f / float(nLight));
       lightPart = scaled(lightPart, inv);
     }
@@ -451,9 +437,9 @@ HWY_INLINE void shadeMis(const PacketScene& scene, const PacketRays& rays, const
             [&](size_t l, MF lanes, const V3F& Le, const V3F& p, const V3F& n, VF lightIndex) {
               // MisIntegrator::lightPdf of the light reached: in lanes, or lane by lane.
               VF pL = zero;
-              if (nLight > 0 && l < std::min(byLane, spheres)) {
+              if (nLight > 0 && l < spheres) {
                 if (scene.lights[l].radius > 0.f)
-                  pL = SphereTechnique<kMeasure>(scene, l, h, lanes).pdf(w, p, n);
+                  pL = SphereTechnique<kMeasure>(scene, l, h, lanes, 0).pdf(w, p, n);
               } else if (nLight > 0) {
                 PacketShadingLanes reached = shadingPoints();
                 hn::StoreU(hn::IfThenElseZero(lanes, setF(1.f)), df, reached.active);

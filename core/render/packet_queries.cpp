@@ -1,12 +1,8 @@
 #include "core/render/packet_queries.h"
 
-#include <optional>
-
 #include "core/integrators/light_technique.h"
-#include "core/integrators/mis_weight.h"
 #include "core/integrators/polygon_light_technique.h"
 #include "core/integrators/reflection.h"
-#include "core/integrators/sampling_loops.h"
 #include "core/integrators/shading_point.h"
 #include "core/world/scene.h"
 
@@ -43,116 +39,6 @@ Vec2 drawOf(const float (&u)[2][kMaxPacketLanes], int k) {
   return Vec2(u[0][k], u[1][k]);
 }
 
-// Lane k's glossy surface, if it has one (glossy non-null and the lane glossy).
-std::optional<GlossyReflection> glossyLane(const Scene& scene, const PacketGlossyLanes* glossy, int k) {
-  if (!glossy || glossy->material[k] < 0) return std::nullopt;
-  Frame frame;
-  frame.s = lane(glossy->s, k), frame.t = lane(glossy->t, k), frame.n = lane(glossy->n, k);
-  return GlossyReflection(scene.materials[size_t(glossy->material[k])].bsdf, frame, lane(glossy->wo, k));
-}
-
-// f(reflection) with lane k's reflection: its glossy surface's, or the diffuse one.
-template <class F>
-auto withReflection(const Scene& scene, const PacketGlossyLanes* glossy, int k, const F& f) {
-  const std::optional<GlossyReflection> g = glossyLane(scene, glossy, k);
-  return g ? f(*g) : f(DiffuseReflection{});
-}
-
-// f(weight) with the weight of a light sample with reflection `reflection`: 1, or MisIntegrator's.
-template <class Reflection, class F>
-auto withLightWeight(const PacketMisWeights* mis, const Reflection& reflection, const F& f) {
-  if (!mis) return f(UnitWeight{});
-  const float nL = mis->lightSamples, nB = mis->bsdfSamples;
-  if (mis->heuristic == MisHeuristic::Balance)
-    return f([&](const LightSample& s, float cosTheta) {
-      return misWeight<MisHeuristic::Balance>(nL * s.pdf, nB * reflection.pdf(s.wi, cosTheta));
-    });
-  return f([&](const LightSample& s, float cosTheta) {
-    return misWeight<MisHeuristic::Power>(nL * s.pdf, nB * reflection.pdf(s.wi, cosTheta));
-  });
-}
-
-template <LightMeasure kMeasure, class Light>
-void addLightIrradiance(const Scene& scene, const Light& light, size_t firstDraw,
-                        const PacketShadingLanes& points, const PacketGlossyLanes* glossy,
-                        const PacketMisWeights* mis, const PacketDraws& draws, int samples, int lanes,
-                        PacketColorLanes& E) {
-  const float lightScale = lightScaleOf(light);
-  for (int k = 0; k < lanes; ++k) {
-    if (points.active[k] == 0.f) continue;
-    const ShadingPoint sp = shadingPoint(points, k);
-    const LightTechnique<kMeasure, Light> technique(light, sp);
-    Color3 e = lane(E.c, k);
-    withReflection(scene, glossy, k, [&](const auto& reflection) {
-      return withLightWeight(mis, reflection, [&](const auto& weight) {
-        for (int i = 0; i < samples; ++i)
-          addLightDraw(scene, light, lightScale, technique, sp, reflection,
-                       drawOf(draws.u[firstDraw + size_t(i)], k), weight, e);
-        return 0;
-      });
-    });
-    setLane(E.c, k, e);
-  }
-}
-
-template <LightMeasure kMeasure>
-void lightIrradiance(const Scene& scene, size_t firstLight, const PacketShadingLanes& points,
-                     const PacketGlossyLanes* glossy, const PacketMisWeights* mis, const PacketDraws& draws,
-                     int samples, int lanes, PacketColorLanes& E) {
-  const size_t spheres = scene.sphereLights.size(), count = scene.areaLightCount();
-  for (size_t l = firstLight; l < count; ++l) {
-    const size_t firstDraw = l * size_t(samples);
-    if (l < spheres)
-      addLightIrradiance<kMeasure>(scene, scene.sphereLights[l], firstDraw, points, glossy, mis, draws,
-                                   samples, lanes, E);
-    else
-      addLightIrradiance<kMeasure>(scene, scene.polygonLights[l - spheres], firstDraw, points, glossy, mis,
-                                   draws, samples, lanes, E);
-  }
-}
-
-template <LightMeasure kMeasure>
-void selectedLightSamples(const Scene& scene, const PacketShadingLanes& points,
-                          const PacketGlossyLanes* glossy, const PacketPickLanes& picks,
-                          const float (&u)[2][kMaxPacketLanes], int lanes, PacketColorLanes& out) {
-  const size_t spheres = scene.sphereLights.size();
-  for (int k = 0; k < lanes; ++k) {
-    Color3 c(0.f);
-    if (points.active[k] != 0.f && picks.light[k] >= 0.f) {
-      const ShadingPoint sp = shadingPoint(points, k);
-      const size_t l = size_t(picks.light[k]);
-      c = withReflection(scene, glossy, k, [&](const auto& reflection) {
-        return l < spheres ? selectedLightSample<kMeasure>(scene, scene.sphereLights[l], sp, reflection,
-                                                           drawOf(u, k), picks.pmf[k])
-                           : selectedLightSample<kMeasure>(scene, scene.polygonLights[l - spheres], sp,
-                                                           reflection, drawOf(u, k), picks.pmf[k]);
-      });
-    }
-    setLane(out.c, k, c);
-  }
-}
-
-}  // namespace
-
-void queryLightIrradiance(const Scene& scene, LightMeasure measure, size_t firstLight,
-                          const PacketShadingLanes& points, const PacketGlossyLanes* glossy,
-                          const PacketMisWeights* mis, const PacketDraws& draws, int samples, int lanes,
-                          PacketColorLanes& E) {
-  switch (measure) {
-    case LightMeasure::Area:
-      return lightIrradiance<LightMeasure::Area>(scene, firstLight, points, glossy, mis, draws, samples,
-                                                 lanes, E);
-    case LightMeasure::SolidAngle:
-      return lightIrradiance<LightMeasure::SolidAngle>(scene, firstLight, points, glossy, mis, draws, samples,
-                                                       lanes, E);
-    case LightMeasure::ProjectedSolidAngle:
-      return lightIrradiance<LightMeasure::ProjectedSolidAngle>(scene, firstLight, points, glossy, mis, draws,
-                                                                samples, lanes, E);
-  }
-}
-
-namespace {
-
 template <LightMeasure kMeasure>
 void lightPdfs(const Scene& scene, const PacketShadingLanes& points, const float (&light)[kMaxPacketLanes],
                const float (&w)[3][kMaxPacketLanes], const float (&p)[3][kMaxPacketLanes],
@@ -186,34 +72,57 @@ void queryLightPdfs(const Scene& scene, LightMeasure measure, const PacketShadin
   }
 }
 
-void querySelectedLightSamples(const Scene& scene, LightMeasure measure, const PacketShadingLanes& points,
-                               const PacketGlossyLanes* glossy, const PacketPickLanes& picks,
-                               const float (&u)[2][kMaxPacketLanes], int lanes, PacketColorLanes& out) {
-  switch (measure) {
-    case LightMeasure::Area:
-      return selectedLightSamples<LightMeasure::Area>(scene, points, glossy, picks, u, lanes, out);
-    case LightMeasure::SolidAngle:
-      return selectedLightSamples<LightMeasure::SolidAngle>(scene, points, glossy, picks, u, lanes, out);
-    case LightMeasure::ProjectedSolidAngle:
-      return selectedLightSamples<LightMeasure::ProjectedSolidAngle>(scene, points, glossy, picks, u, lanes,
-                                                                     out);
+namespace {
+
+// LightTechnique<kMeasure, Light>'s samples of `light` from draws firstDraw .. firstDraw + count − 1 at
+// lane k's shading point, the technique set up once.
+template <LightMeasure kMeasure, class Light>
+void laneLightSamples(const Light& light, const ShadingPoint& sp, const PacketDraws& draws, size_t firstDraw,
+                      int count, int k, PacketLightSampleLanes* out) {
+  const LightTechnique<kMeasure, Light> technique(light, sp);
+  if (!technique.canSample()) return;
+  for (int i = 0; i < count; ++i) {
+    const LightSample s = technique.sample(drawOf(draws.u[firstDraw + size_t(i)], k));
+    if (!(s.pdf > 0.f)) continue;
+    setLane(out[i].wi, k, s.wi);
+    out[i].dist[k] = s.dist;
+    out[i].pdf[k] = s.pdf;
+    if constexpr (kMeasure == LightMeasure::ProjectedSolidAngle)
+      out[i].projected[k] = technique.cosOverPdf(s, 0.f);
   }
 }
 
-void queryProjectedCapSamples(const Scene& scene, size_t light, const PacketShadingLanes& points,
-                              const float (&u)[2][kMaxPacketLanes], int lanes, PacketCapSampleLanes& out) {
+template <LightMeasure kMeasure>
+void lightSamples(const Scene& scene, const float (&light)[kMaxPacketLanes], const PacketShadingLanes& points,
+                  const PacketDraws& draws, size_t firstDraw, int count, int lanes,
+                  PacketLightSampleLanes* out) {
+  const size_t spheres = scene.sphereLights.size();
   for (int k = 0; k < lanes; ++k) {
-    out.pdf[k] = out.projected[k] = out.dist[k] = 0.f;
-    setLane(out.wi, k, Vec3(0.f));
-    if (points.active[k] == 0.f) continue;
-    const LightTechnique<LightMeasure::ProjectedSolidAngle, SphereLight> technique(scene.sphereLights[light],
-                                                                                   shadingPoint(points, k));
-    if (!technique.canSample()) continue;
-    const LightSample s = technique.sample(drawOf(u, k));
-    setLane(out.wi, k, s.wi);
-    out.dist[k] = s.dist;
-    out.pdf[k] = s.pdf;
-    out.projected[k] = technique.cosOverPdf(s, 0.f);
+    if (points.active[k] == 0.f || light[k] < 0.f) continue;
+    const ShadingPoint sp = shadingPoint(points, k);
+    const size_t l = size_t(light[k]);
+    if (l < spheres)
+      laneLightSamples<kMeasure>(scene.sphereLights[l], sp, draws, firstDraw, count, k, out);
+    else
+      laneLightSamples<kMeasure>(scene.polygonLights[l - spheres], sp, draws, firstDraw, count, k, out);
+  }
+}
+
+}  // namespace
+
+void queryLightSamples(const Scene& scene, LightMeasure measure, const float (&light)[kMaxPacketLanes],
+                       const PacketShadingLanes& points, const PacketDraws& draws, size_t firstDraw,
+                       int count, int lanes, PacketLightSampleLanes* out) {
+  for (int i = 0; i < count; ++i) out[i] = PacketLightSampleLanes{};
+  switch (measure) {
+    case LightMeasure::Area:
+      return lightSamples<LightMeasure::Area>(scene, light, points, draws, firstDraw, count, lanes, out);
+    case LightMeasure::SolidAngle:
+      return lightSamples<LightMeasure::SolidAngle>(scene, light, points, draws, firstDraw, count, lanes,
+                                                    out);
+    case LightMeasure::ProjectedSolidAngle:
+      return lightSamples<LightMeasure::ProjectedSolidAngle>(scene, light, points, draws, firstDraw, count,
+                                                             lanes, out);
   }
 }
 

@@ -94,43 +94,24 @@ void queryGlossyLanes(const Scene& scene, const PacketRays& rays, const float (&
 void queryOccluded(const Scene& scene, const PacketSegments& rays, int lanes, int32_t skipSphere,
                    float* blocked);
 void queryEmittersAlong(const Scene& scene, const PacketSegments& rays, int lanes, PacketEmitterLanes& out);
-// MisIntegrator's weighting of light samples: the heuristic and the two techniques' sample counts.
-struct PacketMisWeights {
-  MisHeuristic heuristic;
-  float lightSamples, bsdfSamples;
-};
-
-// everyLightIrradiance's terms of the area lights from `firstLight` on (spheres, then polygons), by the
-// scalar technique of `measure` at each active lane's shading point: its draws are j = light · samples
-// + i of `draws`, and each lane's E goes on from the value it holds, as the scalar sum does. Glossy lanes
-// (glossy may be null: none) carry f in each term, as GlossyReflection does. Each term is weighted by
-// mis (MisIntegrator's light technique), or by 1 where mis is null.
-void queryLightIrradiance(const Scene& scene, LightMeasure measure, size_t firstLight,
-                          const PacketShadingLanes& points, const PacketGlossyLanes* glossy,
-                          const PacketMisWeights* mis, const PacketDraws& draws, int samples, int lanes,
-                          PacketColorLanes& E);
 // MisIntegrator::lightPdf, by the technique of `measure`, of each active lane's direction w reaching area
 // light light[k] (spheres, then polygons) at p with normal n, from the lane's shading point.
 void queryLightPdfs(const Scene& scene, LightMeasure measure, const PacketShadingLanes& points,
                     const float (&light)[kMaxPacketLanes], const float (&w)[3][kMaxPacketLanes],
                     const float (&p)[3][kMaxPacketLanes], const float (&n)[3][kMaxPacketLanes], int lanes,
                     float* pdf);
-// selectedLightSample of the light each active lane picked (picks.light, picks.pmf), from draw u, by the
-// scalar technique of `measure` (glossy as above): out is 0 in the other lanes and where the sample does
-// not light.
-void querySelectedLightSamples(const Scene& scene, LightMeasure measure, const PacketShadingLanes& points,
-                               const PacketGlossyLanes* glossy, const PacketPickLanes& picks,
-                               const float (&u)[2][kMaxPacketLanes], int lanes, PacketColorLanes& out);
-// LightTechnique<ProjectedSolidAngle, SphereLight>'s sample of sphere light `light` from draw u at each
-// active lane's shading point (for the caps the kernels leave to the scalar map): the direction,
-// distance and pdf of the sample, and projected, the cap's Ω⊥ as the technique rounds it (its
-// cosOverPdf). pdf is 0 where the cap cannot be sampled, and in inactive lanes.
-struct alignas(64) PacketCapSampleLanes {
+// LightTechnique<measure, Light>'s samples of area light light[k] (spheres, then polygons; none where
+// negative) from draws firstDraw .. firstDraw + count − 1 of `draws` at each active lane's shading point,
+// out[i] for draw firstDraw + i: the direction, distance and pdf of the sample, and for the projected
+// solid angle `projected`, its cosOverPdf (Ω⊥ as the technique rounds it). pdf is 0 where the light
+// cannot be sampled or the sample is not valid, and in inactive lanes.
+struct alignas(64) PacketLightSampleLanes {
   float wi[3][kMaxPacketLanes];
   float dist[kMaxPacketLanes], pdf[kMaxPacketLanes], projected[kMaxPacketLanes];
 };
-void queryProjectedCapSamples(const Scene& scene, size_t light, const PacketShadingLanes& points,
-                              const float (&u)[2][kMaxPacketLanes], int lanes, PacketCapSampleLanes& out);
+void queryLightSamples(const Scene& scene, LightMeasure measure, const float (&light)[kMaxPacketLanes],
+                       const PacketShadingLanes& points, const PacketDraws& draws, size_t firstDraw,
+                       int count, int lanes, PacketLightSampleLanes* out);
 void queryLightPicks(const Scene& scene, LightSelection selection, const float (&u)[2][kMaxPacketLanes],
                      int lanes, PacketPickLanes& picks);
 

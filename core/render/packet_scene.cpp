@@ -120,15 +120,8 @@ std::string packetUnsupportedReason(const RenderJob& job) {
   return {};
 }
 
-size_t firstAreaLightSampledByLane(LightMeasure measure, const Scene& scene) {
-  switch (measure) {
-    case LightMeasure::Area:
-      return scene.areaLightCount();
-    case LightMeasure::SolidAngle:
-    case LightMeasure::ProjectedSolidAngle:
-      return scene.sphereLights.size();
-  }
-  return 0;
+bool polygonSamplesByLane(LightMeasure measure, const Scene& scene) {
+  return measure != LightMeasure::Area && !scene.polygonLights.empty();
 }
 
 std::string packetPathDeclinedReason(const RenderJob& job) {
@@ -138,7 +131,7 @@ std::string packetPathDeclinedReason(const RenderJob& job) {
   const Scene& scene = *job.scene;
   if (d.type != IntegratorType::Direct || d.estimator != Estimator::Light || !packetGeometryQueried(scene))
     return {};
-  if (firstAreaLightSampledByLane(d.lightMeasure, scene) < scene.areaLightCount())
+  if (polygonSamplesByLane(d.lightMeasure, scene))
     return "rays and " + strategyLabel(d) + " light samples would both go one lane at a time";
   return {};
 }
@@ -215,7 +208,6 @@ PacketScene makePacketScene(const RenderJob& job) {
     pl.skipped = isBlack(l.radiance) || !l.valid();
     p.polygons.push_back(pl);
   }
-  p.firstLightByLane = firstAreaLightSampledByLane(job.settings.integrator.lightMeasure, scene);
   return p;
 }
 

@@ -116,11 +116,8 @@ struct PacketScene {
   std::vector<PacketLight> lights;  // sphere lights
   // Polygon lights (Scene::polygonLights, after the sphere lights in the area lights' order): sampled in
   // lanes by area; by the solid angle and projected solid angle lane by lane with the scalar techniques
-  // (packet_queries.h).
+  // (polygonSamplesByLane).
   std::vector<PacketPolygonLight> polygons;
-  // The first area light (spheres, then polygons) the kernels leave to the scalar techniques
-  // (firstAreaLightSampledByLane).
-  size_t firstLightByLane = 0;
   std::vector<PacketPointLight> pointLights;
   std::vector<PacketDirectionalLight> directionalLights;
   LightSelection selection = LightSelection::All;  // how the *Selected kernels pick their light
@@ -142,12 +139,10 @@ bool packetGeometryQueried(const Scene& scene);
 // The most light draws (lights × samples) a packet carries.
 inline constexpr int kMaxPacketDraws = 256;
 
-// The first area light (spheres, then polygons) whose samples by `measure` the packet kernels leave to
-// the scalar techniques lane by lane: none by area, the polygon lights by the solid angle and the
-// projected solid angle (spherical polygons' maps, which need atan2, sin, cos or asin). Sphere lights by
-// the projected solid angle are sampled in lanes where their cap is wholly above the horizon and lane by
-// lane where it straddles it (packet_sphere_techniques-inl.h).
-size_t firstAreaLightSampledByLane(LightMeasure measure, const Scene& scene);
+// Whether the kernels leave the samples of the scene's polygon lights by `measure` to the scalar
+// techniques, lane by lane: by the solid angle and the projected solid angle (spherical polygons' maps,
+// which need atan2, sin, cos or asin); the rest of each draw is in lanes (packet_polygon_techniques-inl.h).
+bool polygonSamplesByLane(LightMeasure measure, const Scene& scene);
 
 // Why no packet kernel computes `job` (empty when one does).
 std::string packetUnsupportedReason(const RenderJob& job);

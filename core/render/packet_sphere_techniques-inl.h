@@ -22,6 +22,7 @@
 #include "core/render/packet_lights-inl.h"
 #include "core/render/packet_math-inl.h"
 #include "core/render/packet_queries.h"
+#include "core/render/packet_scalar_samples-inl.h"
 #include "core/render/packet_scene.h"
 
 HWY_BEFORE_NAMESPACE();
@@ -126,64 +127,38 @@ HWY_INLINE VF pdfProjectedCap(const ProjectedCapLanes& c, const V3F& wF) {
 }
 
 // LightTechnique<ProjectedSolidAngle, SphereLight> of one light at the shading points of a packet's
-// lanes `active`: set up once, then sampled per draw (sample) or asked a direction's density (pdf); the
-// lanes left to the scalar cap get theirs from queryProjectedCapSamples and queryLightPdfs, merged in.
+// lanes `active`, for draws before drawEnd: set up once, then sampled per draw (sample) or asked a
+// direction's density (pdf); the lanes left to the scalar cap get theirs from the scalar technique.
 struct ProjectedCapTechnique {
-  const PacketScene& scene;
   const PacketLight& light;
-  size_t index;  // the light's among the sphere lights (and the area lights)
   ProjectedCapLanes cap;
-  bool anyScalar;
-  PacketShadingLanes points;  // the scalar lanes' shading points (stored where anyScalar)
+  ScalarLightSamples<LightMeasure::ProjectedSolidAngle> scalar;
 
-  ProjectedCapTechnique(const PacketScene& s, size_t l, const PacketHit& h, MF active)
-      : scene(s), light(s.lights[l]), index(l), cap(projectedCap(light, h.p, h.ns, active)) {
-    anyScalar = !hn::AllFalse(DF(), cap.byScalar);
-    if (anyScalar) storeShading(h, cap.byScalar, points);
-  }
+  ProjectedCapTechnique(const PacketScene& s, size_t l, const PacketHit& h, MF active, size_t drawEnd)
+      : light(s.lights[l]),
+        cap(projectedCap(light, h.p, h.ns, active)),
+        scalar(s, broadcastIndex(l).data(), h, cap.byScalar, drawEnd) {}
 
   PacketLightSample sample(const PacketDraws& draws, size_t j) const {
-    const DF df;
     VF u0, u1;
     loadDraw(draws, j, u0, u1);
-    PacketLightSample s = sampleProjectedCap(light, cap, u0, u1);
-    if (!anyScalar) return s;
-    PacketCapSampleLanes scalar;
-    queryProjectedCapSamples(*scene.scene, index, points, draws.u[j], int(hn::Lanes(df)), scalar);
-    const MF m = cap.byScalar;
-    s.wi = select(m, loadF3(scalar.wi), s.wi);
-    s.dist = hn::IfThenElse(m, hn::LoadU(df, scalar.dist), s.dist);
-    s.pdf = hn::IfThenElse(m, hn::LoadU(df, scalar.pdf), s.pdf);
-    s.projected = hn::IfThenElse(m, hn::LoadU(df, scalar.projected), s.projected);
-    s.valid = hn::Or(s.valid, hn::And(m, s.pdf > hn::Zero(df)));
-    return s;
+    return scalar.merge(draws, j, sampleProjectedCap(light, cap, u0, u1));
   }
 
   // The density of unit direction w, which reached the light at p with normal n.
   VF pdf(const V3F& w, const V3F& p, const V3F& n) const {
-    const DF df;
-    const VF inLanes = pdfProjectedCap(cap, w);
-    if (!anyScalar) return inLanes;
-    HWY_ALIGN float light[kMaxPacketLanes], pdf[kMaxPacketLanes];
-    hn::Store(setF(float(index)), df, light);
-    PacketColorLanes wl, pl, nl;
-    storeF3(w, wl.c);
-    storeF3(p, pl.c);
-    storeF3(n, nl.c);
-    queryLightPdfs(*scene.scene, LightMeasure::ProjectedSolidAngle, points, light, wl.c, pl.c, nl.c,
-                   int(hn::Lanes(df)), pdf);
-    return hn::IfThenElse(cap.byScalar, hn::Load(df, pdf), inLanes);
+    return scalar.mergePdf(w, p, n, pdfProjectedCap(cap, w));
   }
 };
 
 // LightTechnique<kMeasure, SphereLight> of sphere light l at the shading points of a packet's lanes
-// `active`: sample(draws, j) draws the light sample of draw j in every lane, pdf(w, p, n) is the
-// density of a direction w that reached the light at p with normal n.
+// `active`, for draws before drawEnd: sample(draws, j) draws the light sample of draw j in every lane, pdf(w,
+// p, n) is the density of a direction w that reached the light at p with normal n.
 template <LightMeasure kMeasure>
 struct SphereTechnique {
   const PacketLight& light;
   V3F x;
-  SphereTechnique(const PacketScene& scene, size_t l, const PacketHit& h, MF /*active*/)
+  SphereTechnique(const PacketScene& scene, size_t l, const PacketHit& h, MF /*active*/, size_t /*drawEnd*/)
       : light(scene.lights[l]), x(h.p) {}
   PacketLightSample sample(const PacketDraws& draws, size_t j) const {
     VF u0, u1;
