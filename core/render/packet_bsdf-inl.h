@@ -60,27 +60,9 @@ HWY_INLINE V3F toLocal(const FrameF& f, const V3F& v) {
   return {dot(v, f.s), dot(v, f.t), dot(v, f.n)};
 }
 
-// glm::normalize: v · (1 / sqrt(v · v)).
-HWY_INLINE V3F normalized(const V3F& v) {
-  const VF inv = setF(1.f) / hn::Sqrt(dot(v, v));
-  return {v.x * inv, v.y * inv, v.z * inv};
-}
-
 // std::fmax(0, x): 0 for NaN.
 HWY_INLINE VF atLeastZero(VF x) {
   return hn::IfThenElseZero(x > hn::Zero(DF()), x);
-}
-
-// libm's fn(x) in the lanes of m (0 elsewhere), lane by lane: for exp, log1p, sin and cos, which no lane
-// function rounds exactly as libm does.
-template <class Fn>
-HWY_INLINE VF libmLanes(MF m, VF x, Fn fn) {
-  const DF df;
-  HWY_ALIGN float v[kMaxPacketLanes], on[kMaxPacketLanes];
-  hn::Store(x, df, v);
-  hn::Store(hn::IfThenElseZero(m, setF(1.f)), df, on);
-  for (size_t k = 0; k < hn::Lanes(df); ++k) v[k] = on[k] != 0.f ? fn(v[k]) : 0.f;
-  return hn::Load(df, v);
 }
 
 // microfacetD (microfacet_distribution.h), Beckmann or GGX by lane; exp only in the lanes of `needed`.

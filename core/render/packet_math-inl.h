@@ -10,9 +10,11 @@
 #endif
 
 #include <hwy/highway.h>
+
 #include "core/math/float_util.h"
 #include "core/math/sincos_turns.h"
 #include "core/math/vec.h"
+#include "core/render/packet_kernels.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace penumbra {
@@ -82,6 +84,37 @@ template <class V3, class M>
 HWY_INLINE V3 select(M m, const V3& a, const V3& b) {
   return {hn::IfThenElse(m, a.x, b.x), hn::IfThenElse(m, a.y, b.y), hn::IfThenElse(m, a.z, b.z)};
 }
+// glm::normalize: v · (1 / sqrt(v · v)).
+template <class V3>
+HWY_INLINE V3 normalized(const V3& v) {
+  const auto inv = hn::Set(hn::DFromV<decltype(v.x)>(), 1) / hn::Sqrt(dot(v, v));
+  return {v.x * inv, v.y * inv, v.z * inv};
+}
+
+// libm's fn(x) (and fn(x, y)) in the lanes of m (0 elsewhere), lane by lane: for exp, log1p, sin, cos
+// and atan2, which no lane function rounds exactly as libm does.
+template <class V, class M, class Fn>
+HWY_INLINE V libmLanes(M m, V x, Fn fn) {
+  const hn::DFromV<V> d;
+  using T = hn::TFromV<V>;
+  HWY_ALIGN T v[kMaxPacketLanes], on[kMaxPacketLanes];
+  hn::Store(x, d, v);
+  hn::Store(hn::IfThenElseZero(m, hn::Set(d, T(1))), d, on);
+  for (size_t k = 0; k < hn::Lanes(d); ++k) v[k] = on[k] != T(0) ? fn(v[k]) : T(0);
+  return hn::Load(d, v);
+}
+template <class V, class M, class Fn>
+HWY_INLINE V libmLanes(M m, V x, V y, Fn fn) {
+  const hn::DFromV<V> d;
+  using T = hn::TFromV<V>;
+  HWY_ALIGN T v[kMaxPacketLanes], w[kMaxPacketLanes], on[kMaxPacketLanes];
+  hn::Store(x, d, v);
+  hn::Store(y, d, w);
+  hn::Store(hn::IfThenElseZero(m, hn::Set(d, T(1))), d, on);
+  for (size_t k = 0; k < hn::Lanes(d); ++k) v[k] = on[k] != T(0) ? fn(v[k], w[k]) : T(0);
+  return hn::Load(d, v);
+}
+
 // std::max(a, b) and glm::max(a, b): (a < b) ? b : a, NaN in a kept.
 HWY_INLINE VF maxOf(VF a, VF b) {
   return hn::IfThenElse(a < b, b, a);

@@ -338,9 +338,9 @@ TEST(PacketRowLoop, SupportsItsStrategies) {
   EXPECT_EQ(packetUnsupportedReason(*job), "");
 }
 
-// Packets are declined where they would do nothing in lanes but the sums: rays queried one at a time
-// and the measure's light samples drawn lane by lane (polygon lights by the solid angle and the
-// projected solid angle). With flat geometry, a measure sampled in lanes (sphere lights by every
+// Packets are declined where they would do little in lanes but the sums: rays queried one at a time
+// and the measure's light samples drawn lane by lane (rectangles by the solid angle, every polygon
+// light by the projected solid angle). With flat geometry, a measure sampled in lanes (sphere lights by every
 // measure), or MIS (whose surface samples stay in lanes), the packet path is taken.
 TEST(PacketRowLoop, IsDeclinedWhereRaysAndLightSamplesAreAllOneLaneAtATime) {
   const TestScene queried = packetTestScene(1.f, false, Geometry::BvhWithPolygonLights);

@@ -1,5 +1,7 @@
 #include "core/render/packet_scene.h"
 
+#include <algorithm>
+
 #include "core/integrators/sampling_loops.h"
 #include "core/math/vec.h"
 #include "core/render/strategy_axes.h"
@@ -121,7 +123,16 @@ std::string packetUnsupportedReason(const RenderJob& job) {
 }
 
 bool polygonSamplesByLane(LightMeasure measure, const Scene& scene) {
-  return measure != LightMeasure::Area && !scene.polygonLights.empty();
+  switch (measure) {
+    case LightMeasure::Area:
+      return false;
+    case LightMeasure::SolidAngle:
+      return std::any_of(scene.polygonLights.begin(), scene.polygonLights.end(),
+                         [](const PolygonLight& l) { return l.parallelogram; });
+    case LightMeasure::ProjectedSolidAngle:
+      return !scene.polygonLights.empty();
+  }
+  return false;
 }
 
 std::string packetPathDeclinedReason(const RenderJob& job) {
