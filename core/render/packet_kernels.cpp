@@ -34,6 +34,7 @@
 
 #include "core/render/packet_bsdf-inl.h"
 #include "core/render/packet_geometry-inl.h"
+#include "core/render/packet_light_bvh-inl.h"
 #include "core/render/packet_lights-inl.h"
 #include "core/render/packet_math-inl.h"
 #include "core/render/packet_polygon_techniques-inl.h"
@@ -262,10 +263,16 @@ HWY_INLINE void shadeDirect(const PacketScene& scene, const PacketRays& rays, co
   storeRadiance(scene, shaded, h, g, E, out);
 }
 
-// The light each shaded lane picks for sample i from its pick draw j (queryLightPicks).
+// The light each shaded lane picks for sample i from its pick draw j: by the light BVH in lanes, by the
+// other selections lane by lane (queryLightPicks).
 HWY_INLINE void pickLights(const PacketScene& scene, const PacketHit& h, MF shaded, const PacketDraws& draws,
                            size_t j, PacketPickLanes& picks) {
   const DF df;
+  if (scene.selection == LightSelection::Bvh) {
+    VF u0, u1;
+    loadDraw(draws, j, u0, u1);
+    return pickBvhLights(scene.lightBvh, h.p, h.ns, u0, u1, shaded, picks.light, picks.pmf);
+  }
   storeF3(h.p, picks.p);
   storeF3(h.ns, picks.n);
   hn::StoreU(hn::IfThenElseZero(shaded, setF(1.f)), df, picks.active);

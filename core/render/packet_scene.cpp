@@ -122,6 +122,30 @@ std::string packetUnsupportedReason(const RenderJob& job) {
   return {};
 }
 
+namespace {
+
+PacketLightBvh packetLightBvh(const LightBvh& bvh) {
+  PacketLightBvh b;
+  for (const LightBvhNode& node : bvh.nodes) {
+    const DVec3 lo(node.lo), hi(node.hi);
+    const DVec3 c = 0.5 * (lo + hi);
+    b.centreX.push_back(c.x);
+    b.centreY.push_back(c.y);
+    b.centreZ.push_back(c.z);
+    b.radius2.push_back(0.25 * glm::dot(hi - lo, hi - lo));
+    b.power.push_back(node.power);
+    b.axisX.push_back(node.coneAxis.x);
+    b.axisY.push_back(node.coneAxis.y);
+    b.axisZ.push_back(node.coneAxis.z);
+    b.cosCone.push_back(node.cosConeAngle);
+    b.child.push_back(node.child);
+    b.leaf.push_back(node.leaf ? 1.0 : 0.0);
+  }
+  return b;
+}
+
+}  // namespace
+
 bool polygonSamplesByLane(LightMeasure measure, const Scene& scene) {
   switch (measure) {
     case LightMeasure::Area:
@@ -155,6 +179,7 @@ PacketScene makePacketScene(const RenderJob& job) {
   p.scene = &scene;
   p.geometryQueried = packetGeometryQueried(scene);
   p.selection = job.settings.integrator.lightSelection;
+  if (p.selection == LightSelection::Bvh) p.lightBvh = packetLightBvh(scene.lightBvh);
   p.samples = job.settings.integrator.samples;
   p.lightSamples = job.settings.integrator.lightSamples;
   p.bsdfSamples = job.settings.integrator.bsdfSamples;

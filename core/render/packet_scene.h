@@ -59,6 +59,16 @@ struct PacketPolygonLight {
   bool skipped;  // radiance 0 or no area: no sample lights anything (its draws are still consumed)
 };
 
+// The light BVH's nodes (LightBvh::nodes) as the kernels walk them, one array per field: the bounding
+// sphere of each node's bounds (centre 0.5 (lo + hi), squared radius 0.25 |hi − lo|², both in double as
+// lightBvhImportance forms them), its power, its emission cone (axis, cos of its half-angle), its second
+// child (a leaf: its light) and 1 where it is a leaf.
+struct PacketLightBvh {
+  std::vector<double> centreX, centreY, centreZ, radius2, power;
+  std::vector<double> axisX, axisY, axisZ, cosCone;
+  std::vector<double> child, leaf;
+};
+
 struct PacketPointLight {
   float position[3];
   float intensity[3];
@@ -121,6 +131,7 @@ struct PacketScene {
   std::vector<PacketPointLight> pointLights;
   std::vector<PacketDirectionalLight> directionalLights;
   LightSelection selection = LightSelection::All;  // how the *Selected kernels pick their light
+  PacketLightBvh lightBvh;                         // with LightSelection::Bvh: the BVH they walk in lanes
   int samples = 1;       // shading samples per camera sample (per light, for light sampling of every light)
   int lightSamples = 0;  // MIS: per light
   int bsdfSamples = 0;   // MIS
