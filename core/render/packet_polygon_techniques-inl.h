@@ -19,6 +19,7 @@
 #include <cfloat>
 #include <cmath>
 
+#include "core/lights/spherical_rectangle.h"
 #include "core/lights/spherical_triangle.h"
 
 #include "core/render/packet_bsdf-inl.h"
@@ -142,6 +143,156 @@ HWY_INLINE VD pdfSphericalTriangle(const SphericalTriangleLanes& t, const V3D& w
   return hn::IfThenElseZero(inside, setD(1.0) / t.solidAngle);
 }
 
+// SphericalRectangle::init (Ureña et al.'s map) of each lane's parallelogram light seen from x, as
+// PolygonSolidAngle sets it up, in the lanes of m: inLanes where the map samples it (the rectangle's
+// own map); scalar where SphericalRectangle samples it otherwise (a sheared parallelogram as two
+// spherical triangles, a solid angle below SphericalRectangle::kMinSolidAngle by area); neither where
+// it cannot be sampled.
+struct SphericalRectangleLanes {
+  V3D toCorner, eu, ev, normal, dualU, dualV, shear;
+  VD z0, h, solidAngle, a0, a1, b0, b1, invA, invB, phi0, oneMinusCosDelta, onePlusCosSigma;
+  MD swapped, unsheared;  // unsheared: shear == 0 exactly
+  MD inLanes, scalar;
+};
+
+// oneMinusCos and onePlusCos (spherical_rectangle.cpp): 1 − cos and 1 + cos from cos c and sin s.
+HWY_INLINE VD oneMinusCos(VD c, VD s) {
+  const VD one = setD(1.0);
+  return hn::IfThenElse(c > hn::Zero(DD()), s * s / (one + c), one - c);
+}
+HWY_INLINE VD onePlusCos(VD c, VD s) {
+  const VD one = setD(1.0);
+  return hn::IfThenElse(c < hn::Zero(DD()), s * s / (one - c), one + c);
+}
+
+HWY_INLINE SphericalRectangleLanes sphericalRectangle(const PolygonLanes& light, const V3F& x, MF m) {
+  const DD dd;
+  const VD zero = hn::Zero(dd), one = setD(1.0), infinity = setD(INFINITY);
+  SphericalRectangleLanes r;
+  const V3D xD = promote(x), corner = promote(light.p0);
+  const VD margin = setD(0x1p-20) * promote(maxOf(light.scale, maxAbs(x)));
+  MD ok = hn::And(toD(hn::And(m, light.area > hn::Zero(DF()))),
+                  dot(promote(light.n), minus(xD, corner)) > margin);
+  r.eu = promote(light.e1);
+  r.ev = promote(light.e2);
+  const V3D n = cross(r.eu, r.ev);
+  const VD area = hn::Sqrt(dot(n, n));
+  ok = hn::And(ok, hn::And(area > zero, area < infinity));
+  r.normal = {n.x / area, n.y / area, n.z / area};
+  r.toCorner = minus(corner, xD);
+  const VD distance = hn::Sqrt(dot(r.toCorner, r.toCorner));
+  r.z0 = dot(r.toCorner, r.normal);
+  ok = hn::And(ok, hn::And(distance<infinity, hn::Abs(r.z0)> setD(1e-12) * distance));
+  const V3D du = cross(r.ev, r.normal), dv = cross(r.normal, r.eu);
+  r.dualU = {du.x / area, du.y / area, du.z / area};
+  r.dualV = {dv.x / area, dv.y / area, dv.z / area};
+  const VD lu = hn::Sqrt(dot(r.eu, r.eu)), lv = hn::Sqrt(dot(r.ev, r.ev));
+  const MD sheared = hn::And(ok, hn::Abs(dot(r.eu, r.ev)) > setD(SphericalRectangle::kMaxEdgeCos) * lu * lv);
+  ok = hn::AndNot(sheared, ok);
+  // The rectangle's frame: x̂ along eu, ŷ the unit part of ev perpendicular to it.
+  const V3D xHat{r.eu.x / lu, r.eu.y / lu, r.eu.z / lu};
+  r.shear = times(dot(r.ev, xHat), xHat);
+  r.unsheared = hn::And(hn::And(r.shear.x == zero, r.shear.y == zero), r.shear.z == zero);
+  const V3D vPerp = minus(r.ev, r.shear);
+  const VD height = hn::Sqrt(dot(vPerp, vPerp));
+  const V3D yHat{vPerp.x / height, vPerp.y / height, vPerp.z / height};
+  const VD h = hn::Abs(r.z0);
+  r.h = h;
+  const VD x0 = dot(r.toCorner, xHat), y0 = dot(r.toCorner, yHat);
+  const VD x1 = x0 + lu, y1 = y0 + height;
+  // Ω as the sum of the triangles v00 v10 v11 and v00 v11 v01 (Van Oosterom & Strackee).
+  const VD h2 = h * h;
+  const VD r00 = hn::Sqrt(x0 * x0 + y0 * y0 + h2), r10 = hn::Sqrt(x1 * x1 + y0 * y0 + h2),
+           r11 = hn::Sqrt(x1 * x1 + y1 * y1 + h2), r01 = hn::Sqrt(x0 * x0 + y1 * y1 + h2);
+  const VD diagonal = (x0 * x1 + y0 * y1 + h2) / (r00 * r11);
+  const VD n1 = lu * height * h / (r00 * r10 * r11), n2 = lu * height * h / (r00 * r11 * r01);
+  const VD d1 =
+      one + (x0 * x1 + y0 * y0 + h2) / (r00 * r10) + (x1 * x1 + y0 * y1 + h2) / (r10 * r11) + diagonal;
+  const VD d2 =
+      one + diagonal + (x0 * x1 + y1 * y1 + h2) / (r11 * r01) + (x0 * x0 + y0 * y1 + h2) / (r01 * r00);
+  const auto atan2Lanes = [](double y, double x) { return std::atan2(y, x); };
+  r.solidAngle = setD(2.0) * libmLanes(ok, n1 * d2 + n2 * d1, d1 * d2 - n1 * n2, atan2Lanes);
+  ok = hn::And(ok, hn::And(r.solidAngle > zero, r.solidAngle < infinity));
+  const MD byArea = hn::And(ok, r.solidAngle < setD(SphericalRectangle::kMinSolidAngle));
+  r.inLanes = hn::AndNot(byArea, ok);
+  r.scalar = hn::Or(sheared, byArea);
+  // The column runs along the axis whose extent across subtends the smaller angle.
+  r.swapped = (h2 + x0 * x1) * (h * height) - (h * lu) * (h2 + y0 * y1) > zero;
+  r.a0 = hn::IfThenElse(r.swapped, y0, x0);
+  r.a1 = hn::IfThenElse(r.swapped, y1, x1);
+  r.b0 = hn::IfThenElse(r.swapped, x0, y0);
+  r.b1 = hn::IfThenElse(r.swapped, x1, y1);
+  const VD a0 = r.a0, b0 = r.b0, b1 = r.b1;
+  const VD lb = b1 - b0;
+  r.invA = one / (r.a1 - a0);
+  r.invB = one / lb;
+  // φ₀ = Φ(a0).
+  const VD s0 = hn::Sqrt(a0 * a0 + b0 * b0 + h2), s1 = hn::Sqrt(a0 * a0 + b1 * b1 + h2);
+  const VD spread = hn::IfThenElse(b0 * b1 > zero, lb * (b1 + b0) * (a0 * a0 + h2) / (b1 * s0 + b0 * s1),
+                                   b1 * s0 - b0 * s1);
+  r.phi0 = libmLanes(r.inLanes, a0 * h * spread, h2 * s0 * s1 + a0 * a0 * b0 * b1, atan2Lanes);
+  const VD rho = hn::Sqrt(h2 + b0 * b0) * hn::Sqrt(h2 + b1 * b1);
+  r.oneMinusCosDelta = oneMinusCos((h2 + b0 * b1) / rho, h * lb / rho);
+  r.onePlusCosSigma = onePlusCos((h2 - b0 * b1) / rho, h * (b0 + b1) / rho);
+  return r;
+}
+
+// SphericalRectangle::sampleDirection through rectanglePoint, in the lanes of r.inLanes.
+HWY_INLINE V3D sampleSphericalRectangle(const SphericalRectangleLanes& r, VF u0, VF u1) {
+  const DD dd;
+  const VD zero = hn::Zero(dd), one = setD(1.0), two = setD(2.0);
+  const VD h = r.h, a0 = r.a0, a1 = r.a1, b0 = r.b0, b1 = r.b1;
+  // u.x: the column A with Φ(A) = Φ(a0) + u.x Ω, in closed form.
+  const VD phi = r.phi0 + promote(u0) * r.solidAngle;
+  const VD half = setD(0.5) * phi;
+  const VD sinHalf = libmLanes(r.inLanes, half, [](double v) { return std::sin(v); });
+  const VD cosHalf = libmLanes(r.inLanes, half, [](double v) { return std::cos(v); });
+  const VD twoS2 = two * sinHalf * sinHalf;
+  const VD denominator = (r.oneMinusCosDelta - twoS2) * (r.onePlusCosSigma - twoS2);
+  VD a = hn::IfThenElse(denominator > zero, two * h * sinHalf * cosHalf / hn::Sqrt(denominator),
+                        hn::IfThenElse(phi > zero, a1, a0));
+  a = clampD(a, a0, a1);
+  // u.y: t(B) = B / √(d² + B²) linear in u.y from t(b0) to t(b1).
+  const VD d2 = a * a + h * h, d = hn::Sqrt(d2);
+  const VD rho0 = hn::Sqrt(d2 + b0 * b0), rho1 = hn::Sqrt(d2 + b1 * b1);
+  const VD t0 = b0 / rho0, t1 = b1 / rho1;
+  const VD c0 = d / rho0, c1 = d / rho1;
+  const VD dt = hn::IfThenElse(b0 * b1 > zero,
+                               (b1 - b0) * (b1 + b0) * d2 / ((b1 * rho0 + b0 * rho1) * rho0 * rho1), t1 - t0);
+  const VD v = promote(u1), w = one - v;
+  const VD delta = v * dt, t = t0 + delta;
+  const VD oneMinus = w * hn::IfThenElse(t0 > zero, c0 * c0 / (one + t0), one - t0) +
+                      v * hn::IfThenElse(t1 > zero, c1 * c1 / (one + t1), one - t1);
+  const VD onePlus = w * hn::IfThenElse(t0 < zero, c0 * c0 / (one - t0), one + t0) +
+                     v * hn::IfThenElse(t1 < zero, c1 * c1 / (one - t1), one + t1);
+  const VD c = hn::Sqrt(oneMinus * onePlus);
+  const VD rise = hn::IfThenElse(
+      hn::Not(c > zero), hn::IfThenElse(t > zero, b1 - b0, zero),
+      hn::IfThenElse(t * t0 > zero, d * delta * (t + t0) / ((t * c0 + t0 * c) * c * c0), t * d / c - b0));
+  const VD sa = (a - a0) * r.invA, sb = clampD(rise * r.invB, zero, one);
+  const VD s = hn::IfThenElse(r.swapped, sb, sa), tt = hn::IfThenElse(r.swapped, sa, sb);
+  return normalized(plus(plus(r.toCorner, times(s, r.eu)), times(tt, r.ev)));
+}
+
+// SphericalRectangle::pdfDirection of unit direction w where the map samples (1 / Ω inside, times
+// (d / d')³ for nearly perpendicular edges), 0 in the other lanes.
+HWY_INLINE VD pdfSphericalRectangle(const SphericalRectangleLanes& r, const V3D& w) {
+  const DD dd;
+  const VD zero = hn::Zero(dd), one = setD(1.0);
+  const VD cosLight = dot(r.normal, w);
+  const VD t = r.z0 / cosLight;
+  const V3D p = times(t, w);
+  const V3D q = minus(p, r.toCorner);
+  const VD s = dot(q, r.dualU), rr = dot(q, r.dualV);
+  const VD lo = setD(-SphericalRectangle::kEdgeTolerance), hi = setD(1 + SphericalRectangle::kEdgeTolerance);
+  const MD inside = hn::And(hn::And(hn::And(r.inLanes, cosLight != zero), t > zero),
+                            hn::And(hn::And(s >= lo, s <= hi), hn::And(rr >= lo, rr <= hi)));
+  const V3D unsheared = minus(p, times(rr, r.shear));
+  const VD ratio = t / hn::Sqrt(dot(unsheared, unsheared));
+  const VD density = hn::IfThenElse(r.unsheared, one / r.solidAngle, ratio * ratio * ratio / r.solidAngle);
+  return hn::IfThenElseZero(inside, density);
+}
+
 // PolygonLight::sampleAlong and the solid-angle technique's density: the sample of unit direction w
 // from x towards the light (valid where it meets its plane in front of x and the density fits a float).
 HWY_INLINE PacketLightSample sampleAlong(const PolygonLanes& light, const V3D& x, const V3D& w, VD pdf,
@@ -165,11 +316,13 @@ HWY_INLINE PacketLightSample sampleAlong(const PolygonLanes& light, const V3D& x
 // sample(draws, j) draws the light sample of draw j.
 template <LightMeasure kMeasure>
 struct PolygonTechnique {
-  static constexpr bool kTriangleMap = kMeasure == LightMeasure::SolidAngle;
+  static constexpr bool kMaps = kMeasure == LightMeasure::SolidAngle;
   const PolygonLanes& light;
   V3F x;
-  SphericalTriangleLanes triangle;  // by the solid angle: the triangle lights' maps
-  bool anyTriangle = false;
+  // By the solid angle: the triangle lights' and the parallelogram lights' maps.
+  SphericalTriangleLanes triangle;
+  SphericalRectangleLanes rectangle;
+  bool anyTriangle = false, anyRectangle = false;
   ScalarLightSamples<kMeasure> scalar;
 
   PolygonTechnique(const PacketScene& scene, const PolygonLanes& l, const float* index, const PacketHit& h,
@@ -182,9 +335,18 @@ struct PolygonTechnique {
     if constexpr (kMeasure == LightMeasure::Area) return samplePolygonArea(light, x, u0, u1);
     const VF zero = hn::Zero(DF());
     PacketLightSample s{hn::FirstN(DF(), 0), V3F{zero, zero, zero}, zero, zero, zero};
+    const V3D origin = promote(x);
     if (anyTriangle) {
       const V3D w = sampleSphericalTriangle(triangle, u0, u1);
-      s = sampleAlong(light, triangle.origin, w, pdfSphericalTriangle(triangle, w), triangle.inLanes);
+      s = sampleAlong(light, origin, w, pdfSphericalTriangle(triangle, w), triangle.inLanes);
+    }
+    if (anyRectangle) {
+      const V3D w = sampleSphericalRectangle(rectangle, u0, u1);
+      const PacketLightSample r =
+          sampleAlong(light, origin, w, pdfSphericalRectangle(rectangle, w), rectangle.inLanes);
+      const MF m = toF(rectangle.inLanes);
+      s = {hn::Or(s.valid, r.valid), select(m, r.wi, s.wi), hn::IfThenElse(m, r.dist, s.dist),
+           hn::IfThenElse(m, r.pdf, s.pdf), s.projected};
     }
     return scalar.merge(draws, j, s);
   }
@@ -192,18 +354,24 @@ struct PolygonTechnique {
  private:
   // The lanes the scalar technique samples; sets up the maps of the others.
   MF byScalar(MF active) {
-    if constexpr (kMeasure == LightMeasure::Area) return hn::FirstN(DF(), 0);
-    if constexpr (kTriangleMap) {
-      const MF triangles = hn::AndNot(light.parallelogram, active);
-      if (!hn::AllFalse(DF(), triangles)) {
-        triangle = sphericalTriangle(light, x, triangles);
-        anyTriangle = !hn::AllFalse(DD(), triangle.inLanes);
-        return hn::Or(hn::And(active, light.parallelogram), toF(triangle.byArea));
-      }
+    if constexpr (!kMaps) return kMeasure == LightMeasure::Area ? hn::FirstN(DF(), 0) : active;
+    const MF triangles = hn::AndNot(light.parallelogram, active);
+    const MF parallelograms = hn::And(light.parallelogram, active);
+    MF scalarLanes = hn::FirstN(DF(), 0);
+    if (!hn::AllFalse(DF(), triangles)) {
+      triangle = sphericalTriangle(light, x, triangles);
+      anyTriangle = !hn::AllFalse(DD(), triangle.inLanes);
+      scalarLanes = toF(triangle.byArea);
     }
-    return active;
+    if (!hn::AllFalse(DF(), parallelograms)) {
+      rectangle = sphericalRectangle(light, x, parallelograms);
+      anyRectangle = !hn::AllFalse(DD(), rectangle.inLanes);
+      scalarLanes = hn::Or(scalarLanes, toF(rectangle.scalar));
+    }
+    return scalarLanes;
   }
 };
+
 }  // namespace HWY_NAMESPACE
 }  // namespace penumbra
 HWY_AFTER_NAMESPACE();

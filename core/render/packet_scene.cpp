@@ -1,7 +1,5 @@
 #include "core/render/packet_scene.h"
 
-#include <algorithm>
-
 #include "core/integrators/sampling_loops.h"
 #include "core/math/vec.h"
 #include "core/render/strategy_axes.h"
@@ -149,10 +147,8 @@ PacketLightBvh packetLightBvh(const LightBvh& bvh) {
 bool polygonSamplesByLane(LightMeasure measure, const Scene& scene) {
   switch (measure) {
     case LightMeasure::Area:
-      return false;
     case LightMeasure::SolidAngle:
-      return std::any_of(scene.polygonLights.begin(), scene.polygonLights.end(),
-                         [](const PolygonLight& l) { return l.parallelogram; });
+      return false;
     case LightMeasure::ProjectedSolidAngle:
       return !scene.polygonLights.empty();
   }

@@ -125,8 +125,8 @@ struct PacketScene {
   bool anyGlossy = false;           // some object's BSDF is glossy
   std::vector<PacketLight> lights;  // sphere lights
   // Polygon lights (Scene::polygonLights, after the sphere lights in the area lights' order): sampled in
-  // lanes by area; by the solid angle and projected solid angle lane by lane with the scalar techniques
-  // (polygonSamplesByLane).
+  // lanes by area and the solid angle, by the projected solid angle lane by lane with the scalar
+  // techniques (polygonSamplesByLane).
   std::vector<PacketPolygonLight> polygons;
   std::vector<PacketPointLight> pointLights;
   std::vector<PacketDirectionalLight> directionalLights;
@@ -151,8 +151,10 @@ bool packetGeometryQueried(const Scene& scene);
 inline constexpr int kMaxPacketDraws = 256;
 
 // Whether the kernels leave the samples of the scene's polygon lights by `measure` to the scalar
-// techniques, lane by lane: by the solid angle and the projected solid angle (spherical polygons' maps,
-// which need atan2, sin, cos or asin); the rest of each draw is in lanes (packet_polygon_techniques-inl.h).
+// techniques, lane by lane: by the projected solid angle (the clipped polygon's map, which needs a
+// clip per shading point, atan2 and an iterative inversion); the rest of each draw is in lanes
+// (packet_polygon_techniques-inl.h). By area and the solid angle they are sampled in lanes (but for
+// sheared parallelograms and polygons too small for the maps, rare enough to leave aside here).
 bool polygonSamplesByLane(LightMeasure measure, const Scene& scene);
 
 // Why no packet kernel computes `job` (empty when one does).
