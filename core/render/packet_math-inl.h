@@ -119,9 +119,18 @@ HWY_INLINE V libmLanes(M m, V x, V y, Fn fn) {
 HWY_INLINE VF maxOf(VF a, VF b) {
   return hn::IfThenElse(a < b, b, a);
 }
-// v · f per component.
-HWY_INLINE V3F scaled(const V3F& v, VF f) {
+// v · f per component (glm's vector times scalar, and scalar times vector).
+template <class V3, class V>
+HWY_INLINE V3 scaled(const V3& v, V f) {
   return {v.x * f, v.y * f, v.z * f};
+}
+template <class V3>
+HWY_INLINE V3 plus(const V3& a, const V3& b) {
+  return {a.x + b.x, a.y + b.y, a.z + b.z};
+}
+template <class V3>
+HWY_INLINE V3 minus(const V3& a, const V3& b) {
+  return {a.x - b.x, a.y - b.y, a.z - b.z};
 }
 // a · b per component (Color3's product).
 HWY_INLINE V3F times(const V3F& a, const V3F& b) {
