@@ -76,6 +76,11 @@ HWY_INLINE void pickBvhLights(const PacketLightBvh& bvh, const V3F& pF, const V3
   const DD dd;
   const DI64 di;
   const VD zero = hn::Zero(dd);
+  if (bvh.power.empty()) {  // no area lights: nothing is picked
+    hn::Store(zero, dd, pmf);
+    for (size_t k = 0; k < hn::Lanes(dd); ++k) light[k] = -1.f;
+    return;
+  }
   const V3D p = promote(pF), n = promote(nF);
   const MD nonzeroNormal = hn::Or(hn::Or(n.x != zero, n.y != zero), n.z != zero);
   VI64 index = hn::Zero(di);

@@ -69,14 +69,17 @@ const char* geometryName(Geometry g) {
 // light, and a diffuse sphere that cuts into a light (shading points inside it, lit by nothing of it);
 // unless the geometry is flat, also a rock whose interpolated normals differ from its faces'; with
 // polygon lights, a rectangle light overhead facing down (seen from behind by the camera), one on the
-// floor facing up, a black one, and unless flat a glowing rock of 20 triangle lights.
-TestScene packetTestScene(float scale, bool deltaLights = false, Geometry geometry = Geometry::Flat) {
+// floor facing up, a black one, and unless flat a glowing rock of 20 triangle lights. Without
+// sphereLights the spheres that would be lights are left out.
+TestScene packetTestScene(float scale, bool deltaLights = false, Geometry geometry = Geometry::Flat,
+                          bool sphereLights = true) {
   auto scene = std::make_shared<Scene>();
   auto addObject = [&](Color3 albedo) {
     scene->materials.push_back(SurfaceMaterial{makeDiffuse(albedo)});
     return uint32_t(scene->materials.size() - 1);
   };
   auto addLight = [&](Vec3 c, float r, Color3 radiance, Color3 albedo) {
+    if (!sphereLights) return;
     const uint32_t object = addObject(albedo);
     const int32_t index = int32_t(scene->geometry.addSphere(Sphere{c * scale, r * scale}, object));
     scene->materials[object].sphereLight = int32_t(scene->sphereLights.size());
@@ -274,6 +277,24 @@ INSTANTIATE_TEST_SUITE_P(Geometries, PacketRowLoopOn,
                          [](const testing::TestParamInfo<Geometry>& info) {
                            return geometryName(info.param);
                          });
+
+// A scene whose only lights are point and directional lights: one light picked per sample by every
+// selection (the light BVH empty) picks nothing in lanes as in the scalar loop, on every instruction set.
+TEST(PacketRowLoop, PicksNothingWithoutAreaLights) {
+  const TestScene t = packetTestScene(1.f, true, Geometry::Flat, false);
+  ASSERT_TRUE(t.scene->lightBvh.nodes.empty());
+  for (const std::string& target : targetsToCompare()) {
+    ForcedTarget forced(target);
+    for (const LightSelection selection :
+         {LightSelection::Uniform, LightSelection::Power, LightSelection::Bvh})
+      for (const LightMeasure measure : {LightMeasure::Area, LightMeasure::SolidAngle}) {
+        SCOPED_TRACE(target + " " + strategyLabel(directByLight(measure, selection)));
+        const auto job = jobFor(t, directByLight(measure, selection), 1, SamplerKind::Sobol);
+        ASSERT_EQ(packetPathDeclinedReason(*job), "");
+        EXPECT_EQ(renderSums(job, true, 1), renderSums(job, false, 1));
+      }
+  }
+}
 
 // The image has every kind of lane: sky pixels (0), lights seen directly (brighter than any reflection
 // here) and lit surfaces, so the comparison above exercises the masks.
