@@ -410,15 +410,6 @@ HWY_INLINE void shadeMis(const PacketScene& scene, const PacketRays& rays, const
     const int nLight = scene.lightSamples, nBsdf = scene.bsdfSamples;
     const VF nL = setF(float(nLight)), nB = setF(float(nBsdf));
     const size_t spheres = scene.lights.size();
-    const int laneCount = int(hn::Lanes(df));
-    // The shading points for the lane-by-lane queries, stored when first needed.
-    PacketShadingLanes points;
-    bool pointsStored = false;
-    auto shadingPoints = [&]() -> const PacketShadingLanes& {
-      if (!pointsStored) storeShading(h, shaded, points);
-      pointsStored = true;
-      return points;
-    };
     if (nLight > 0) {
       const auto misFactor = [&](const PacketLightSample& s, VF cosTheta, VF glossyPdf) {
         // Reflection::pdf: the cosine hemisphere's on diffuse lanes, the BSDF's on glossy ones.
@@ -448,16 +439,9 @@ HWY_INLINE void shadeMis(const PacketScene& scene, const PacketRays& rays, const
                 if (scene.lights[l].radius > 0.f)
                   pL = SphereTechnique<kMeasure>(scene, l, h, lanes, 0).pdf(w, p, n);
               } else if (nLight > 0) {
-                PacketShadingLanes reached = shadingPoints();
-                hn::StoreU(hn::IfThenElseZero(lanes, setF(1.f)), df, reached.active);
-                HWY_ALIGN float index[kMaxPacketLanes], pdf[kMaxPacketLanes];
-                PacketColorLanes wl, pl, nl;
+                HWY_ALIGN float index[kMaxPacketLanes];
                 hn::Store(lightIndex, df, index);
-                storeF3(w, wl.c);
-                storeF3(p, pl.c);
-                storeF3(n, nl.c);
-                queryLightPdfs(*scene.scene, kMeasure, reached, index, wl.c, pl.c, nl.c, laneCount, pdf);
-                pL = hn::Load(df, pdf);
+                pL = ScalarLightSamples<kMeasure>(scene, index, h, lanes, 0).mergePdf(w, p, n, zero);
               }
               const VF weight = misWeight<kHeuristic>(nB * d.pdf, nL * pL);
               addRadiance(lanes, times(Le, d.weight), d.cosOverPdf * weight, bsdfPart);

@@ -23,6 +23,11 @@ namespace hn = hwy::HWY_NAMESPACE;
 using DI64 = hn::RebindToSigned<DD>;
 using VI64 = hn::Vec<DI64>;
 
+// Each lane's value of a node field for the lanes' nodes.
+HWY_INLINE VD gatherNodes(const std::vector<double>& field, VI64 node) {
+  return hn::GatherIndex(DD(), field.data(), node);
+}
+
 // std::min(v, hi): (hi < v) ? hi : v, NaN kept.
 HWY_INLINE VD minOf(VD v, VD hi) {
   return hn::IfThenElse(hi < v, hi, v);
@@ -34,7 +39,7 @@ HWY_INLINE VD bvhImportance(const PacketLightBvh& bvh, VI64 node, const V3D& p, 
   const DD dd;
   const VD zero = hn::Zero(dd), one = setD(1.0);
   const VD maxImportance = setD(1e300);
-  auto gather = [&](const std::vector<double>& field) { return hn::GatherIndex(dd, field.data(), node); };
+  auto gather = [&](const std::vector<double>& field) { return gatherNodes(field, node); };
   const VD power = gather(bvh.power), r2 = gather(bvh.radius2);
   const V3D toCentre{gather(bvh.centreX) - p.x, gather(bvh.centreY) - p.y, gather(bvh.centreZ) - p.z};
   const VD d2 = dot(toCentre, toCentre);
@@ -88,21 +93,18 @@ HWY_INLINE void pickBvhLights(const PacketLightBvh& bvh, const V3F& pF, const V3
   MD picked = walking;
   VD probability = setD(1.0);
   VD u = promote(u0) + promote(u1) * setD(0x1p-24);
-  auto gather = [&](const std::vector<double>& field, VI64 node) {
-    return hn::GatherIndex(dd, field.data(), node);
-  };
-  walking = hn::AndNot(gather(bvh.leaf, index) != zero, walking);
+  walking = hn::AndNot(gatherNodes(bvh.leaf, index) != zero, walking);
   while (!hn::AllFalse(dd, walking)) {
     // childProbabilities: the two children's importance, or their power where neither can reach p.
     // Lanes done walk the root's children alongside (their leaf's neighbours may not exist).
     const VI64 at = hn::IfThenElseZero(hn::RebindMask(di, walking), index);
     const VI64 first = at + hn::Set(di, 1);
-    const VI64 second = hn::ConvertTo(di, gather(bvh.child, at));
+    const VI64 second = hn::ConvertTo(di, gatherNodes(bvh.child, at));
     VD ia = bvhImportance(bvh, first, p, n, nonzeroNormal),
        ib = bvhImportance(bvh, second, p, n, nonzeroNormal);
     const MD unreachable = hn::Not(ia + ib > zero);
-    ia = hn::IfThenElse(unreachable, gather(bvh.power, first), ia);
-    ib = hn::IfThenElse(unreachable, gather(bvh.power, second), ib);
+    ia = hn::IfThenElse(unreachable, gatherNodes(bvh.power, first), ia);
+    ib = hn::IfThenElse(unreachable, gatherNodes(bvh.power, second), ib);
     const VD sum = ia + ib;
     const MD some = sum > zero;
     const VD pa = hn::IfThenElseZero(some, ia / sum), pb = hn::IfThenElseZero(some, ib / sum);
@@ -118,9 +120,9 @@ HWY_INLINE void pickBvhLights(const PacketLightBvh& bvh, const V3F& pF, const V3
         hn::IfThenElse(toFirst, probability * pa, hn::IfThenElse(toSecond, probability * pb, probability));
     const VD next = hn::IfThenElse(toFirst, u / pa, (u - pa) / pb);
     u = hn::IfThenElse(walking, minOf(next, setD(0x1.fffffffffffffp-1)), u);
-    walking = hn::AndNot(gather(bvh.leaf, index) != zero, walking);
+    walking = hn::AndNot(gatherNodes(bvh.leaf, index) != zero, walking);
   }
-  const VD lightIndex = gather(bvh.child, index);
+  const VD lightIndex = gatherNodes(bvh.child, index);
   const MD some = hn::And(picked, probability > zero);
   HWY_ALIGN double lights[kMaxPacketLanes];
   hn::Store(hn::IfThenElse(some, lightIndex, setD(-1.0)), dd, lights);

@@ -49,10 +49,7 @@ class ScalarLightSamples {
     storeShading(h, lanes, points_);
   }
 
-  bool any() const { return any_; }
-  MF lanes() const { return lanes_; }
-
-  // s with the scalar sample of draw j (j < drawEnd) in the lanes of lanes().
+  // s with the scalar sample of draw j (j < drawEnd) in the lanes of `lanes`.
   PacketLightSample merge(const PacketDraws& draws, size_t j, PacketLightSample s) const {
     if (!any_) return s;
     if (j < first_ || j >= first_ + count_) {
@@ -73,7 +70,7 @@ class ScalarLightSamples {
   }
 
   // d with MisIntegrator::lightPdf of unit direction w, which reached the lanes' light at p with normal
-  // n, in the lanes of lanes().
+  // n, in the lanes of `lanes`.
   VF mergePdf(const V3F& w, const V3F& p, const V3F& n, VF d) const {
     if (!any_) return d;
     const DF df;
