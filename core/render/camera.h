@@ -50,6 +50,11 @@ class PerspectiveCamera {
   int height() const { return desc_.height; }
   const Vec3& origin() const { return origin_; }
   const Vec3& forward() const { return forward_; }
+  const Vec3& right() const { return right_; }
+  const Vec3& up() const { return up_; }
+  // generateRay's constants: tan of the half field of view per axis, 1 / the image's size.
+  Vec2 tanHalfFov() const { return Vec2(tanHalfX_, tanHalfY_); }
+  Vec2 inverseSize() const { return Vec2(invWidth_, invHeight_); }
 
  private:
   CameraDesc desc_;

@@ -45,10 +45,19 @@ class FilterSampler {
 
   const FilterDesc& desc() const { return desc_; }
 
- private:
   static constexpr int kBins = 512;    // signed-weight bins over [-radius, radius]
   static constexpr int kTable = 1024;  // inverse-CDF entries, uniform in u
 
+  // The tables sample1D reads, for code that samples the filter in SIMD lanes; valid while this lives.
+  struct Tables {
+    const float* invCdf;     // kTable + 1 entries
+    const float* binWeight;  // kBins entries, read when isSigned
+    bool isSigned;
+    float radius, invBinWidth;
+  };
+  Tables tables() const { return {invCdf_.data(), binWeight_.data(), signed_, desc_.radius, invBinWidth_}; }
+
+ private:
   // Inverse-CDF lookup with linear interpolation: the sampled density is |f| approximated by
   // kTable pieces (no search, no branches). Positive filters have weight 1; signed ones (Mitchell)
   // take sign(f) * integral|f| / integral f from the bin of x.

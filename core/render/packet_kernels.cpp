@@ -33,11 +33,13 @@
 #include <hwy/highway.h>
 
 #include "core/render/packet_bsdf-inl.h"
+#include "core/render/packet_camera-inl.h"
 #include "core/render/packet_geometry-inl.h"
 #include "core/render/packet_light_bvh-inl.h"
 #include "core/render/packet_lights-inl.h"
 #include "core/render/packet_math-inl.h"
 #include "core/render/packet_polygon_techniques-inl.h"
+#include "core/render/packet_sampler-inl.h"
 #include "core/render/packet_sphere_techniques-inl.h"
 
 HWY_BEFORE_NAMESPACE();
@@ -543,6 +545,14 @@ void ShadePacket(const PacketScene& scene, const PacketRays& rays, const PacketD
       return shadeNormals(scene, rays, out);
   }
 }
+void CameraRays(const PacketCamera& camera, int x0, int y, int count, const float (&u)[2][kMaxPacketLanes],
+                PacketRays& rays, float (&weight)[kMaxPacketLanes]) {
+  cameraRays(camera, x0, y, count, u, rays, weight);
+}
+void IndependentDraws(uint64_t seedHash, int x0, int y, int count, uint32_t pass, int drawCount,
+                      float (&u)[2][kMaxPacketLanes], PacketDraws& draws) {
+  independentDraws(seedHash, x0, y, count, pass, drawCount, u, draws);
+}
 int Lanes() {
   return static_cast<int>(hn::Lanes(DD()));
 }
@@ -559,25 +569,29 @@ namespace {
 struct PacketTarget {
   int64_t target;  // Highway's bit for it
   PacketShader shade;
+  PacketCameraRays cameraRays;
+  PacketIndependentDraws independentDraws;
   int (*lanes)();
 };
 
 // The sets this file was compiled for, best first.
 constexpr PacketTarget kTargets[] = {
 #if HWY_TARGETS & HWY_AVX3
-    {HWY_AVX3, &N_AVX3::ShadePacket, &N_AVX3::Lanes},
+    {HWY_AVX3, &N_AVX3::ShadePacket, &N_AVX3::CameraRays, &N_AVX3::IndependentDraws, &N_AVX3::Lanes},
 #endif
 #if HWY_TARGETS & HWY_AVX2
-    {HWY_AVX2, &N_AVX2::ShadePacket, &N_AVX2::Lanes},
+    {HWY_AVX2, &N_AVX2::ShadePacket, &N_AVX2::CameraRays, &N_AVX2::IndependentDraws, &N_AVX2::Lanes},
 #endif
 #if HWY_TARGETS & HWY_SSE4
-    {HWY_SSE4, &N_SSE4::ShadePacket, &N_SSE4::Lanes},
+    {HWY_SSE4, &N_SSE4::ShadePacket, &N_SSE4::CameraRays, &N_SSE4::IndependentDraws, &N_SSE4::Lanes},
 #endif
 #if HWY_TARGETS & HWY_EMU128
-    {HWY_EMU128, &N_EMU128::ShadePacket, &N_EMU128::Lanes},
+    {HWY_EMU128, &N_EMU128::ShadePacket, &N_EMU128::CameraRays, &N_EMU128::IndependentDraws,
+     &N_EMU128::Lanes},
 #endif
 #if HWY_TARGETS & HWY_SCALAR
-    {HWY_SCALAR, &N_SCALAR::ShadePacket, &N_SCALAR::Lanes},
+    {HWY_SCALAR, &N_SCALAR::ShadePacket, &N_SCALAR::CameraRays, &N_SCALAR::IndependentDraws,
+     &N_SCALAR::Lanes},
 #endif
 };
 
@@ -649,6 +663,14 @@ bool forcePacketTarget(const std::string& name) {
 
 PacketShader packetShader() {
   return currentTarget().shade;
+}
+
+PacketCameraRays packetCameraRays() {
+  return currentTarget().cameraRays;
+}
+
+PacketIndependentDraws packetIndependentDraws() {
+  return currentTarget().independentDraws;
 }
 
 }  // namespace penumbra

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "core/render/packet_camera.h"
 #include "core/render/packet_scene.h"
 
 namespace penumbra {
@@ -53,5 +54,21 @@ bool forcePacketTarget(const std::string& name);
 using PacketShader = void (*)(const PacketScene& scene, const PacketRays& rays, const PacketDraws& draws,
                               PacketRadiance& out);
 PacketShader packetShader();
+
+// Each lane's camera ray and filter weight (startCameraSample after its filter draw u[.][lane], in
+// lanes) for pixels x0 .. x0 + count - 1 of row y; lanes past `count` repeat the last pixel. On the
+// instruction set in use when packetCameraRays() was called.
+using PacketCameraRays = void (*)(const PacketCamera& camera, int x0, int y, int count,
+                                  const float (&u)[2][kMaxPacketLanes], PacketRays& rays,
+                                  float (&weight)[kMaxPacketLanes]);
+PacketCameraRays packetCameraRays();
+
+// Each lane's filter draw (u) and first `drawCount` shading draws of SamplerKind::Independent for pixels
+// x0 .. x0 + count - 1 of row y at sample index `pass` (lanes past `count` repeat the last pixel): what
+// Sampler::startPixelSample and the row loop's next2D calls return, computed in lanes. `seedHash` is
+// mix64 of the sampler's seed. On the instruction set in use when packetIndependentDraws() was called.
+using PacketIndependentDraws = void (*)(uint64_t seedHash, int x0, int y, int count, uint32_t pass,
+                                        int drawCount, float (&u)[2][kMaxPacketLanes], PacketDraws& draws);
+PacketIndependentDraws packetIndependentDraws();
 
 }  // namespace penumbra

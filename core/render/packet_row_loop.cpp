@@ -5,10 +5,14 @@
 #include <cstdlib>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "core/math/float_util.h"
+#include "core/render/film.h"
+#include "core/render/packet_camera.h"
 #include "core/render/packet_kernels.h"
-#include "core/render/row_loop.h"
+#include "core/sampling/rng.h"
+#include "core/sampling/sampler.h"
 
 namespace penumbra {
 
@@ -16,11 +20,48 @@ namespace {
 
 // One per row renderer (per worker thread), reused packet after packet.
 struct PacketBuffers {
+  float filterU[2][kMaxPacketLanes];
   PacketRays rays;
   PacketDraws draws;
   PacketRadiance radiance;
   float weight[kMaxPacketLanes];
 };
+
+// One sampler request of a camera sample's shading draws: next2D(i, n), or next2D(i, n, part, parts)
+// when parts > 1.
+struct DrawIndex {
+  uint32_t i, n, part, parts;
+};
+
+// The scene's draw requests unrolled into one entry per draw, in the integrator's order.
+std::vector<DrawIndex> drawPlan(const std::vector<DrawRequests>& requests) {
+  std::vector<DrawIndex> plan;
+  for (const DrawRequests& r : requests)
+    for (int rep = 0; rep < r.repeats; ++rep)
+      for (int i = 0; i < r.n; ++i)
+        for (int part = 0; part < r.parts; ++part)
+          plan.push_back({uint32_t(i), uint32_t(r.n), uint32_t(part), uint32_t(r.parts)});
+  return plan;
+}
+
+// Each lane's filter draw and shading draws from the scalar sampler, lane by lane (lanes past `count`
+// repeat the last pixel).
+void drawLaneByLane(Sampler& sampler, const std::vector<DrawIndex>& plan, int x0, int y, int count, int lanes,
+                    uint32_t pass, PacketBuffers& b) {
+  for (int k = 0; k < lanes; ++k) {
+    sampler.startPixelSample(IVec2(x0 + std::min(k, count - 1), y), pass);
+    const Vec2 u = sampler.next2D();
+    b.filterU[0][k] = u.x;
+    b.filterU[1][k] = u.y;
+    int j = 0;
+    for (const DrawIndex& d : plan) {
+      const Vec2 v = d.parts == 1 ? sampler.next2D(d.i, d.n) : sampler.next2D(d.i, d.n, d.part, d.parts);
+      b.draws.u[j][0][k] = v.x;
+      b.draws.u[j][1][k] = v.y;
+      ++j;
+    }
+  }
+}
 
 }  // namespace
 
@@ -43,45 +84,35 @@ bool packetPathEnabled() {
 }
 
 RowRenderer packetRowsFor(const RenderJob& job, RowRenderer scalar) {
-  PerspectiveCamera camera(job.settings.camera);
-  FilterSampler filter(job.settings.filter);
+  auto filter = std::make_shared<const FilterSampler>(job.settings.filter);
+  const PacketCamera camera = makePacketCamera(PerspectiveCamera(job.settings.camera), *filter);
+  const int width = job.settings.camera.width;
   auto scene = std::make_shared<const PacketScene>(makePacketScene(job));
+  auto plan = std::make_shared<const std::vector<DrawIndex>>(drawPlan(scene->draws));
   auto buffers = std::make_shared<PacketBuffers>();
   const int lanes = std::min(packetLanes(), kMaxPacketLanes);
   const PacketShader shade = packetShader();
+  const PacketCameraRays cameraRays = packetCameraRays();
+  const PacketIndependentDraws independentDraws = packetIndependentDraws();
   RowRenderer r;
-  r.row = [camera, filter, scene, buffers, lanes, shade](int y, uint32_t pass, Sampler& sampler, Film& film,
-                                                         uint64_t& badSamples,
-                                                         const std::atomic<bool>& cancel) {
+  r.row = [camera, width, filter, scene, plan, buffers, lanes, shade, cameraRays, independentDraws](
+              int y, uint32_t pass, Sampler& sampler, Film& film, uint64_t& badSamples,
+              const std::atomic<bool>& cancel) {
     PacketBuffers& b = *buffers;
-    const int width = camera.width();
+    const bool drawsInLanes = sampler.kind() == SamplerKind::Independent;
+    const uint64_t seedHash = mix64(sampler.seed());
     for (int x0 = 0; x0 < width; x0 += lanes) {
       if (cancel.load(std::memory_order_relaxed)) return;
       const int count = std::min(lanes, width - x0);
-      for (int k = 0; k < lanes; ++k) {
-        // Lanes past the row's end repeat its last pixel; their results are dropped.
-        const int x = x0 + std::min(k, count - 1);
-        const Ray ray = startCameraSample(camera, filter, sampler, x, y, pass, b.weight[k]);
-        for (int c = 0; c < 3; ++c) {
-          b.rays.o[c][k] = ray.o[c];
-          b.rays.d[c][k] = ray.d[c];
-        }
-        b.rays.tMin[k] = ray.tMin;
-        b.rays.tMax[k] = ray.tMax;
-        // The integrator's draws in its order, drawn whatever the ray hits: each pixel sample
-        // restarts its stream, so draws a lane does not use change nothing.
-        int j = 0;
-        for (const DrawRequests& r : scene->draws)
-          for (int rep = 0; rep < r.repeats; ++rep)
-            for (int i = 0; i < r.n; ++i)
-              for (int part = 0; part < r.parts; ++part, ++j) {
-                const Vec2 u = r.parts == 1 ? sampler.next2D(uint32_t(i), uint32_t(r.n))
-                                            : sampler.next2D(uint32_t(i), uint32_t(r.n), uint32_t(part),
-                                                             uint32_t(r.parts));
-                b.draws.u[j][0][k] = u.x;
-                b.draws.u[j][1][k] = u.y;
-              }
-      }
+      // Each lane's draws in startCameraSample's order: the filter's, then the integrator's, drawn
+      // whatever the ray hits (each pixel sample restarts its stream, so draws a lane does not use
+      // change nothing). Lanes past the row's end repeat its last pixel; their results are dropped.
+      // The independent sampler draws in lanes; the stratified and Sobol' ones lane by lane.
+      if (drawsInLanes)
+        independentDraws(seedHash, x0, y, count, pass, int(plan->size()), b.filterU, b.draws);
+      else
+        drawLaneByLane(sampler, *plan, x0, y, count, lanes, pass, b);
+      cameraRays(camera, x0, y, count, b.filterU, b.rays, b.weight);
       shade(*scene, b.rays, b.draws, b.radiance);
       for (int k = 0; k < count; ++k) {
         const Color3 L(b.radiance.L[0][k], b.radiance.L[1][k], b.radiance.L[2][k]);

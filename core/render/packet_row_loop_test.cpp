@@ -11,6 +11,7 @@
 #include "core/materials/bsdf.h"
 #include "core/math/frame.h"
 #include "core/render/engine.h"
+#include "core/render/filter.h"
 #include "core/render/packet_kernels.h"
 #include "core/render/packet_scene.h"
 #include "core/render/strategy_axes.h"
@@ -293,6 +294,32 @@ TEST(PacketRowLoop, PicksNothingWithoutAreaLights) {
         ASSERT_EQ(packetPathDeclinedReason(*job), "");
         EXPECT_EQ(renderSums(job, true, 1), renderSums(job, false, 1));
       }
+  }
+}
+
+// The camera rays and filter weights are computed in lanes: every pixel filter (Mitchell's signed
+// lobes take their bin's weight) at its default and at an odd radius, on a camera whose image is
+// narrower than a packet and on one wider than high, give the scalar loop's film on every instruction set.
+TEST(PacketRowLoop, CameraRaysAndFilterWeightsEqualTheScalarLoopForEveryFilter) {
+  const TestScene t = packetTestScene(1.f);
+  for (const std::string& target : targetsToCompare()) {
+    ForcedTarget forced(target);
+    for (const FilterType type :
+         {FilterType::Box, FilterType::Tent, FilterType::Gaussian, FilterType::Mitchell})
+      for (const float radius : {defaultFilterRadius(type), 1.37f})
+        for (const int width : {3, 41}) {
+          SCOPED_TRACE(target + " " + filterTypeName(type) + " radius " + std::to_string(radius) + " width " +
+                       std::to_string(width));
+          auto job = std::make_shared<RenderJob>(
+              *jobFor(t, directByLight(LightMeasure::SolidAngle), 1, SamplerKind::ZSobol));
+          job->settings.filter.type = type;
+          job->settings.filter.radius = radius;
+          job->settings.camera.width = width;
+          job->settings.camera.height = 11;
+          job->settings.camera.fovDegrees = 23.f;
+          ASSERT_EQ(packetPathDeclinedReason(*job), "");
+          EXPECT_EQ(renderSums(job, true, 2), renderSums(job, false, 2));
+        }
   }
 }
 
