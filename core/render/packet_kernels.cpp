@@ -553,6 +553,10 @@ void IndependentDraws(uint64_t seedHash, int x0, int y, int count, uint32_t pass
                       float (&u)[2][kMaxPacketLanes], PacketDraws& draws) {
   independentDraws(seedHash, x0, y, count, pass, drawCount, u, draws);
 }
+void SobolDraws(const PacketSobolStart& start, const SobolDrawCall* draws, const uint32_t* requests,
+                int drawCount, float (&u)[2][kMaxPacketLanes], PacketDraws& out) {
+  sobolDraws(start, draws, requests, drawCount, u, out);
+}
 int Lanes() {
   return static_cast<int>(hn::Lanes(DD()));
 }
@@ -571,27 +575,31 @@ struct PacketTarget {
   PacketShader shade;
   PacketCameraRays cameraRays;
   PacketIndependentDraws independentDraws;
+  PacketSobolDraws sobolDraws;
   int (*lanes)();
 };
 
 // The sets this file was compiled for, best first.
 constexpr PacketTarget kTargets[] = {
 #if HWY_TARGETS & HWY_AVX3
-    {HWY_AVX3, &N_AVX3::ShadePacket, &N_AVX3::CameraRays, &N_AVX3::IndependentDraws, &N_AVX3::Lanes},
+    {HWY_AVX3, &N_AVX3::ShadePacket, &N_AVX3::CameraRays, &N_AVX3::IndependentDraws, &N_AVX3::SobolDraws,
+     &N_AVX3::Lanes},
 #endif
 #if HWY_TARGETS & HWY_AVX2
-    {HWY_AVX2, &N_AVX2::ShadePacket, &N_AVX2::CameraRays, &N_AVX2::IndependentDraws, &N_AVX2::Lanes},
+    {HWY_AVX2, &N_AVX2::ShadePacket, &N_AVX2::CameraRays, &N_AVX2::IndependentDraws, &N_AVX2::SobolDraws,
+     &N_AVX2::Lanes},
 #endif
 #if HWY_TARGETS & HWY_SSE4
-    {HWY_SSE4, &N_SSE4::ShadePacket, &N_SSE4::CameraRays, &N_SSE4::IndependentDraws, &N_SSE4::Lanes},
+    {HWY_SSE4, &N_SSE4::ShadePacket, &N_SSE4::CameraRays, &N_SSE4::IndependentDraws, &N_SSE4::SobolDraws,
+     &N_SSE4::Lanes},
 #endif
 #if HWY_TARGETS & HWY_EMU128
     {HWY_EMU128, &N_EMU128::ShadePacket, &N_EMU128::CameraRays, &N_EMU128::IndependentDraws,
-     &N_EMU128::Lanes},
+     &N_EMU128::SobolDraws, &N_EMU128::Lanes},
 #endif
 #if HWY_TARGETS & HWY_SCALAR
     {HWY_SCALAR, &N_SCALAR::ShadePacket, &N_SCALAR::CameraRays, &N_SCALAR::IndependentDraws,
-     &N_SCALAR::Lanes},
+     &N_SCALAR::SobolDraws, &N_SCALAR::Lanes},
 #endif
 };
 
@@ -671,6 +679,10 @@ PacketCameraRays packetCameraRays() {
 
 PacketIndependentDraws packetIndependentDraws() {
   return currentTarget().independentDraws;
+}
+
+PacketSobolDraws packetSobolDraws() {
+  return currentTarget().sobolDraws;
 }
 
 }  // namespace penumbra

@@ -13,6 +13,7 @@
 
 #include "core/render/packet_camera.h"
 #include "core/render/packet_scene.h"
+#include "core/sampling/sobol_stream.h"
 
 namespace penumbra {
 
@@ -70,5 +71,23 @@ PacketCameraRays packetCameraRays();
 using PacketIndependentDraws = void (*)(uint64_t seedHash, int x0, int y, int count, uint32_t pass,
                                         int drawCount, float (&u)[2][kMaxPacketLanes], PacketDraws& draws);
 PacketIndependentDraws packetIndependentDraws();
+
+// Each lane's start of its pixel sample's `sobol` or `zsobol` stream (BasicSobolStream's start).
+struct alignas(64) PacketSobolStart {
+  uint64_t key[kMaxPacketLanes];  // hash of (seed, pixel); zsobol: of (seed, the tile's Morton code)
+  uint32_t reversedTileCode[kMaxPacketLanes];  // zsobol: the pixel's Morton code in its tile, bit-reversed
+  bool zsobol;
+  uint32_t log2Samples;  // zsobol: zsobolLog2Samples of the run's sample count
+  uint32_t pass;         // the sample index
+};
+
+// Each lane's filter draw (draws[0], into u) and shading draws (draws[1..], into out.u[0..]) of the
+// Sobol' samplers, `requests` being sobolRequests(draws): what Sampler::next2D's forms return after
+// the lanes' starts, computed in lanes. On the instruction set in use when packetSobolDraws() was
+// called.
+using PacketSobolDraws = void (*)(const PacketSobolStart& start, const SobolDrawCall* draws,
+                                  const uint32_t* requests, int drawCount, float (&u)[2][kMaxPacketLanes],
+                                  PacketDraws& out);
+PacketSobolDraws packetSobolDraws();
 
 }  // namespace penumbra

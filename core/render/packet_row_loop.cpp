@@ -11,8 +11,10 @@
 #include "core/render/film.h"
 #include "core/render/packet_camera.h"
 #include "core/render/packet_kernels.h"
+#include "core/sampling/morton.h"
 #include "core/sampling/rng.h"
 #include "core/sampling/sampler.h"
+#include "core/sampling/sobol_stream.h"
 
 namespace penumbra {
 
@@ -21,6 +23,7 @@ namespace {
 // One per row renderer (per worker thread), reused packet after packet.
 struct PacketBuffers {
   float filterU[2][kMaxPacketLanes];
+  PacketSobolStart sobolStart;
   PacketRays rays;
   PacketDraws draws;
   PacketRadiance radiance;
@@ -42,6 +45,43 @@ std::vector<DrawIndex> drawPlan(const std::vector<DrawRequests>& requests) {
         for (int part = 0; part < r.parts; ++part)
           plan.push_back({uint32_t(i), uint32_t(r.n), uint32_t(part), uint32_t(r.parts)});
   return plan;
+}
+
+// The Sobol' samplers' calls of a camera sample (the filter's next2D(), then the plan's) and the
+// request each draws with.
+struct SobolPlan {
+  std::vector<SobolDrawCall> calls;
+  std::vector<uint32_t> requests;
+};
+
+SobolPlan sobolPlan(const std::vector<DrawIndex>& plan) {
+  SobolPlan p;
+  p.calls.push_back({0, 1, 0, 1});
+  for (const DrawIndex& d : plan) p.calls.push_back({d.i, d.n, d.part, d.parts});
+  p.requests = sobolRequests(p.calls);
+  return p;
+}
+
+// Each lane's start of the Sobol' samplers' stream for pixels x0 .. x0 + count - 1 of row y
+// (BasicSobolStream::startSobol and startZSobol).
+void startSobolLanes(const Sampler& sampler, uint64_t seedHash, int x0, int y, int count, int lanes,
+                     uint32_t pass, PacketSobolStart& start) {
+  start.zsobol = sampler.kind() == SamplerKind::ZSobol;
+  start.log2Samples = zsobolLog2Samples(sampler.sampleCount());
+  start.pass = pass;
+  const auto py = uint32_t(y);
+  constexpr uint32_t side = (1u << kZSobolTileSideBits) - 1;
+  for (int k = 0; k < lanes; ++k) {
+    const auto px = uint32_t(x0 + std::min(k, count - 1));
+    if (start.zsobol) {
+      start.key[k] =
+          hashCombine(seedHash, encodeMorton2(px >> kZSobolTileSideBits, py >> kZSobolTileSideBits));
+      start.reversedTileCode[k] = kZSobolReversedSpread[px & side] | kZSobolReversedSpread[py & side] >> 1;
+    } else {
+      start.key[k] = hashCombine(seedHash, (uint64_t(px) << 32) | py);
+      start.reversedTileCode[k] = 0;
+    }
+  }
 }
 
 // Each lane's filter draw and shading draws from the scalar sampler, lane by lane (lanes past `count`
@@ -89,17 +129,19 @@ RowRenderer packetRowsFor(const RenderJob& job, RowRenderer scalar) {
   const int width = job.settings.camera.width;
   auto scene = std::make_shared<const PacketScene>(makePacketScene(job));
   auto plan = std::make_shared<const std::vector<DrawIndex>>(drawPlan(scene->draws));
+  auto sobol = std::make_shared<const SobolPlan>(sobolPlan(*plan));
   auto buffers = std::make_shared<PacketBuffers>();
   const int lanes = std::min(packetLanes(), kMaxPacketLanes);
   const PacketShader shade = packetShader();
   const PacketCameraRays cameraRays = packetCameraRays();
   const PacketIndependentDraws independentDraws = packetIndependentDraws();
+  const PacketSobolDraws sobolDraws = packetSobolDraws();
   RowRenderer r;
-  r.row = [camera, width, filter, scene, plan, buffers, lanes, shade, cameraRays, independentDraws](
-              int y, uint32_t pass, Sampler& sampler, Film& film, uint64_t& badSamples,
-              const std::atomic<bool>& cancel) {
+  r.row = [camera, width, filter, scene, plan, sobol, buffers, lanes, shade, cameraRays, independentDraws,
+           sobolDraws](int y, uint32_t pass, Sampler& sampler, Film& film, uint64_t& badSamples,
+                       const std::atomic<bool>& cancel) {
     PacketBuffers& b = *buffers;
-    const bool drawsInLanes = sampler.kind() == SamplerKind::Independent;
+    const SamplerKind kind = sampler.kind();
     const uint64_t seedHash = mix64(sampler.seed());
     for (int x0 = 0; x0 < width; x0 += lanes) {
       if (cancel.load(std::memory_order_relaxed)) return;
@@ -107,11 +149,16 @@ RowRenderer packetRowsFor(const RenderJob& job, RowRenderer scalar) {
       // Each lane's draws in startCameraSample's order: the filter's, then the integrator's, drawn
       // whatever the ray hits (each pixel sample restarts its stream, so draws a lane does not use
       // change nothing). Lanes past the row's end repeat its last pixel; their results are dropped.
-      // The independent sampler draws in lanes; the stratified and Sobol' ones lane by lane.
-      if (drawsInLanes)
+      // The independent and Sobol' samplers draw in lanes, the stratified one lane by lane.
+      if (kind == SamplerKind::Independent) {
         independentDraws(seedHash, x0, y, count, pass, int(plan->size()), b.filterU, b.draws);
-      else
+      } else if (kind == SamplerKind::Sobol || kind == SamplerKind::ZSobol) {
+        startSobolLanes(sampler, seedHash, x0, y, count, lanes, pass, b.sobolStart);
+        sobolDraws(b.sobolStart, sobol->calls.data(), sobol->requests.data(), int(sobol->calls.size()),
+                   b.filterU, b.draws);
+      } else {
         drawLaneByLane(sampler, *plan, x0, y, count, lanes, pass, b);
+      }
       cameraRays(camera, x0, y, count, b.filterU, b.rays, b.weight);
       shade(*scene, b.rays, b.draws, b.radiance);
       for (int k = 0; k < count; ++k) {

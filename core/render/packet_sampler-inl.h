@@ -1,7 +1,8 @@
-// The independent sampler in lanes: each lane restarts its pixel sample's stream and draws from it as
-// Sampler::startPixelSample and Sampler::next2D do for SamplerKind::Independent (SplitMix64 hashes of
-// seed, pixel and sample index; PCG32's seeding, steps and XSH-RR output, as pcg-cpp computes them),
-// in 64-bit integer lanes, so every draw is the scalar sampler's bit for bit.
+// The independent and Sobol' samplers in lanes: each lane restarts its pixel sample's stream and draws
+// from it as Sampler::startPixelSample and Sampler::next2D do (independent: SplitMix64 hashes of seed,
+// pixel and sample index, PCG32's seeding, steps and XSH-RR output as pcg-cpp computes them; sobol and
+// zsobol: BasicSobolStream's request hashes, index shuffle and Owen scrambles), in 64-bit integer
+// lanes, so every draw is the scalar sampler's bit for bit.
 // Part of the packet kernels: included by packet_kernels.cpp once per instruction set (Highway's
 // re-inclusion toggle below), inside that set's namespace.
 #if defined(PENUMBRA_PACKET_SAMPLER_INL_H_) == defined(HWY_TARGET_TOGGLE)
@@ -18,6 +19,9 @@
 
 #include "core/render/packet_kernels.h"
 #include "core/render/packet_math-inl.h"
+#include "core/sampling/owen_scramble.h"
+#include "core/sampling/sobol_matrices.h"
+#include "core/sampling/sobol_stream.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace penumbra {
@@ -58,6 +62,14 @@ HWY_INLINE VU64 hashCombineLanes(VU64 a, VU64 b) {
   return mix64Lanes(hn::Xor(a, b + setU64(0x9e3779b97f4a7c15ULL)));
 }
 
+// bitsToUnitFloat (rng.h) of 32-bit lane values: the top 24 bits times 2^-24, exactly.
+HWY_INLINE VF unitFloat(VU64 bits32) {
+  // An integer below 2^52 as a double, exactly: its bits under 2^52's exponent, minus 2^52.
+  const VD top24 = hn::BitCast(DD(), hn::Or(hn::ShiftRight<8>(bits32), setU64(0x4330000000000000ULL))) -
+                   setD(4503599627370496.0);
+  return demote(top24 * setD(0x1p-24));
+}
+
 // pcg32 (pcg-cpp's setseq_xsh_rr_64_32): a 64-bit LCG on the stream `increment`, each draw the XSH-RR
 // output of the state before the step.
 struct PcgLanes {
@@ -78,11 +90,7 @@ struct PcgLanes {
     const VU64 bits = hn::And(hn::ShiftRight<27>(hn::Xor(old, hn::ShiftRight<18>(old))), mask32);
     const VU64 rotated =
         hn::Or(bits >> rotation, hn::And(bits << hn::And(setU64(32) - rotation, setU64(31)), mask32));
-    // An integer below 2^52 as a double, exactly: its bits under 2^52's exponent, minus 2^52.
-    const DD dd;
-    const VD top24 = hn::BitCast(dd, hn::Or(hn::ShiftRight<8>(rotated), setU64(0x4330000000000000ULL))) -
-                     setD(4503599627370496.0);
-    return demote(top24 * setD(0x1p-24));
+    return unitFloat(rotated);
   }
 };
 
@@ -101,6 +109,101 @@ HWY_INLINE void independentDraws(uint64_t seedHash, int x0, int y, int count, ui
   for (int c = 0; c < 2; ++c) hn::StoreU(rng.nextFloat(), df, filterU[c]);
   for (int j = 0; j < drawCount; ++j)
     for (int c = 0; c < 2; ++c) hn::StoreU(rng.nextFloat(), df, draws.u[j][c]);
+}
+
+// The low 32 bits of each lane.
+HWY_INLINE VU64 low32(VU64 v) {
+  return hn::And(v, setU64(0xffffffffULL));
+}
+
+// x * c modulo 2^32 for 32-bit lane values.
+HWY_INLINE VU64 mul32(VU64 x, VU64 c) {
+#if HWY_TARGET == HWY_SCALAR
+  return setU64(uint32_t(hn::GetLane(x) * hn::GetLane(c)));
+#else
+  const hn::Repartition<uint32_t, DU64> d32;
+  return low32(hn::MulEven(hn::BitCast(d32, x), hn::BitCast(d32, c)));
+#endif
+}
+
+// laineKarrasPermutation (owen_scramble.h) of 32-bit lane values.
+HWY_INLINE VU64 laineKarras(VU64 x, VU64 seed) {
+  x = low32(x + seed);
+  x = hn::Xor(x, mul32(x, setU64(0x6c50b47cu)));
+  x = hn::Xor(x, mul32(x, setU64(0xb82f1e52u)));
+  x = hn::Xor(x, mul32(x, setU64(0xc7afe638u)));
+  return hn::Xor(x, mul32(x, setU64(0x8d22f6e6u)));
+}
+
+// reverseBits32 (owen_scramble.h) of 32-bit lane values.
+HWY_INLINE VU64 reverseBits32Lanes(VU64 x) {
+  x = hn::Or(low32(hn::ShiftLeft<16>(x)), hn::ShiftRight<16>(x));
+  x = hn::Or(hn::ShiftLeft<8>(hn::And(x, setU64(0x00ff00ffu))),
+             hn::And(hn::ShiftRight<8>(x), setU64(0x00ff00ffu)));
+  x = hn::Or(hn::ShiftLeft<4>(hn::And(x, setU64(0x0f0f0f0fu))),
+             hn::And(hn::ShiftRight<4>(x), setU64(0x0f0f0f0fu)));
+  x = hn::Or(hn::ShiftLeft<2>(hn::And(x, setU64(0x33333333u))),
+             hn::And(hn::ShiftRight<2>(x), setU64(0x33333333u)));
+  return hn::Or(hn::ShiftLeft<1>(hn::And(x, setU64(0x55555555u))),
+                hn::And(hn::ShiftRight<1>(x), setU64(0x55555555u)));
+}
+
+// sobolPairDigits (sobol_matrices.h): one gather per byte of the bit-reversed index.
+HWY_INLINE VU64 sobolPairDigitsLanes(VU64 reversedIndex) {
+  const DU64 du;
+  const hn::RebindToSigned<DU64> di;
+  const uint64_t* table = &kSobolPairTables.byte[0][0];
+  VU64 digits = hn::Zero(du);
+  for (int b = 0; b < 4; ++b) {
+    const VU64 byte = hn::And(hn::ShiftRightSame(reversedIndex, 8 * b), setU64(0xff)) + setU64(256u * b);
+    digits = hn::Xor(digits, hn::GatherIndex(du, table, hn::BitCast(di, byte)));
+  }
+  return digits;
+}
+
+// Each lane's filter draw and shading draws of the `sobol` or `zsobol` sampler: BasicSobolStream's
+// start, next2D() and array points (prepare, shuffled, setZSobolIndex, sobolPoint2D) in 64-bit lanes
+// holding 32-bit values. draws[0] is the filter's; requests[i] is sobolRequests' of draws[i].
+HWY_INLINE void sobolDraws(const PacketSobolStart& start, const SobolDrawCall* draws,
+                           const uint32_t* requests, int drawCount, float (&filterU)[2][kMaxPacketLanes],
+                           PacketDraws& out) {
+  const DF df;
+  const DU64 du;
+  HWY_ALIGN uint64_t tileCodes[kMaxPacketLanes];
+  for (size_t k = 0; k < hn::Lanes(du); ++k) tileCodes[k] = start.reversedTileCode[k];
+  const VU64 key = hn::LoadU(du, start.key), tileCode = hn::Load(du, tileCodes);
+  // zsobol's index of (tile, sample) from the sample's bit-reversed index s: the tile code above m
+  // bits, s's top m bits beside it, the rest XORed in after the shuffle.
+  auto zsobolIndex = [&](uint32_t m, uint32_t reversedS, VU64& reversed, VU64& reversedXor) {
+    const uint32_t top = ~(~0u >> m);
+    reversed = hn::Or(hn::ShiftRightSame(tileCode, int(m)), setU64(reversedS & top));
+    reversedXor = setU64(reversedS & ~top);
+  };
+  const uint32_t reversedPass = reverseBits32(start.pass);
+  VU64 ownReversed = setU64(reversedPass), ownXor = hn::Zero(du);
+  if (start.zsobol) zsobolIndex(start.log2Samples, reversedPass, ownReversed, ownXor);
+  for (int i = 0; i < drawCount; ++i) {
+    const SobolDrawCall& c = draws[i];
+    const VU64 hash = hashCombineLanes(key, setU64(requests[i]));
+    VU64 reversed = ownReversed, reversedXor = ownXor;
+    if (c.n > 1) {
+      const uint32_t reversedArray = reverseBits32(start.pass * c.n + c.j);
+      if (start.zsobol)
+        zsobolIndex(std::min(start.log2Samples + zsobolLog2Samples(c.n), kZSobolMaxLog2Samples),
+                    reversedArray, reversed, reversedXor);
+      else
+        reversed = setU64(reversedArray), reversedXor = hn::Zero(du);
+    }
+    const VU64 index = hn::Xor(laineKarras(reversed, low32(hash)), reversedXor);
+    const VU64 digits = sobolPairDigitsLanes(index);
+    const VU64 x = laineKarras(low32(digits), hn::ShiftRight<32>(hash));
+    const VU64 y = laineKarras(hn::ShiftRight<32>(digits),
+                               hn::ShiftRight<32>(mul64(hash, setU64(0x9e3779b97f4a7c15ULL))));
+    float* u0 = i == 0 ? filterU[0] : out.u[i - 1][0];
+    float* u1 = i == 0 ? filterU[1] : out.u[i - 1][1];
+    hn::StoreU(unitFloat(reverseBits32Lanes(x)), df, u0);
+    hn::StoreU(unitFloat(reverseBits32Lanes(y)), df, u1);
+  }
 }
 
 }  // namespace HWY_NAMESPACE

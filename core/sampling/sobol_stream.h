@@ -33,6 +33,7 @@
 #include <array>
 #include <bit>
 #include <cstdint>
+#include <vector>
 
 #include "core/math/vec.h"
 #include "core/sampling/morton.h"
@@ -203,5 +204,30 @@ class BasicSobolStream {
 };
 
 using SobolStream = BasicSobolStream<OwenScrambling>;
+
+// One draw of a pixel sample's stream: next2D(j, n, k, m), or next2D(j, n) when m = 1 (next2D() when
+// n = 1 too).
+struct SobolDrawCall {
+  uint32_t j, n, k, m;
+};
+
+// The request (the hash's index) each of `calls`, made in order after a start, draws its point with:
+// what next2D's three forms do to the stream's request counter, for code that draws the points of
+// many streams at once (the packet row loop).
+inline std::vector<uint32_t> sobolRequests(const std::vector<SobolDrawCall>& calls) {
+  std::vector<uint32_t> requests;
+  uint32_t request = 0;
+  for (const SobolDrawCall& c : calls) {
+    const bool last = c.j + 1 >= c.n;
+    if (c.m == 1) {
+      requests.push_back(request);
+      if (c.n == 1 || last) ++request;
+    } else {
+      requests.push_back(request + c.k);
+      if (last && c.k + 1 >= c.m) request += c.m;
+    }
+  }
+  return requests;
+}
 
 }  // namespace penumbra
