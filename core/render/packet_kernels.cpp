@@ -572,34 +572,36 @@ namespace {
 // One instruction set's kernels.
 struct PacketTarget {
   int64_t target;  // Highway's bit for it
-  PacketShader shade;
-  PacketCameraRays cameraRays;
-  PacketIndependentDraws independentDraws;
-  PacketSobolDraws sobolDraws;
+  PacketKernels kernels;
   int (*lanes)();
 };
 
 // The sets this file was compiled for, best first.
 constexpr PacketTarget kTargets[] = {
 #if HWY_TARGETS & HWY_AVX3
-    {HWY_AVX3, &N_AVX3::ShadePacket, &N_AVX3::CameraRays, &N_AVX3::IndependentDraws, &N_AVX3::SobolDraws,
+    {HWY_AVX3,
+     {&N_AVX3::ShadePacket, &N_AVX3::CameraRays, &N_AVX3::IndependentDraws, &N_AVX3::SobolDraws},
      &N_AVX3::Lanes},
 #endif
 #if HWY_TARGETS & HWY_AVX2
-    {HWY_AVX2, &N_AVX2::ShadePacket, &N_AVX2::CameraRays, &N_AVX2::IndependentDraws, &N_AVX2::SobolDraws,
+    {HWY_AVX2,
+     {&N_AVX2::ShadePacket, &N_AVX2::CameraRays, &N_AVX2::IndependentDraws, &N_AVX2::SobolDraws},
      &N_AVX2::Lanes},
 #endif
 #if HWY_TARGETS & HWY_SSE4
-    {HWY_SSE4, &N_SSE4::ShadePacket, &N_SSE4::CameraRays, &N_SSE4::IndependentDraws, &N_SSE4::SobolDraws,
+    {HWY_SSE4,
+     {&N_SSE4::ShadePacket, &N_SSE4::CameraRays, &N_SSE4::IndependentDraws, &N_SSE4::SobolDraws},
      &N_SSE4::Lanes},
 #endif
 #if HWY_TARGETS & HWY_EMU128
-    {HWY_EMU128, &N_EMU128::ShadePacket, &N_EMU128::CameraRays, &N_EMU128::IndependentDraws,
-     &N_EMU128::SobolDraws, &N_EMU128::Lanes},
+    {HWY_EMU128,
+     {&N_EMU128::ShadePacket, &N_EMU128::CameraRays, &N_EMU128::IndependentDraws, &N_EMU128::SobolDraws},
+     &N_EMU128::Lanes},
 #endif
 #if HWY_TARGETS & HWY_SCALAR
-    {HWY_SCALAR, &N_SCALAR::ShadePacket, &N_SCALAR::CameraRays, &N_SCALAR::IndependentDraws,
-     &N_SCALAR::SobolDraws, &N_SCALAR::Lanes},
+    {HWY_SCALAR,
+     {&N_SCALAR::ShadePacket, &N_SCALAR::CameraRays, &N_SCALAR::IndependentDraws, &N_SCALAR::SobolDraws},
+     &N_SCALAR::Lanes},
 #endif
 };
 
@@ -669,20 +671,8 @@ bool forcePacketTarget(const std::string& name) {
   return false;
 }
 
-PacketShader packetShader() {
-  return currentTarget().shade;
-}
-
-PacketCameraRays packetCameraRays() {
-  return currentTarget().cameraRays;
-}
-
-PacketIndependentDraws packetIndependentDraws() {
-  return currentTarget().independentDraws;
-}
-
-PacketSobolDraws packetSobolDraws() {
-  return currentTarget().sobolDraws;
+const PacketKernels& packetKernels() {
+  return currentTarget().kernels;
 }
 
 }  // namespace penumbra

@@ -50,28 +50,20 @@ std::vector<std::string> availablePacketTargets();
 // rendering (tests, benchmarks, PENUMBRA_SIMD).
 bool forcePacketTarget(const std::string& name);
 
-// The radiance of each lane's camera ray by the scene's kernel, on the instruction set in use when
-// packetShader() was called (a row renderer takes it once, not per packet).
+// The radiance of each lane's camera ray by the scene's kernel.
 using PacketShader = void (*)(const PacketScene& scene, const PacketRays& rays, const PacketDraws& draws,
                               PacketRadiance& out);
-PacketShader packetShader();
-
 // Each lane's camera ray and filter weight (startCameraSample after its filter draw u[.][lane], in
-// lanes) for pixels x0 .. x0 + count - 1 of row y; lanes past `count` repeat the last pixel. On the
-// instruction set in use when packetCameraRays() was called.
+// lanes) for pixels x0 .. x0 + count - 1 of row y; lanes past `count` repeat the last pixel.
 using PacketCameraRays = void (*)(const PacketCamera& camera, int x0, int y, int count,
                                   const float (&u)[2][kMaxPacketLanes], PacketRays& rays,
                                   float (&weight)[kMaxPacketLanes]);
-PacketCameraRays packetCameraRays();
-
 // Each lane's filter draw (u) and first `drawCount` shading draws of SamplerKind::Independent for pixels
 // x0 .. x0 + count - 1 of row y at sample index `pass` (lanes past `count` repeat the last pixel): what
 // Sampler::startPixelSample and the row loop's next2D calls return, computed in lanes. `seedHash` is
-// mix64 of the sampler's seed. On the instruction set in use when packetIndependentDraws() was called.
+// mix64 of the sampler's seed.
 using PacketIndependentDraws = void (*)(uint64_t seedHash, int x0, int y, int count, uint32_t pass,
                                         int drawCount, float (&u)[2][kMaxPacketLanes], PacketDraws& draws);
-PacketIndependentDraws packetIndependentDraws();
-
 // Each lane's start of its pixel sample's `sobol` or `zsobol` stream (BasicSobolStream's start).
 struct alignas(64) PacketSobolStart {
   uint64_t key[kMaxPacketLanes];  // hash of (seed, pixel); zsobol: of (seed, the tile's Morton code)
@@ -83,11 +75,20 @@ struct alignas(64) PacketSobolStart {
 
 // Each lane's filter draw (draws[0], into u) and shading draws (draws[1..], into out.u[0..]) of the
 // Sobol' samplers, `requests` being sobolRequests(draws): what Sampler::next2D's forms return after
-// the lanes' starts, computed in lanes. On the instruction set in use when packetSobolDraws() was
-// called.
+// the lanes' starts, computed in lanes.
 using PacketSobolDraws = void (*)(const PacketSobolStart& start, const SobolDrawCall* draws,
                                   const uint32_t* requests, int drawCount, float (&u)[2][kMaxPacketLanes],
                                   PacketDraws& out);
-PacketSobolDraws packetSobolDraws();
+
+// The kernels of one instruction set.
+struct PacketKernels {
+  PacketShader shade;
+  PacketCameraRays cameraRays;
+  PacketIndependentDraws independentDraws;
+  PacketSobolDraws sobolDraws;
+};
+// The kernels of the instruction set in use when it is called (a row renderer takes them once, not
+// per packet).
+const PacketKernels& packetKernels();
 
 }  // namespace penumbra

@@ -30,45 +30,29 @@ struct PacketBuffers {
   float weight[kMaxPacketLanes];
 };
 
-// One sampler request of a camera sample's shading draws: next2D(i, n), or next2D(i, n, part, parts)
-// when parts > 1.
-struct DrawIndex {
-  uint32_t i, n, part, parts;
+// A camera sample's sampler calls in the integrator's order: the filter's next2D() first, then the
+// scene's draw requests unrolled, one call each; and the request each takes in the Sobol' streams.
+struct DrawPlan {
+  std::vector<SobolDrawCall> calls;
+  std::vector<uint32_t> sobolRequests;
+  int shadingDraws() const { return int(calls.size()) - 1; }
 };
 
-// The scene's draw requests unrolled into one entry per draw, in the integrator's order.
-std::vector<DrawIndex> drawPlan(const std::vector<DrawRequests>& requests) {
-  std::vector<DrawIndex> plan;
+DrawPlan drawPlan(const std::vector<DrawRequests>& requests) {
+  DrawPlan plan;
+  plan.calls.push_back({0, 1, 0, 1});
   for (const DrawRequests& r : requests)
     for (int rep = 0; rep < r.repeats; ++rep)
       for (int i = 0; i < r.n; ++i)
         for (int part = 0; part < r.parts; ++part)
-          plan.push_back({uint32_t(i), uint32_t(r.n), uint32_t(part), uint32_t(r.parts)});
+          plan.calls.push_back({uint32_t(i), uint32_t(r.n), uint32_t(part), uint32_t(r.parts)});
+  plan.sobolRequests = sobolRequests(plan.calls);
   return plan;
 }
 
-// The Sobol' samplers' calls of a camera sample (the filter's next2D(), then the plan's) and the
-// request each draws with.
-struct SobolPlan {
-  std::vector<SobolDrawCall> calls;
-  std::vector<uint32_t> requests;
-};
-
-SobolPlan sobolPlan(const std::vector<DrawIndex>& plan) {
-  SobolPlan p;
-  p.calls.push_back({0, 1, 0, 1});
-  for (const DrawIndex& d : plan) p.calls.push_back({d.i, d.n, d.part, d.parts});
-  p.requests = sobolRequests(p.calls);
-  return p;
-}
-
 // Each lane's start of the Sobol' samplers' stream for pixels x0 .. x0 + count - 1 of row y
-// (BasicSobolStream::startSobol and startZSobol).
-void startSobolLanes(const Sampler& sampler, uint64_t seedHash, int x0, int y, int count, int lanes,
-                     uint32_t pass, PacketSobolStart& start) {
-  start.zsobol = sampler.kind() == SamplerKind::ZSobol;
-  start.log2Samples = zsobolLog2Samples(sampler.sampleCount());
-  start.pass = pass;
+// (BasicSobolStream::startSobol and startZSobol); the start's other fields are set once per row.
+void startSobolLanes(uint64_t seedHash, int x0, int y, int count, int lanes, PacketSobolStart& start) {
   const auto py = uint32_t(y);
   constexpr uint32_t side = (1u << kZSobolTileSideBits) - 1;
   for (int k = 0; k < lanes; ++k) {
@@ -86,19 +70,16 @@ void startSobolLanes(const Sampler& sampler, uint64_t seedHash, int x0, int y, i
 
 // Each lane's filter draw and shading draws from the scalar sampler, lane by lane (lanes past `count`
 // repeat the last pixel).
-void drawLaneByLane(Sampler& sampler, const std::vector<DrawIndex>& plan, int x0, int y, int count, int lanes,
+void drawLaneByLane(Sampler& sampler, const DrawPlan& plan, int x0, int y, int count, int lanes,
                     uint32_t pass, PacketBuffers& b) {
   for (int k = 0; k < lanes; ++k) {
     sampler.startPixelSample(IVec2(x0 + std::min(k, count - 1), y), pass);
-    const Vec2 u = sampler.next2D();
-    b.filterU[0][k] = u.x;
-    b.filterU[1][k] = u.y;
-    int j = 0;
-    for (const DrawIndex& d : plan) {
-      const Vec2 v = d.parts == 1 ? sampler.next2D(d.i, d.n) : sampler.next2D(d.i, d.n, d.part, d.parts);
-      b.draws.u[j][0][k] = v.x;
-      b.draws.u[j][1][k] = v.y;
-      ++j;
+    for (size_t i = 0; i < plan.calls.size(); ++i) {
+      const SobolDrawCall& c = plan.calls[i];
+      const Vec2 v = c.m == 1 ? sampler.next2D(c.j, c.n) : sampler.next2D(c.j, c.n, c.k, c.m);
+      float(&u)[2][kMaxPacketLanes] = i == 0 ? b.filterU : b.draws.u[i - 1];
+      u[0][k] = v.x;
+      u[1][k] = v.y;
     }
   }
 }
@@ -128,21 +109,20 @@ RowRenderer packetRowsFor(const RenderJob& job, RowRenderer scalar) {
   const PacketCamera camera = makePacketCamera(PerspectiveCamera(job.settings.camera), *filter);
   const int width = job.settings.camera.width;
   auto scene = std::make_shared<const PacketScene>(makePacketScene(job));
-  auto plan = std::make_shared<const std::vector<DrawIndex>>(drawPlan(scene->draws));
-  auto sobol = std::make_shared<const SobolPlan>(sobolPlan(*plan));
+  auto plan = std::make_shared<const DrawPlan>(drawPlan(scene->draws));
   auto buffers = std::make_shared<PacketBuffers>();
   const int lanes = std::min(packetLanes(), kMaxPacketLanes);
-  const PacketShader shade = packetShader();
-  const PacketCameraRays cameraRays = packetCameraRays();
-  const PacketIndependentDraws independentDraws = packetIndependentDraws();
-  const PacketSobolDraws sobolDraws = packetSobolDraws();
+  const PacketKernels& kernels = packetKernels();
   RowRenderer r;
-  r.row = [camera, width, filter, scene, plan, sobol, buffers, lanes, shade, cameraRays, independentDraws,
-           sobolDraws](int y, uint32_t pass, Sampler& sampler, Film& film, uint64_t& badSamples,
-                       const std::atomic<bool>& cancel) {
+  r.row = [camera, width, filter, scene, plan, buffers, lanes, kernels](
+              int y, uint32_t pass, Sampler& sampler, Film& film, uint64_t& badSamples,
+              const std::atomic<bool>& cancel) {
     PacketBuffers& b = *buffers;
     const SamplerKind kind = sampler.kind();
     const uint64_t seedHash = mix64(sampler.seed());
+    b.sobolStart.zsobol = kind == SamplerKind::ZSobol;
+    b.sobolStart.log2Samples = zsobolLog2Samples(sampler.sampleCount());
+    b.sobolStart.pass = pass;
     for (int x0 = 0; x0 < width; x0 += lanes) {
       if (cancel.load(std::memory_order_relaxed)) return;
       const int count = std::min(lanes, width - x0);
@@ -151,16 +131,16 @@ RowRenderer packetRowsFor(const RenderJob& job, RowRenderer scalar) {
       // change nothing). Lanes past the row's end repeat its last pixel; their results are dropped.
       // The independent and Sobol' samplers draw in lanes, the stratified one lane by lane.
       if (kind == SamplerKind::Independent) {
-        independentDraws(seedHash, x0, y, count, pass, int(plan->size()), b.filterU, b.draws);
+        kernels.independentDraws(seedHash, x0, y, count, pass, plan->shadingDraws(), b.filterU, b.draws);
       } else if (kind == SamplerKind::Sobol || kind == SamplerKind::ZSobol) {
-        startSobolLanes(sampler, seedHash, x0, y, count, lanes, pass, b.sobolStart);
-        sobolDraws(b.sobolStart, sobol->calls.data(), sobol->requests.data(), int(sobol->calls.size()),
-                   b.filterU, b.draws);
+        startSobolLanes(seedHash, x0, y, count, lanes, b.sobolStart);
+        kernels.sobolDraws(b.sobolStart, plan->calls.data(), plan->sobolRequests.data(),
+                           int(plan->calls.size()), b.filterU, b.draws);
       } else {
         drawLaneByLane(sampler, *plan, x0, y, count, lanes, pass, b);
       }
-      cameraRays(camera, x0, y, count, b.filterU, b.rays, b.weight);
-      shade(*scene, b.rays, b.draws, b.radiance);
+      kernels.cameraRays(camera, x0, y, count, b.filterU, b.rays, b.weight);
+      kernels.shade(*scene, b.rays, b.draws, b.radiance);
       for (int k = 0; k < count; ++k) {
         const Color3 L(b.radiance.L[0][k], b.radiance.L[1][k], b.radiance.L[2][k]);
         // NaN, Inf or negative radiance is a bug somewhere: count it and add nothing.
