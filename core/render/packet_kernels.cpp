@@ -549,13 +549,9 @@ void CameraRays(const PacketCamera& camera, int x0, int y, int count, const floa
                 PacketRays& rays, float (&weight)[kMaxPacketLanes]) {
   cameraRays(camera, x0, y, count, u, rays, weight);
 }
-void IndependentDraws(uint64_t seedHash, int x0, int y, int count, uint32_t pass, int drawCount,
-                      float (&u)[2][kMaxPacketLanes], PacketDraws& draws) {
-  independentDraws(seedHash, x0, y, count, pass, drawCount, u, draws);
-}
-void SobolDraws(const PacketSobolStart& start, const SobolDrawCall* draws, const uint32_t* requests,
-                int drawCount, float (&u)[2][kMaxPacketLanes], PacketDraws& out) {
-  sobolDraws(start, draws, requests, drawCount, u, out);
+void SamplerDraws(const PacketStreamStart& start, const PacketDrawPlan& plan, float (&u)[2][kMaxPacketLanes],
+                  PacketDraws& draws) {
+  samplerDraws(start, plan, u, draws);
 }
 int Lanes() {
   return static_cast<int>(hn::Lanes(DD()));
@@ -576,34 +572,29 @@ struct PacketTarget {
   int (*lanes)();
 };
 
+// One compiled set's entry: its bit, its kernels, its lane count.
+#define PENUMBRA_PACKET_TARGET(bit, ns) \
+  { bit, {&ns::ShadePacket, &ns::CameraRays, &ns::SamplerDraws}, &ns::Lanes }
+
 // The sets this file was compiled for, best first.
 constexpr PacketTarget kTargets[] = {
 #if HWY_TARGETS & HWY_AVX3
-    {HWY_AVX3,
-     {&N_AVX3::ShadePacket, &N_AVX3::CameraRays, &N_AVX3::IndependentDraws, &N_AVX3::SobolDraws},
-     &N_AVX3::Lanes},
+    PENUMBRA_PACKET_TARGET(HWY_AVX3, N_AVX3),
 #endif
 #if HWY_TARGETS & HWY_AVX2
-    {HWY_AVX2,
-     {&N_AVX2::ShadePacket, &N_AVX2::CameraRays, &N_AVX2::IndependentDraws, &N_AVX2::SobolDraws},
-     &N_AVX2::Lanes},
+    PENUMBRA_PACKET_TARGET(HWY_AVX2, N_AVX2),
 #endif
 #if HWY_TARGETS & HWY_SSE4
-    {HWY_SSE4,
-     {&N_SSE4::ShadePacket, &N_SSE4::CameraRays, &N_SSE4::IndependentDraws, &N_SSE4::SobolDraws},
-     &N_SSE4::Lanes},
+    PENUMBRA_PACKET_TARGET(HWY_SSE4, N_SSE4),
 #endif
 #if HWY_TARGETS & HWY_EMU128
-    {HWY_EMU128,
-     {&N_EMU128::ShadePacket, &N_EMU128::CameraRays, &N_EMU128::IndependentDraws, &N_EMU128::SobolDraws},
-     &N_EMU128::Lanes},
+    PENUMBRA_PACKET_TARGET(HWY_EMU128, N_EMU128),
 #endif
 #if HWY_TARGETS & HWY_SCALAR
-    {HWY_SCALAR,
-     {&N_SCALAR::ShadePacket, &N_SCALAR::CameraRays, &N_SCALAR::IndependentDraws, &N_SCALAR::SobolDraws},
-     &N_SCALAR::Lanes},
+    PENUMBRA_PACKET_TARGET(HWY_SCALAR, N_SCALAR),
 #endif
 };
+#undef PENUMBRA_PACKET_TARGET
 
 // Whether this CPU (and its OS, for the AVX registers) runs Highway's code for `target`: every
 // feature Highway compiles that target with (HWY_TARGET_STR in hwy/ops/set_macros-inl.h).

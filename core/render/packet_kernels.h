@@ -13,6 +13,7 @@
 
 #include "core/render/packet_camera.h"
 #include "core/render/packet_scene.h"
+#include "core/sampling/sampler.h"
 #include "core/sampling/sobol_stream.h"
 
 namespace penumbra {
@@ -58,34 +59,38 @@ using PacketShader = void (*)(const PacketScene& scene, const PacketRays& rays, 
 using PacketCameraRays = void (*)(const PacketCamera& camera, int x0, int y, int count,
                                   const float (&u)[2][kMaxPacketLanes], PacketRays& rays,
                                   float (&weight)[kMaxPacketLanes]);
-// Each lane's filter draw (u) and first `drawCount` shading draws of SamplerKind::Independent for pixels
-// x0 .. x0 + count - 1 of row y at sample index `pass` (lanes past `count` repeat the last pixel): what
-// Sampler::startPixelSample and the row loop's next2D calls return, computed in lanes. `seedHash` is
-// mix64 of the sampler's seed.
-using PacketIndependentDraws = void (*)(uint64_t seedHash, int x0, int y, int count, uint32_t pass,
-                                        int drawCount, float (&u)[2][kMaxPacketLanes], PacketDraws& draws);
-// Each lane's start of its pixel sample's `sobol` or `zsobol` stream (BasicSobolStream's start).
-struct alignas(64) PacketSobolStart {
-  uint64_t key[kMaxPacketLanes];  // hash of (seed, pixel); zsobol: of (seed, the tile's Morton code)
-  uint32_t reversedTileCode[kMaxPacketLanes];  // zsobol: the pixel's Morton code in its tile, bit-reversed
-  bool zsobol;
-  uint32_t log2Samples;  // zsobol: zsobolLog2Samples of the run's sample count
+// Each lane's start of its pixel sample's stream (Sampler::startPixelSample): the word its key combines
+// with the seed's hash, and the run's settings its sampler kind reads.
+struct alignas(64) PacketStreamStart {
+  uint64_t seedHash;                           // Sampler::seedHash
+  uint64_t word[kMaxPacketLanes];              // pixelStreamWord; zsobol: zsobolTileWord
+  uint32_t reversedTileCode[kMaxPacketLanes];  // zsobol: zsobolReversedTileCode
+  SamplerKind kind;
   uint32_t pass;         // the sample index
+  uint32_t gridSide;     // stratified: Sampler::gridSide
+  uint32_t log2Samples;  // zsobol: Sampler::zsobolLog2Samples
 };
 
-// Each lane's filter draw (draws[0], into u) and shading draws (draws[1..], into out.u[0..]) of the
-// Sobol' samplers, `requests` being sobolRequests(draws): what Sampler::next2D's forms return after
-// the lanes' starts, computed in lanes.
-using PacketSobolDraws = void (*)(const PacketSobolStart& start, const SobolDrawCall* draws,
-                                  const uint32_t* requests, int drawCount, float (&u)[2][kMaxPacketLanes],
-                                  PacketDraws& out);
+// A camera sample's sampler calls in the integrator's order: the filter's next2D() first, then the
+// scene's draw requests unrolled, one call each; and the request each takes in the Sobol' streams
+// (sobolRequests of the calls).
+struct PacketDrawPlan {
+  const SobolDrawCall* calls;
+  const uint32_t* requests;
+  int count;
+};
+
+// Each lane's filter draw (the plan's first call, into u) and shading draws (the others, into
+// draws.u[0..]): what Sampler::next2D's forms return after Sampler::startPixelSample, for every
+// sampler kind, computed in lanes.
+using PacketSamplerDraws = void (*)(const PacketStreamStart& start, const PacketDrawPlan& plan,
+                                    float (&u)[2][kMaxPacketLanes], PacketDraws& draws);
 
 // The kernels of one instruction set.
 struct PacketKernels {
   PacketShader shade;
   PacketCameraRays cameraRays;
-  PacketIndependentDraws independentDraws;
-  PacketSobolDraws sobolDraws;
+  PacketSamplerDraws samplerDraws;
 };
 // The kernels of the instruction set in use when it is called (a row renderer takes them once, not
 // per packet).

@@ -1,8 +1,9 @@
-// The independent and Sobol' samplers in lanes: each lane restarts its pixel sample's stream and draws
-// from it as Sampler::startPixelSample and Sampler::next2D do (independent: SplitMix64 hashes of seed,
-// pixel and sample index, PCG32's seeding, steps and XSH-RR output as pcg-cpp computes them; sobol and
-// zsobol: BasicSobolStream's request hashes, index shuffle and Owen scrambles), in 64-bit integer
-// lanes, so every draw is the scalar sampler's bit for bit.
+// Every sampler kind in lanes: each lane restarts its pixel sample's stream from its key and draws from
+// it as Sampler::startPixelSample and Sampler::next2D do (independent: SplitMix64 hashes of key and
+// sample index, PCG32's seeding, steps and XSH-RR output as pcg-cpp computes them; stratified: the same
+// PCG32 jitter inside strata chosen by Kensler's hashed permutation; sobol and zsobol:
+// BasicSobolStream's request hashes, index shuffle and Owen scrambles), in 64-bit integer lanes, so
+// every draw is the scalar sampler's bit for bit.
 // Part of the packet kernels: included by packet_kernels.cpp once per instruction set (Highway's
 // re-inclusion toggle below), inside that set's namespace.
 #if defined(PENUMBRA_PACKET_SAMPLER_INL_H_) == defined(HWY_TARGET_TOGGLE)
@@ -30,6 +31,14 @@ namespace hn = hwy::HWY_NAMESPACE;
 
 using DU64 = hn::RebindToUnsigned<DD>;
 using VU64 = hn::Vec<DU64>;
+
+// Where a draw plan's calls put their two values: call 0 (the filter's) into filterU, call i into
+// draws.u[i - 1].
+struct DrawOutputs {
+  float (&filterU)[2][kMaxPacketLanes];
+  PacketDraws& draws;
+  float* at(int call, int c) const { return call == 0 ? filterU[c] : draws.u[call - 1][c]; }
+};
 
 HWY_INLINE VU64 setU64(uint64_t v) {
   return hn::Set(DU64(), v);
@@ -62,12 +71,20 @@ HWY_INLINE VU64 hashCombineLanes(VU64 a, VU64 b) {
   return mix64Lanes(hn::Xor(a, b + setU64(0x9e3779b97f4a7c15ULL)));
 }
 
+// Integer lane values below 2^52 as doubles, exactly: their bits under 2^52's exponent, minus 2^52.
+HWY_INLINE VD exactDouble(VU64 v) {
+  return hn::BitCast(DD(), hn::Or(v, setU64(0x4330000000000000ULL))) - setD(4503599627370496.0);
+}
+
+// Each lane's stream key: hashCombine of the seed's hash and the lane's word (pixelStreamKey,
+// zsobolTileKey).
+HWY_INLINE VU64 streamKeys(const PacketStreamStart& start) {
+  return hashCombineLanes(setU64(start.seedHash), hn::LoadU(DU64(), start.word));
+}
+
 // bitsToUnitFloat (rng.h) of 32-bit lane values: the top 24 bits times 2^-24, exactly.
 HWY_INLINE VF unitFloat(VU64 bits32) {
-  // An integer below 2^52 as a double, exactly: its bits under 2^52's exponent, minus 2^52.
-  const VD top24 = hn::BitCast(DD(), hn::Or(hn::ShiftRight<8>(bits32), setU64(0x4330000000000000ULL))) -
-                   setD(4503599627370496.0);
-  return demote(top24 * setD(0x1p-24));
+  return demote(exactDouble(hn::ShiftRight<8>(bits32)) * setD(0x1p-24));
 }
 
 // pcg32 (pcg-cpp's setseq_xsh_rr_64_32): a 64-bit LCG on the stream `increment`, each draw the XSH-RR
@@ -94,21 +111,14 @@ struct PcgLanes {
   }
 };
 
-// Each lane's filter draw and `drawCount` shading draws of the independent sampler, for pixels x0 ..
-// x0 + count - 1 of row y (lanes past `count` repeat the last) at sample index `pass`: what the row
-// loop's Sampler::startPixelSample, next2D() and next2D(j, n[, k, m]) return for that kind.
-HWY_INLINE void independentDraws(uint64_t seedHash, int x0, int y, int count, uint32_t pass, int drawCount,
-                                 float (&filterU)[2][kMaxPacketLanes], PacketDraws& draws) {
+// Each lane's `drawCount` draws (the filter's and the shading draws) of the independent sampler:
+// PCG32 on the stream of the lane's key, started at the hash of key and sample index.
+HWY_INLINE void independentDraws(const PacketStreamStart& start, int drawCount, const DrawOutputs& out) {
   const DF df;
-  const DU64 du;
-  HWY_ALIGN uint64_t packed[kMaxPacketLanes];
-  for (size_t k = 0; k < hn::Lanes(du); ++k)
-    packed[k] = (uint64_t(uint32_t(x0 + std::min(int(k), count - 1))) << 32) | uint32_t(y);
-  const VU64 pixelKey = hashCombineLanes(setU64(seedHash), hn::Load(du, packed));
-  PcgLanes rng(hashCombineLanes(pixelKey, setU64(pass)), pixelKey);
-  for (int c = 0; c < 2; ++c) hn::StoreU(rng.nextFloat(), df, filterU[c]);
+  const VU64 key = streamKeys(start);
+  PcgLanes rng(hashCombineLanes(key, setU64(start.pass)), key);
   for (int j = 0; j < drawCount; ++j)
-    for (int c = 0; c < 2; ++c) hn::StoreU(rng.nextFloat(), df, draws.u[j][c]);
+    for (int c = 0; c < 2; ++c) hn::StoreU(rng.nextFloat(), df, out.at(j, c));
 }
 
 // The low 32 bits of each lane.
@@ -124,6 +134,83 @@ HWY_INLINE VU64 mul32(VU64 x, VU64 c) {
   const hn::Repartition<uint32_t, DU64> d32;
   return low32(hn::MulEven(hn::BitCast(d32, x), hn::BitCast(d32, c)));
 #endif
+}
+
+// Exact x mod n and x / n (rounded down) of integer-valued doubles below 2^32, n >= 1: the double
+// quotient's floor is exact there (the gap to the next integer, 1/n, is far above its rounding).
+HWY_INLINE void divMod(VD x, double n, VD& quotient, VD& remainder) {
+  quotient = hn::Floor(x / setD(n));
+  remainder = x - quotient * setD(n);
+}
+
+// permute (sampler.cpp) of index i with each lane's 32-bit key: Kensler's hashed permutation of
+// [0, n), each lane walking its cycle until it lands below n; the stratum as an exact double.
+HWY_INLINE VD kenslerPermute(uint32_t i, uint32_t n, VU64 key) {
+  const DU64 du;
+  const hn::RebindToSigned<DU64> di;
+  uint32_t w = n - 1;
+  w |= w >> 1;
+  w |= w >> 2;
+  w |= w >> 4;
+  w |= w >> 8;
+  w |= w >> 16;
+  const VU64 mask = setU64(w);
+  const VU64 keyMultiplier = hn::Or(setU64(1), hn::ShiftRight<27>(key));
+  VU64 v = setU64(i), landed = hn::Zero(du);
+  auto walking = hn::FirstN(du, hn::Lanes(du));
+  do {
+    v = hn::Xor(v, key);
+    v = mul32(v, setU64(0xe170893du));
+    v = hn::Xor(v, hn::ShiftRight<16>(key));
+    v = hn::Xor(v, hn::ShiftRight<4>(hn::And(v, mask)));
+    v = hn::Xor(v, hn::ShiftRight<8>(key));
+    v = mul32(v, setU64(0x0929eb3fu));
+    v = hn::Xor(v, hn::ShiftRight<23>(key));
+    v = hn::Xor(v, hn::ShiftRight<1>(hn::And(v, mask)));
+    v = mul32(v, keyMultiplier);
+    v = mul32(v, setU64(0x6935fa69u));
+    v = hn::Xor(v, hn::ShiftRight<11>(hn::And(v, mask)));
+    v = mul32(v, setU64(0x74dcb303u));
+    v = hn::Xor(v, hn::ShiftRight<2>(hn::And(v, mask)));
+    v = mul32(v, setU64(0x9e501cc3u));
+    v = hn::Xor(v, hn::ShiftRight<2>(hn::And(v, mask)));
+    v = mul32(v, setU64(0xc860a3dfu));
+    v = hn::And(v, mask);
+    v = hn::Xor(v, hn::ShiftRight<5>(v));
+    // Values are below 2^32, so the signed comparison is the unsigned one.
+    const auto below = hn::RebindMask(du, hn::BitCast(di, v) < hn::Set(di, int64_t(n)));
+    landed = hn::IfThenElse(hn::And(walking, below), v, landed);
+    walking = hn::AndNot(below, walking);
+  } while (!hn::AllFalse(du, walking));
+  VD quotient, stratum;
+  divMod(exactDouble(low32(landed + key)), double(n), quotient, stratum);
+  return stratum;
+}
+
+// jittered (sampler.cpp): (stratum + jitter) / strata, kept below 1.
+HWY_INLINE VF jittered(VD stratum, VF jitter, float invStrata) {
+  return hn::Min((demote(stratum) + jitter) * setF(invStrata), setF(kOneMinusEpsilon));
+}
+
+// Each lane's `drawCount` draws of the stratified sampler (Sampler::stratified2D): draw d's stratum of
+// the gridSide^2 grid permuted by the hash of (key, epoch, d), jittered by the lane's PCG32 stream.
+HWY_INLINE void stratifiedDraws(const PacketStreamStart& start, int drawCount, const DrawOutputs& out) {
+  const DF df;
+  const VU64 key = streamKeys(start);
+  PcgLanes rng(hashCombineLanes(key, setU64(start.pass)), key);
+  const uint32_t side = start.gridSide, strata = side * side;
+  const uint64_t epoch = uint64_t(start.pass / strata) << 32;
+  const float invSide = 1.f / static_cast<float>(side);
+  for (int d = 0; d < drawCount; ++d) {
+    const VU64 permutationKey = low32(hashCombineLanes(key, setU64(epoch | uint32_t(d))));
+    const VD stratum = kenslerPermute(start.pass % strata, strata, permutationKey);
+    VD row, column;
+    divMod(stratum, double(side), row, column);
+    const VF jx = rng.nextFloat();
+    const VF jy = rng.nextFloat();
+    hn::StoreU(jittered(column, jx, invSide), df, out.at(d, 0));
+    hn::StoreU(jittered(row, jy, invSide), df, out.at(d, 1));
+  }
 }
 
 // laineKarrasPermutation (owen_scramble.h) of 32-bit lane values.
@@ -161,34 +248,34 @@ HWY_INLINE VU64 sobolPairDigitsLanes(VU64 reversedIndex) {
   return digits;
 }
 
-// Each lane's filter draw and shading draws of the `sobol` or `zsobol` sampler: BasicSobolStream's
-// start, next2D() and array points (prepare, shuffled, setZSobolIndex, sobolPoint2D) in 64-bit lanes
-// holding 32-bit values. draws[0] is the filter's; requests[i] is sobolRequests' of draws[i].
-HWY_INLINE void sobolDraws(const PacketSobolStart& start, const SobolDrawCall* draws,
-                           const uint32_t* requests, int drawCount, float (&filterU)[2][kMaxPacketLanes],
-                           PacketDraws& out) {
+// Each lane's draws of the plan's calls from the `sobol` or `zsobol` sampler: BasicSobolStream's
+// next2D() and array points (prepare, shuffled, setZSobolIndex, sobolPoint2D) in 64-bit lanes holding
+// 32-bit values.
+HWY_INLINE void sobolDraws(const PacketStreamStart& start, const PacketDrawPlan& plan,
+                           const DrawOutputs& out) {
   const DF df;
   const DU64 du;
   HWY_ALIGN uint64_t tileCodes[kMaxPacketLanes];
   for (size_t k = 0; k < hn::Lanes(du); ++k) tileCodes[k] = start.reversedTileCode[k];
-  const VU64 key = hn::LoadU(du, start.key), tileCode = hn::Load(du, tileCodes);
+  const VU64 key = streamKeys(start), tileCode = hn::Load(du, tileCodes);
   // zsobol's index of (tile, sample) from the sample's bit-reversed index s: the tile code above m
   // bits, s's top m bits beside it, the rest XORed in after the shuffle.
   auto zsobolIndex = [&](uint32_t m, uint32_t reversedS, VU64& reversed, VU64& reversedXor) {
-    const uint32_t top = ~(~0u >> m);
+    const uint32_t top = zsobolSampleBits(m);
     reversed = hn::Or(hn::ShiftRightSame(tileCode, int(m)), setU64(reversedS & top));
     reversedXor = setU64(reversedS & ~top);
   };
+  const bool zsobol = start.kind == SamplerKind::ZSobol;
   const uint32_t reversedPass = reverseBits32(start.pass);
   VU64 ownReversed = setU64(reversedPass), ownXor = hn::Zero(du);
-  if (start.zsobol) zsobolIndex(start.log2Samples, reversedPass, ownReversed, ownXor);
-  for (int i = 0; i < drawCount; ++i) {
-    const SobolDrawCall& c = draws[i];
-    const VU64 hash = hashCombineLanes(key, setU64(requests[i]));
+  if (zsobol) zsobolIndex(start.log2Samples, reversedPass, ownReversed, ownXor);
+  for (int i = 0; i < plan.count; ++i) {
+    const SobolDrawCall& c = plan.calls[i];
+    const VU64 hash = hashCombineLanes(key, setU64(plan.requests[i]));
     VU64 reversed = ownReversed, reversedXor = ownXor;
     if (c.n > 1) {
       const uint32_t reversedArray = reverseBits32(start.pass * c.n + c.j);
-      if (start.zsobol)
+      if (zsobol)
         zsobolIndex(std::min(start.log2Samples + zsobolLog2Samples(c.n), kZSobolMaxLog2Samples),
                     reversedArray, reversed, reversedXor);
       else
@@ -199,10 +286,24 @@ HWY_INLINE void sobolDraws(const PacketSobolStart& start, const SobolDrawCall* d
     const VU64 x = laineKarras(low32(digits), hn::ShiftRight<32>(hash));
     const VU64 y = laineKarras(hn::ShiftRight<32>(digits),
                                hn::ShiftRight<32>(mul64(hash, setU64(0x9e3779b97f4a7c15ULL))));
-    float* u0 = i == 0 ? filterU[0] : out.u[i - 1][0];
-    float* u1 = i == 0 ? filterU[1] : out.u[i - 1][1];
-    hn::StoreU(unitFloat(reverseBits32Lanes(x)), df, u0);
-    hn::StoreU(unitFloat(reverseBits32Lanes(y)), df, u1);
+    hn::StoreU(unitFloat(reverseBits32Lanes(x)), df, out.at(i, 0));
+    hn::StoreU(unitFloat(reverseBits32Lanes(y)), df, out.at(i, 1));
+  }
+}
+
+// Each lane's draws of the plan's calls from its sampler kind: the filter's into filterU, the
+// shading draws into draws.u.
+HWY_INLINE void samplerDraws(const PacketStreamStart& start, const PacketDrawPlan& plan,
+                             float (&filterU)[2][kMaxPacketLanes], PacketDraws& draws) {
+  const DrawOutputs outputs{filterU, draws};
+  switch (start.kind) {
+    case SamplerKind::Independent:
+      return independentDraws(start, plan.count, outputs);
+    case SamplerKind::Stratified:
+      return stratifiedDraws(start, plan.count, outputs);
+    case SamplerKind::Sobol:
+    case SamplerKind::ZSobol:
+      return sobolDraws(start, plan, outputs);
   }
 }
 

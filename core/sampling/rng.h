@@ -23,6 +23,15 @@ inline constexpr uint64_t hashCombine(uint64_t a, uint64_t b) {
   return mix64(a ^ (b + 0x9e3779b97f4a7c15ULL));
 }
 
+// The word pixel (x, y)'s sample streams combine with the seed's hash: x in the high half, y in the low.
+inline constexpr uint64_t pixelStreamWord(uint32_t x, uint32_t y) {
+  return (static_cast<uint64_t>(x) << 32) | y;
+}
+// The key of pixel (x, y)'s sample streams.
+inline constexpr uint64_t pixelStreamKey(uint64_t seedHash, uint32_t x, uint32_t y) {
+  return hashCombine(seedHash, pixelStreamWord(x, y));
+}
+
 // Converts 32 random bits to a float in [0, 1): the top 24 bits times 2^-24, so the largest value
 // is exactly kOneMinusEpsilon (1 - 2^-24) and 1.0 is never produced.
 inline float bitsToUnitFloat(uint32_t bits) {

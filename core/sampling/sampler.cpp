@@ -57,7 +57,7 @@ uint32_t stratifiedGridSide(uint32_t sampleCount) {
 Sampler::Sampler(SamplerKind kind, uint32_t sampleCount, uint64_t seed)
     : seed_(seed), seedHash_(mix64(seed)), sampleCount_(std::max<uint32_t>(sampleCount, 1)), kind_(kind) {
   gridSide_ = stratifiedGridSide(sampleCount_);
-  zsobolLog2Samples_ = zsobolLog2Samples(sampleCount_);
+  zsobolLog2Samples_ = penumbra::zsobolLog2Samples(sampleCount_);
   startPixelSample(IVec2(0, 0), 0);
 }
 
@@ -65,9 +65,7 @@ void Sampler::startPixelSample(IVec2 pixel, uint32_t sampleIndex) {
   if (kind_ == SamplerKind::Sobol) return sobol_.startSobol(seedHash_, pixel, sampleIndex);
   if (kind_ == SamplerKind::ZSobol)
     return sobol_.startZSobol(seedHash_, zsobolLog2Samples_, pixel, sampleIndex);
-  uint64_t packed =
-      (static_cast<uint64_t>(static_cast<uint32_t>(pixel.x)) << 32) | static_cast<uint32_t>(pixel.y);
-  pixelKey_ = hashCombine(seedHash_, packed);
+  pixelKey_ = pixelStreamKey(seedHash_, static_cast<uint32_t>(pixel.x), static_cast<uint32_t>(pixel.y));
   sampleIndex_ = sampleIndex;
   dimension_ = 0;
   // The sequence (stream) is chosen by the pixel; the starting state by the sample index.

@@ -44,6 +44,12 @@ class Sampler {
   SamplerKind kind() const;
   uint32_t sampleCount() const;
   uint64_t seed() const;
+  // mix64(seed()): what every stream's key starts from (pixelStreamKey, zsobolTileKey).
+  uint64_t seedHash() const;
+  // Stratified: strata per side of the 2-D grid (stratifiedGridSide(sampleCount())).
+  uint32_t gridSide() const;
+  // ZSobol: zsobolLog2Samples(sampleCount()).
+  uint32_t zsobolLog2Samples() const;
 
  private:
   // The Sobol' kinds' draws are out-of-line calls, so next1D/next2D stay small enough to be inlined
@@ -103,6 +109,15 @@ inline uint32_t Sampler::sampleCount() const {
 }
 inline uint64_t Sampler::seed() const {
   return seed_;
+}
+inline uint64_t Sampler::seedHash() const {
+  return seedHash_;
+}
+inline uint32_t Sampler::gridSide() const {
+  return gridSide_;
+}
+inline uint32_t Sampler::zsobolLog2Samples() const {
+  return zsobolLog2Samples_;
 }
 
 }  // namespace penumbra

@@ -65,15 +65,36 @@ inline uint32_t zsobolLog2Samples(uint32_t sampleCount) {
   return std::min<uint32_t>(std::bit_width(std::max<uint32_t>(sampleCount, 1) - 1), kZSobolMaxLog2Samples);
 }
 
+// zsobol: the word the streams of the tile holding pixel (x, y) combine with the seed's hash: the
+// Morton code's bits above the tile, i.e. the Morton code of the tile's coordinates.
+inline uint64_t zsobolTileWord(uint32_t x, uint32_t y) {
+  return encodeMorton2(x >> kZSobolTileSideBits, y >> kZSobolTileSideBits);
+}
+// zsobol: the key of the streams of the tile holding pixel (x, y).
+inline uint64_t zsobolTileKey(uint64_t seedHash, uint32_t x, uint32_t y) {
+  return hashCombine(seedHash, zsobolTileWord(x, y));
+}
+
+// zsobol: the Morton code of pixel (x, y) within its tile, bit-reversed.
+inline uint32_t zsobolReversedTileCode(uint32_t x, uint32_t y) {
+  constexpr uint32_t side = (1u << kZSobolTileSideBits) - 1;
+  return kZSobolReversedSpread[x & side] | kZSobolReversedSpread[y & side] >> 1;
+}
+
+// zsobol: the top m bits of a bit-reversed index, where the sample index s mod 2^m sits; the index of
+// (tile, sample) is the tile code shifted right by m with these bits of reversed s, and s's other
+// bits are XORed in after the shuffle.
+inline constexpr uint32_t zsobolSampleBits(uint32_t m) {
+  return ~(~0u >> m);
+}
+
 template <class Randomizer>
 class BasicSobolStream {
  public:
   // seedHash: mix64(seed). One hash; the sample index's bit reversal is kept while the index repeats
   // (the renderer restarts every pixel of a pass with one index).
   void startSobol(uint64_t seedHash, IVec2 pixel, uint32_t sampleIndex) {
-    const uint64_t packed =
-        (static_cast<uint64_t>(static_cast<uint32_t>(pixel.x)) << 32) | static_cast<uint32_t>(pixel.y);
-    key_ = hashCombine(seedHash, packed);
+    key_ = pixelStreamKey(seedHash, static_cast<uint32_t>(pixel.x), static_cast<uint32_t>(pixel.y));
     zsobol_ = false;
     sampleIndex_ = sampleIndex;
     reversedIndex_ = reversedSampleIndex(sampleIndex);
@@ -86,18 +107,16 @@ class BasicSobolStream {
   // stays in its tile, and the sample index's bit reversal while the index repeats.
   void startZSobol(uint64_t seedHash, uint32_t log2Samples, IVec2 pixel, uint32_t sampleIndex) {
     const auto x = static_cast<uint32_t>(pixel.x), y = static_cast<uint32_t>(pixel.y);
-    // The Morton code's bits above the tile are the Morton code of the tile's coordinates.
     const uint64_t tile =
         (static_cast<uint64_t>(x >> kZSobolTileSideBits) << 32) | (y >> kZSobolTileSideBits);
     if (tile != memoTile_ || seedHash != memoSeedHash_) {
       memoTile_ = tile;
       memoSeedHash_ = seedHash;
-      memoTileKey_ = hashCombine(seedHash, encodeMorton2(x >> kZSobolTileSideBits, y >> kZSobolTileSideBits));
+      memoTileKey_ = zsobolTileKey(seedHash, x, y);
     }
     key_ = memoTileKey_;
     zsobol_ = true;
-    constexpr uint32_t side = (1u << kZSobolTileSideBits) - 1;
-    reversedTileCode_ = kZSobolReversedSpread[x & side] | kZSobolReversedSpread[y & side] >> 1;
+    reversedTileCode_ = zsobolReversedTileCode(x, y);
     log2Samples_ = log2Samples;
     sampleIndex_ = sampleIndex;
     setZSobolIndex(log2Samples, reversedSampleIndex(sampleIndex), reversedIndex_, reversedIndexXor_);
@@ -175,7 +194,7 @@ class BasicSobolStream {
   // zsobol's index of (tile, sample): (tileCode << m) | (s mod 2^m); s's bits above m are XORed in
   // after the shuffle. Both from s bit-reversed: s mod 2^m is its top m bits.
   void setZSobolIndex(uint32_t m, uint32_t reversedS, uint32_t& reversed, uint32_t& reversedXor) const {
-    const uint32_t top = ~(~0u >> m);
+    const uint32_t top = zsobolSampleBits(m);
     reversed = (reversedTileCode_ >> m) | (reversedS & top);
     reversedXor = reversedS & ~top;
   }
