@@ -24,7 +24,7 @@ class Film {
 
   // Adds one weighted sample to a pixel (the caller has already rejected non-finite values).
   [[gnu::always_inline]] void add(int x, int y, const Color3& value) {  // once per camera sample
-    double* s = &sums_[(size_t(y) * width_ + x) * 6];
+    double* s = sumsAt(x, y);
     s[0] += value.x;
     s[1] += value.y;
     s[2] += value.z;
@@ -32,6 +32,9 @@ class Film {
     s[4] += double(value.y) * value.y;
     s[5] += double(value.z) * value.z;
   }
+
+  // The sums of pixel (x, y), followed by those of the rest of its row and the rows below.
+  double* sumsAt(int x, int y) { return &sums_[(size_t(y) * width_ + x) * 6]; }
 
   // The raw sums, 6 doubles per pixel in row order (r, g, b, r^2, g^2, b^2): what processes that
   // share a render add up.

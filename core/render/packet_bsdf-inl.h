@@ -211,10 +211,7 @@ HWY_INLINE GlossySample sampleGlossy(const GlossyBsdfLanes& b, MF m, VF u0, VF u
   valid = hn::And(valid, hn::And(s.pdf > zero, s.pdf < setF(INFINITY)));
   const VF cosOverPdf = s.wi.z / s.pdf;
   s.weight = {f.x * cosOverPdf, f.y * cosOverPdf, f.z * cosOverPdf};
-  // isValidRadiance.
-  const MF nonNegative = hn::And(s.weight.x >= zero, hn::And(s.weight.y >= zero, s.weight.z >= zero));
-  const MF finite = hn::Abs(s.weight.x + s.weight.y + s.weight.z) < setF(INFINITY);
-  s.valid = hn::And(valid, hn::And(nonNegative, finite));
+  s.valid = hn::And(valid, validRadiance(s.weight));
   return s;
 }
 

@@ -34,6 +34,7 @@
 
 #include "core/render/packet_bsdf-inl.h"
 #include "core/render/packet_camera-inl.h"
+#include "core/render/packet_film-inl.h"
 #include "core/render/packet_geometry-inl.h"
 #include "core/render/packet_light_bvh-inl.h"
 #include "core/render/packet_lights-inl.h"
@@ -553,6 +554,10 @@ void SamplerDraws(const PacketStreamStart& start, const PacketDrawPlan& plan, fl
                   PacketDraws& draws) {
   samplerDraws(start, plan, u, draws);
 }
+uint32_t FilmAdd(const PacketRadiance& radiance, const float (&weight)[kMaxPacketLanes], int count,
+                 double* sums) {
+  return filmAdd(radiance, weight, count, sums);
+}
 int Lanes() {
   return static_cast<int>(hn::Lanes(DD()));
 }
@@ -574,7 +579,7 @@ struct PacketTarget {
 
 // One compiled set's entry: its bit, its kernels, its lane count.
 #define PENUMBRA_PACKET_TARGET(bit, ns) \
-  { bit, {&ns::ShadePacket, &ns::CameraRays, &ns::SamplerDraws}, &ns::Lanes }
+  { bit, {&ns::ShadePacket, &ns::CameraRays, &ns::SamplerDraws, &ns::FilmAdd}, &ns::Lanes }
 
 // The sets this file was compiled for, best first.
 constexpr PacketTarget kTargets[] = {

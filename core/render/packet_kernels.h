@@ -86,11 +86,18 @@ struct PacketDrawPlan {
 using PacketSamplerDraws = void (*)(const PacketStreamStart& start, const PacketDrawPlan& plan,
                                     float (&u)[2][kMaxPacketLanes], PacketDraws& draws);
 
+// Film::add of each of the first `count` lanes' radiance times its filter weight, to the pixel sums
+// from `sums` on (6 doubles per pixel, Film::sumsAt), skipping lanes whose radiance fails
+// isValidRadiance; returns how many did.
+using PacketFilmAdd = uint32_t (*)(const PacketRadiance& radiance, const float (&weight)[kMaxPacketLanes],
+                                   int count, double* sums);
+
 // The kernels of one instruction set.
 struct PacketKernels {
   PacketShader shade;
   PacketCameraRays cameraRays;
   PacketSamplerDraws samplerDraws;
+  PacketFilmAdd filmAdd;
 };
 // The kernels of the instruction set in use when it is called (a row renderer takes them once, not
 // per packet).

@@ -232,6 +232,13 @@ HWY_INLINE V3F offsetRayOrigin(const V3F& p, const V3F& ng, VF scale, const V3F&
   return {p.x + ng.x * signedD, p.y + ng.y * signedD, p.z + ng.z * signedD};
 }
 
+// isValidRadiance (float_util.h): every channel non-negative and their sum finite.
+HWY_INLINE MF validRadiance(const V3F& L) {
+  const VF zero = hn::Zero(DF());
+  const MF nonNegative = hn::And(L.x >= zero, hn::And(L.y >= zero, L.z >= zero));
+  return hn::And(nonNegative, hn::Abs(L.x + L.y + L.z) < setF(INFINITY));
+}
+
 }  // namespace HWY_NAMESPACE
 }  // namespace penumbra
 HWY_AFTER_NAMESPACE();

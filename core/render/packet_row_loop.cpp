@@ -7,7 +7,6 @@
 #include <string>
 #include <vector>
 
-#include "core/math/float_util.h"
 #include "core/render/film.h"
 #include "core/render/packet_camera.h"
 #include "core/render/packet_kernels.h"
@@ -74,14 +73,7 @@ RowRenderer packetRowsFor(const RenderJob& job, RowRenderer scalar) {
       kernels.samplerDraws(b.start, draws, b.filterU, b.draws);
       kernels.cameraRays(camera, x0, y, count, b.filterU, b.rays, b.weight);
       kernels.shade(*scene, b.rays, b.draws, b.radiance);
-      for (int k = 0; k < count; ++k) {
-        const Color3 L(b.radiance.L[0][k], b.radiance.L[1][k], b.radiance.L[2][k]);
-        // NaN, Inf or negative radiance is a bug somewhere: count it and add nothing.
-        if (isValidRadiance(L))
-          film.add(x0 + k, y, L * b.weight[k]);
-        else
-          ++badSamples;
-      }
+      badSamples += kernels.filmAdd(b.radiance, b.weight, count, film.sumsAt(x0, y));
     }
   };
   r.preview = std::move(scalar.preview);
