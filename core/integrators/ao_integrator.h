@@ -26,14 +26,15 @@ struct AoIntegrator {
   // together (core/render/ao_batch_row_loop.h): f(ray, contribution) for each direction that needs a
   // visibility test, in sampling order; the estimate is radiance(sum of the contributions of the
   // rays that were not occluded), added in that order (the image is the same as Li's, bit for bit).
-  template <class F>
-  [[gnu::always_inline]] void forEachVisibilityRay(const Scene& scene, const Ray& ray, Sampler& sampler,
+  // `draws` is the Sampler, or anything else with its next2D(j, n) that gives the same values.
+  template <class Draws, class F>
+  [[gnu::always_inline]] void forEachVisibilityRay(const Scene& scene, const Ray& ray, Draws& draws,
                                                    F&& f) const {
     SurfaceHit hit;
     if (!scene.geometry.intersect(ray, hit)) return;
     ShadingPoint sp(scene, ray, hit);
     for (int i = 0; i < samples; ++i) {
-      Vec2 u = sampler.next2D(uint32_t(i), uint32_t(samples));  // one request: stratified among themselves
+      Vec2 u = draws.next2D(uint32_t(i), uint32_t(samples));  // one request: stratified among themselves
       Vec3 local = kWarp == HemisphereWarp::Cosine ? Warp::squareToCosineHemisphere(u)
                                                    : Warp::squareToUniformHemisphere(u);
       Vec3 w = sp.frame.toWorld(local);

@@ -9,6 +9,7 @@
 #include "core/geometry/procedural_mesh.h"
 #include "core/math/frame.h"
 #include "core/render/engine.h"
+#include "core/render/packet_kernels.h"
 #include "core/sampling/sampler_table.h"
 
 namespace penumbra {
@@ -53,9 +54,17 @@ Image render(const std::shared_ptr<const RenderJob>& job, bool batched, uint32_t
   return engine.film().mean(spp);
 }
 
-// The batch changes only how Embree is asked: the same rays, summed in the same order, so the image is
-// the per-sample loop's bit for bit, for every warp, sampler and sample count (one that splits a row
-// into batches of a few pixels, one whose batch is a single pixel).
+// Restores the best instruction set when a test that forces one ends.
+struct ForcedTarget {
+  explicit ForcedTarget(const std::string& name) { EXPECT_TRUE(forcePacketTarget(name)) << name; }
+  ~ForcedTarget() { forcePacketTarget("auto"); }
+};
+
+// The batch changes only how Embree is asked, and its packets only where the draws and camera rays are
+// computed: the same rays, summed in the same order, so the image is the per-sample loop's bit for bit,
+// on every instruction set, for every warp, sampler and sample count (in packets: 4 and 37 directions,
+// whose batches end in partial packets; one at a time: one that splits a row into batches of a few
+// pixels, one whose batch is a single pixel).
 TEST(AoBatchRowLoop, EqualsTheScalarLoopBitForBit) {
   for (const AccelMode sphereMode : {AccelMode::BruteForce, AccelMode::Embree}) {
     const auto scene = rockScene(sphereMode);
@@ -63,18 +72,22 @@ TEST(AoBatchRowLoop, EqualsTheScalarLoopBitForBit) {
     for (const HemisphereWarp warp : {HemisphereWarp::Cosine, HemisphereWarp::Uniform}) {
       for (int k = 0; k < kSamplerKindCount; ++k) {
         const SamplerKind sampler = SamplerKind(k);
-        for (const int samples : {4, 300, 2000}) {
-          SCOPED_TRACE(std::string(samplerKindName(sampler)) + " samples " + std::to_string(samples) +
-                       (warp == HemisphereWarp::Cosine ? " cosine" : " uniform") +
-                       (sphereMode == AccelMode::Embree ? " sphere in the BVH" : " sphere in the flat loop"));
-          const auto job = aoJob(scene, warp, samples, sampler);
-          const uint32_t spp = samples > 4 ? 1 : 3;
-          const Image batched = render(job, true, spp), scalar = render(job, false, spp);
-          EXPECT_EQ(batched.rgb, scalar.rgb);
-          double sum = 0;
-          for (float v : batched.rgb) sum += v;
-          EXPECT_GT(sum, 0.0);  // the scene is visible and lit
-        }
+        for (const int samples : {4, 37, 300, 2000})
+          for (const std::string& target : availablePacketTargets()) {
+            if (samples > kMaxPacketDraws && target != availablePacketTargets().front()) continue;
+            ForcedTarget forced(target);
+            SCOPED_TRACE(
+                target + " " + samplerKindName(sampler) + " samples " + std::to_string(samples) +
+                (warp == HemisphereWarp::Cosine ? " cosine" : " uniform") +
+                (sphereMode == AccelMode::Embree ? " sphere in the BVH" : " sphere in the flat loop"));
+            const auto job = aoJob(scene, warp, samples, sampler);
+            const uint32_t spp = samples > 4 ? 1 : 3;
+            const Image batched = render(job, true, spp), scalar = render(job, false, spp);
+            EXPECT_EQ(batched.rgb, scalar.rgb);
+            double sum = 0;
+            for (float v : batched.rgb) sum += v;
+            EXPECT_GT(sum, 0.0);  // the scene is visible and lit
+          }
       }
     }
   }

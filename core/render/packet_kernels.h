@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "core/geometry/ray.h"
 #include "core/render/packet_camera.h"
 #include "core/render/packet_scene.h"
 #include "core/sampling/sampler.h"
@@ -28,6 +29,16 @@ struct alignas(64) PacketRays {
   float tMin[kMaxPacketLanes];
   float tMax[kMaxPacketLanes];
 };
+
+// Lane k's camera ray.
+inline Ray cameraRay(const PacketRays& rays, int k) {
+  Ray ray;
+  ray.o = Vec3(rays.o[0][k], rays.o[1][k], rays.o[2][k]);
+  ray.d = Vec3(rays.d[0][k], rays.d[1][k], rays.d[2][k]);
+  ray.tMin = rays.tMin[k];
+  ray.tMax = rays.tMax[k];
+  return ray;
+}
 
 // The sampler's draws of each lane's shading samples (PacketScene::drawCount of them), in the order
 // the scalar integrator draws them: draw j in u[j][0] and u[j][1]. For light sampling, draw j is

@@ -128,11 +128,7 @@ void queryLightSamples(const Scene& scene, LightMeasure measure, const float (&l
 
 void queryCameraHits(const Scene& scene, const PacketRays& rays, int lanes, PacketHitLanes& out) {
   for (int k = 0; k < lanes; ++k) {
-    Ray ray;
-    ray.o = lane(rays.o, k);
-    ray.d = lane(rays.d, k);
-    ray.tMin = rays.tMin[k];
-    ray.tMax = rays.tMax[k];
+    const Ray ray = cameraRay(rays, k);
     SurfaceHit hit;
     if (!scene.geometry.intersect(ray, hit)) {
       out.hit[k] = out.offsetScale[k] = out.shades[k] = out.glossy[k] = out.emitter[k] = out.object[k] = 0.f;
