@@ -78,6 +78,7 @@ RowRenderer aoBatchRowsFor(const RenderJob& job, AoIntegrator<kWarp> integrator)
         b.contribution.push_back(contribution);
       });
     };
+    const PacketDrawPlan draws = plan->view();
     if (lanes) startPacketStreamRow(sampler, pass, b.start);
     for (int x0 = 0; x0 < width; x0 += pixels) {
       if (cancel.load(std::memory_order_relaxed)) return;
@@ -90,11 +91,11 @@ RowRenderer aoBatchRowsFor(const RenderJob& job, AoIntegrator<kWarp> integrator)
         for (int x = x0; x < x1; x += laneCount) {
           const int count = std::min(laneCount, x1 - x);
           startPacketStreams(x, y, count, laneCount, b.start);
-          kernels.samplerDraws(b.start, plan->view(), b.filterU, b.draws);
+          kernels.samplerDraws(b.start, draws, b.filterU, b.draws);
           kernels.cameraRays(packetCamera, x, y, count, b.filterU, b.cameraRays, b.cameraWeight);
           for (int k = 0; k < count; ++k) {
-            PacketLaneDraws draws{b.draws, k};
-            queuePixel(cameraRay(b.cameraRays, k), b.cameraWeight[k], draws);
+            PacketLaneDraws laneDraws{b.draws, k};
+            queuePixel(cameraRay(b.cameraRays, k), b.cameraWeight[k], laneDraws);
           }
         }
       } else {

@@ -10,6 +10,7 @@
 #include "core/math/frame.h"
 #include "core/render/engine.h"
 #include "core/render/packet_kernels.h"
+#include "core/render/packet_target_test_support.h"
 #include "core/sampling/sampler_table.h"
 
 namespace penumbra {
@@ -54,11 +55,7 @@ Image render(const std::shared_ptr<const RenderJob>& job, bool batched, uint32_t
   return engine.film().mean(spp);
 }
 
-// Restores the best instruction set when a test that forces one ends.
-struct ForcedTarget {
-  explicit ForcedTarget(const std::string& name) { EXPECT_TRUE(forcePacketTarget(name)) << name; }
-  ~ForcedTarget() { forcePacketTarget("auto"); }
-};
+using test::ForcedTarget;
 
 // The batch changes only how Embree is asked, and its packets only where the draws and camera rays are
 // computed: the same rays, summed in the same order, so the image is the per-sample loop's bit for bit,

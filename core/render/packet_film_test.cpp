@@ -9,16 +9,13 @@
 #include "core/math/float_util.h"
 #include "core/render/film.h"
 #include "core/render/packet_kernels.h"
+#include "core/render/packet_target_test_support.h"
 #include "core/sampling/rng.h"
 
 namespace penumbra {
 namespace {
 
-// Restores the best instruction set when a test that forces one ends.
-struct ForcedTarget {
-  explicit ForcedTarget(const std::string& name) { EXPECT_TRUE(forcePacketTarget(name)) << name; }
-  ~ForcedTarget() { forcePacketTarget("auto"); }
-};
+using test::ForcedTarget;
 
 // The film kernel adds what the scalar row loop adds, bit for bit, on every instruction set: each valid
 // lane's radiance times its (possibly negative) filter weight and its square, in double, into its

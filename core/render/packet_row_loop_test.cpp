@@ -14,17 +14,14 @@
 #include "core/render/filter.h"
 #include "core/render/packet_kernels.h"
 #include "core/render/packet_scene.h"
+#include "core/render/packet_target_test_support.h"
 #include "core/render/strategy_axes.h"
 #include "core/sampling/sampler_table.h"
 
 namespace penumbra {
 namespace {
 
-// Restores the best instruction set when a test that forces one ends.
-struct ForcedTarget {
-  explicit ForcedTarget(const std::string& name) { EXPECT_TRUE(forcePacketTarget(name)) << name; }
-  ~ForcedTarget() { forcePacketTarget("auto"); }
-};
+using test::ForcedTarget;
 
 struct TestScene {
   std::shared_ptr<const Scene> scene;

@@ -20,6 +20,7 @@
 
 #include "core/render/packet_kernels.h"
 #include "core/render/packet_math-inl.h"
+#include "core/sampling/kensler_permutation.h"
 #include "core/sampling/owen_scramble.h"
 #include "core/sampling/sobol_matrices.h"
 #include "core/sampling/sobol_stream.h"
@@ -143,18 +144,12 @@ HWY_INLINE void divMod(VD x, double n, VD& quotient, VD& remainder) {
   remainder = x - quotient * setD(n);
 }
 
-// permute (sampler.cpp) of index i with each lane's 32-bit key: Kensler's hashed permutation of
-// [0, n), each lane walking its cycle until it lands below n; the stratum as an exact double.
-HWY_INLINE VD kenslerPermute(uint32_t i, uint32_t n, VU64 key) {
+// kenslerPermute (kensler_permutation.h) of index i with each lane's 32-bit key, each lane walking its
+// cycle until it lands below n; the stratum as an exact double.
+HWY_INLINE VD kenslerPermuteLanes(uint32_t i, uint32_t n, VU64 key) {
   const DU64 du;
   const hn::RebindToSigned<DU64> di;
-  uint32_t w = n - 1;
-  w |= w >> 1;
-  w |= w >> 2;
-  w |= w >> 4;
-  w |= w >> 8;
-  w |= w >> 16;
-  const VU64 mask = setU64(w);
+  const VU64 mask = setU64(kenslerPermutationMask(n));
   const VU64 keyMultiplier = hn::Or(setU64(1), hn::ShiftRight<27>(key));
   VU64 v = setU64(i), landed = hn::Zero(du);
   auto walking = hn::FirstN(du, hn::Lanes(du));
@@ -203,7 +198,7 @@ HWY_INLINE void stratifiedDraws(const PacketStreamStart& start, int drawCount, c
   const float invSide = 1.f / static_cast<float>(side);
   for (int d = 0; d < drawCount; ++d) {
     const VU64 permutationKey = low32(hashCombineLanes(key, setU64(epoch | uint32_t(d))));
-    const VD stratum = kenslerPermute(start.pass % strata, strata, permutationKey);
+    const VD stratum = kenslerPermuteLanes(start.pass % strata, strata, permutationKey);
     VD row, column;
     divMod(stratum, double(side), row, column);
     const VF jx = rng.nextFloat();

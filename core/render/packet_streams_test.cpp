@@ -5,16 +5,13 @@
 #include <bit>
 #include <string>
 
+#include "core/render/packet_target_test_support.h"
 #include "core/sampling/sampler_table.h"
 
 namespace penumbra {
 namespace {
 
-// Restores the best instruction set when a test that forces one ends.
-struct ForcedTarget {
-  explicit ForcedTarget(const std::string& name) { EXPECT_TRUE(forcePacketTarget(name)) << name; }
-  ~ForcedTarget() { forcePacketTarget("auto"); }
-};
+using test::ForcedTarget;
 
 // Each lane's draws of the packet kernels equal the scalar Sampler's bit for bit, for every sampler
 // kind on every instruction set: sample counts whose strata are not a power of two (Kensler's

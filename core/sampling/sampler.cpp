@@ -3,41 +3,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/sampling/kensler_permutation.h"
+
 namespace penumbra {
 
 namespace {
-
-// Kensler's hashed permutation of [0, n) ("Correlated Multi-Jittered Sampling", 2013): a bijection
-// chosen by `key`, evaluated for one element without storing the permutation (cycle walking).
-uint32_t permute(uint32_t i, uint32_t n, uint32_t key) {
-  uint32_t w = n - 1;
-  w |= w >> 1;
-  w |= w >> 2;
-  w |= w >> 4;
-  w |= w >> 8;
-  w |= w >> 16;
-  do {
-    i ^= key;
-    i *= 0xe170893d;
-    i ^= key >> 16;
-    i ^= (i & w) >> 4;
-    i ^= key >> 8;
-    i *= 0x0929eb3f;
-    i ^= key >> 23;
-    i ^= (i & w) >> 1;
-    i *= 1 | key >> 27;
-    i *= 0x6935fa69;
-    i ^= (i & w) >> 11;
-    i *= 0x74dcb303;
-    i ^= (i & w) >> 2;
-    i *= 0x9e501cc3;
-    i ^= (i & w) >> 2;
-    i *= 0xc860a3df;
-    i &= w;
-    i ^= i >> 5;
-  } while (i >= n);
-  return (i + key) % n;
-}
 
 // (stratum + jitter) / strata, kept below 1 when the float sum rounds up.
 inline float jittered(uint32_t stratum, float jitter, float invStrata) {
@@ -91,14 +61,16 @@ uint64_t Sampler::dimensionKey(uint32_t epoch) const {
 
 float Sampler::stratified1D() {
   uint32_t n = sampleCount_;
-  uint32_t stratum = permute(sampleIndex_ % n, n, static_cast<uint32_t>(dimensionKey(sampleIndex_ / n)));
+  uint32_t stratum =
+      kenslerPermute(sampleIndex_ % n, n, static_cast<uint32_t>(dimensionKey(sampleIndex_ / n)));
   ++dimension_;
   return jittered(stratum, rng_.nextFloat(), 1.f / static_cast<float>(n));
 }
 
 Vec2 Sampler::stratified2D() {
   uint32_t side = gridSide_, n = side * side;
-  uint32_t stratum = permute(sampleIndex_ % n, n, static_cast<uint32_t>(dimensionKey(sampleIndex_ / n)));
+  uint32_t stratum =
+      kenslerPermute(sampleIndex_ % n, n, static_cast<uint32_t>(dimensionKey(sampleIndex_ / n)));
   ++dimension_;
   float inv = 1.f / static_cast<float>(side);
   float jx = rng_.nextFloat();
