@@ -37,6 +37,7 @@
 #include "core/render/packet_film-inl.h"
 #include "core/render/packet_geometry-inl.h"
 #include "core/render/packet_light_bvh-inl.h"
+#include "core/render/packet_light_table-inl.h"
 #include "core/render/packet_lights-inl.h"
 #include "core/render/packet_math-inl.h"
 #include "core/render/packet_polygon_techniques-inl.h"
@@ -266,20 +267,23 @@ HWY_INLINE void shadeDirect(const PacketScene& scene, const PacketRays& rays, co
   storeRadiance(scene, shaded, h, g, E, out);
 }
 
-// The light each shaded lane picks for sample i from its pick draw j: by the light BVH in lanes, by the
-// other selections lane by lane (queryLightPicks).
+// The light each shaded lane picks (LightDirectIntegrator::selectedLightIrradiance): its index among
+// the area lights (-1 where nothing is picked, and in lanes not shaded) and the probability it was picked
+// with (0 there).
+struct alignas(64) LightPicks {
+  float light[kMaxPacketLanes];
+  double pmf[kMaxPacketLanes];
+};
+
+// The light each shaded lane picks for sample i from its pick draw j, in lanes: by the light BVH's walk
+// or by the uniform or power selection's alias table.
 HWY_INLINE void pickLights(const PacketScene& scene, const PacketHit& h, MF shaded, const PacketDraws& draws,
-                           size_t j, PacketPickLanes& picks) {
-  const DF df;
-  if (scene.selection == LightSelection::Bvh) {
-    VF u0, u1;
-    loadDraw(draws, j, u0, u1);
+                           size_t j, LightPicks& picks) {
+  VF u0, u1;
+  loadDraw(draws, j, u0, u1);
+  if (scene.selection == LightSelection::Bvh)
     return pickBvhLights(scene.lightBvh, h.p, h.ns, u0, u1, shaded, picks.light, picks.pmf);
-  }
-  storeF3(h.p, picks.p);
-  storeF3(h.ns, picks.n);
-  hn::StoreU(hn::IfThenElseZero(shaded, setF(1.f)), df, picks.active);
-  queryLightPicks(*scene.scene, scene.selection, draws.u[j], int(hn::Lanes(df)), picks);
+  pickTableLights(scene.lightTable, u0, u1, shaded, picks.light, picks.pmf);
 }
 
 // LightDirectIntegrator<measure, selection> through directRadiance (selectedLightIrradiance): per
@@ -300,7 +304,7 @@ HWY_INLINE void shadeSelected(const PacketScene& scene, const PacketRays& rays, 
     const size_t lanes = hn::Lanes(df);
     for (int i = 0; i < scene.samples; ++i) {
       const size_t pickDraw = 2 * size_t(i), lightDraw = pickDraw + 1;
-      PacketPickLanes picks;
+      LightPicks picks;
       pickLights(scene, h, shaded, draws, pickDraw, picks);
       const VF picked = hn::LoadU(df, picks.light);
       const VD pmf = hn::LoadU(dd, picks.pmf);
@@ -558,6 +562,13 @@ uint32_t FilmAdd(const PacketRadiance& radiance, const float (&weight)[kMaxPacke
                  double* sums) {
   return filmAdd(radiance, weight, count, sums);
 }
+void TablePicks(const PacketLightTable& table, const float (&u)[2][kMaxPacketLanes],
+                const float (&active)[kMaxPacketLanes], float (&light)[kMaxPacketLanes],
+                double (&pmf)[kMaxPacketLanes]) {
+  const DF df;
+  pickTableLights(table, hn::LoadU(df, u[0]), hn::LoadU(df, u[1]), hn::LoadU(df, active) != hn::Zero(df),
+                  light, pmf);
+}
 int Lanes() {
   return static_cast<int>(hn::Lanes(DD()));
 }
@@ -579,7 +590,7 @@ struct PacketTarget {
 
 // One compiled set's entry: its bit, its kernels, its lane count.
 #define PENUMBRA_PACKET_TARGET(bit, ns) \
-  { bit, {&ns::ShadePacket, &ns::CameraRays, &ns::SamplerDraws, &ns::FilmAdd}, &ns::Lanes }
+  { bit, {&ns::ShadePacket, &ns::CameraRays, &ns::SamplerDraws, &ns::FilmAdd, &ns::TablePicks}, &ns::Lanes }
 
 // The sets this file was compiled for, best first.
 constexpr PacketTarget kTargets[] = {

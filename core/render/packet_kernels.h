@@ -103,12 +103,21 @@ using PacketSamplerDraws = void (*)(const PacketStreamStart& start, const Packet
 using PacketFilmAdd = uint32_t (*)(const PacketRadiance& radiance, const float (&weight)[kMaxPacketLanes],
                                    int count, double* sums);
 
+// UniformLightSelection::pick or PowerLightSelection::pick (as `table`) of each lane whose active[k] is
+// not 0, from its pick draw (u[0][k] + u[1][k] 2^-24): light[k] the light's index (-1 where nothing is
+// picked, and in inactive lanes) and pmf[k] its probability (0 there). The shading kernels pick this way;
+// this entry lets the pick be tested alone.
+using PacketTablePicks = void (*)(const PacketLightTable& table, const float (&u)[2][kMaxPacketLanes],
+                                  const float (&active)[kMaxPacketLanes], float (&light)[kMaxPacketLanes],
+                                  double (&pmf)[kMaxPacketLanes]);
+
 // The kernels of one instruction set.
 struct PacketKernels {
   PacketShader shade;
   PacketCameraRays cameraRays;
   PacketSamplerDraws samplerDraws;
   PacketFilmAdd filmAdd;
+  PacketTablePicks tablePicks;
 };
 // The kernels of the instruction set in use when it is called (a row renderer takes them once, not
 // per packet).

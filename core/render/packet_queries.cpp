@@ -225,38 +225,4 @@ void queryEmittersAlong(const Scene& scene, const PacketSegments& rays, int lane
   }
 }
 
-namespace {
-
-template <class Selection>
-void pickLights(const Selection& selection, const float (&u)[2][kMaxPacketLanes], int lanes,
-                PacketPickLanes& picks) {
-  for (int k = 0; k < lanes; ++k) {
-    picks.light[k] = -1.f;
-    picks.pmf[k] = 0.0;
-    if (picks.active[k] == 0.f) continue;
-    const LightPick pick =
-        selection.pick(lane(picks.p, k), lane(picks.n, k), double(u[0][k]) + double(u[1][k]) * 0x1p-24);
-    if (!(pick.pmf > 0.0)) continue;
-    picks.light[k] = float(pick.light);
-    picks.pmf[k] = pick.pmf;
-  }
-}
-
-}  // namespace
-
-void queryLightPicks(const Scene& scene, LightSelection selection, const float (&u)[2][kMaxPacketLanes],
-                     int lanes, PacketPickLanes& picks) {
-  switch (selection) {
-    case LightSelection::Uniform:
-      return pickLights(scene.uniformSelection, u, lanes, picks);
-    case LightSelection::Power:
-      return pickLights(scene.powerSelection, u, lanes, picks);
-    case LightSelection::Bvh:
-      return pickLights(scene.lightBvh, u, lanes, picks);
-    case LightSelection::All:
-      break;
-  }
-  for (int k = 0; k < lanes; ++k) picks.light[k] = -1.f, picks.pmf[k] = 0.0;
-}
-
 }  // namespace penumbra

@@ -46,16 +46,6 @@ struct alignas(64) PacketEmitterLanes {
   float p[3][kMaxPacketLanes], ng[3][kMaxPacketLanes];
 };
 
-// The light each lane picks (LightDirectIntegrator::selectedLightIrradiance) at its shading point p
-// with shading normal n, from the two floats of its pick draw u: its index among the area lights (-1
-// where nothing is picked, pmf 0, and in inactive lanes) and the probability it was picked with.
-struct alignas(64) PacketPickLanes {
-  float p[3][kMaxPacketLanes], n[3][kMaxPacketLanes];
-  float active[kMaxPacketLanes];
-  float light[kMaxPacketLanes];
-  double pmf[kMaxPacketLanes];
-};
-
 // The shading points of a packet's lanes as the kernels hold them (ShadingPoint::facing), active where
 // a lane is shaded.
 struct alignas(64) PacketShadingLanes {
@@ -112,7 +102,5 @@ struct alignas(64) PacketLightSampleLanes {
 void queryLightSamples(const Scene& scene, LightMeasure measure, const float (&light)[kMaxPacketLanes],
                        const PacketShadingLanes& points, const PacketDraws& draws, size_t firstDraw,
                        int count, int lanes, PacketLightSampleLanes* out);
-void queryLightPicks(const Scene& scene, LightSelection selection, const float (&u)[2][kMaxPacketLanes],
-                     int lanes, PacketPickLanes& picks);
 
 }  // namespace penumbra

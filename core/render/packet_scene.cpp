@@ -144,6 +144,25 @@ PacketLightBvh packetLightBvh(const LightBvh& bvh) {
 
 }  // namespace
 
+PacketLightTable packetLightTable(const UniformLightSelection& selection) {
+  const uint32_t n = selection.count;
+  PacketLightTable t;
+  t.keep.assign(n, 1.0);
+  t.pmf.assign(n, 1.0 / double(n));
+  for (uint32_t i = 0; i < n; ++i) t.alias.push_back(double(i));
+  return t;
+}
+
+PacketLightTable packetLightTable(const PowerLightSelection& selection) {
+  PacketLightTable t;
+  for (const AliasTable::Bin& bin : selection.table.bins) {
+    t.keep.push_back(bin.keep);
+    t.alias.push_back(double(bin.alias));
+    t.pmf.push_back(bin.pmf);
+  }
+  return t;
+}
+
 bool polygonSamplesByLane(LightMeasure measure, const Scene& scene) {
   switch (measure) {
     case LightMeasure::Area:
@@ -176,6 +195,8 @@ PacketScene makePacketScene(const RenderJob& job) {
   p.geometryQueried = packetGeometryQueried(scene);
   p.selection = job.settings.integrator.lightSelection;
   if (p.selection == LightSelection::Bvh) p.lightBvh = packetLightBvh(scene.lightBvh);
+  if (p.selection == LightSelection::Uniform) p.lightTable = packetLightTable(scene.uniformSelection);
+  if (p.selection == LightSelection::Power) p.lightTable = packetLightTable(scene.powerSelection);
   p.samples = job.settings.integrator.samples;
   p.lightSamples = job.settings.integrator.lightSamples;
   p.bsdfSamples = job.settings.integrator.bsdfSamples;

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/geometry/parallelogram.h"
+#include "core/lights/light_selection.h"
 #include "core/render/render_job.h"
 
 namespace penumbra {
@@ -69,6 +70,15 @@ struct PacketLightBvh {
   std::vector<double> child, leaf;
 };
 
+// Uniform or power selection (UniformLightSelection, PowerLightSelection) as one alias table the kernels
+// sample in lanes, one array per field of AliasTable::Bin: uniform as bins that each keep their own
+// light with probability 1/n, which picks what UniformLightSelection::pick picks, bit for bit.
+struct PacketLightTable {
+  std::vector<double> keep, alias, pmf;
+};
+PacketLightTable packetLightTable(const UniformLightSelection& selection);
+PacketLightTable packetLightTable(const PowerLightSelection& selection);
+
 struct PacketPointLight {
   float position[3];
   float intensity[3];
@@ -114,7 +124,7 @@ struct DrawRequests {
 struct PacketScene {
   PacketKernel kernel = PacketKernel::LightArea;
   // The scene this was made from, which answers the kernels' queries lane by lane (packet_queries.h):
-  // light picks, and every ray when its geometry is not all flat spheres and parallelograms
+  // every ray when its geometry is not all flat spheres and parallelograms
   // (geometryQueried; otherwise the arrays below hold the geometry).
   const Scene* scene = nullptr;
   bool geometryQueried = false;
@@ -132,6 +142,7 @@ struct PacketScene {
   std::vector<PacketDirectionalLight> directionalLights;
   LightSelection selection = LightSelection::All;  // how the *Selected kernels pick their light
   PacketLightBvh lightBvh;                         // with LightSelection::Bvh: the BVH they walk in lanes
+  PacketLightTable lightTable;                     // with Uniform or Power: the table they sample in lanes
   int samples = 1;       // shading samples per camera sample (per light, for light sampling of every light)
   int lightSamples = 0;  // MIS: per light
   int bsdfSamples = 0;   // MIS
