@@ -31,7 +31,9 @@ inline constexpr int kAoBatchRays = 1024;
 struct PacketLaneDraws {
   const PacketDraws& draws;
   int lane;
-  Vec2 next2D(uint32_t i, uint32_t /*n*/) const { return Vec2(draws.u[i][0][lane], draws.u[i][1][lane]); }
+  Vec2 next2D(uint32_t i, uint32_t /*n*/) const {
+    return Vec2(draws.draw[i].u[0][lane], draws.draw[i].u[1][lane]);
+  }
 };
 
 template <HemisphereWarp kWarp>
@@ -48,7 +50,8 @@ RowRenderer aoBatchRowsFor(const RenderJob& job, AoIntegrator<kWarp> integrator)
   const PacketKernels& kernels = packetKernels();
   // One per row renderer, i.e. per worker thread; reused row after row.
   struct Batch {
-    explicit Batch(const SceneGeometry& geometry) : rays(geometry) {}
+    Batch(const SceneGeometry& geometry, size_t drawCount)
+        : rays(geometry), drawBuffer(drawCount), draws(drawBuffer.draws()) {}
     OcclusionBatch rays;
     std::vector<float> contribution;  // of each ray
     std::vector<uint32_t> firstRay;   // of each pixel, and one past the last pixel's rays
@@ -56,11 +59,12 @@ RowRenderer aoBatchRowsFor(const RenderJob& job, AoIntegrator<kWarp> integrator)
     // One packet of camera samples.
     PacketStreamStart start;
     float filterU[2][kMaxPacketLanes];
+    PacketDrawBuffer drawBuffer;
     PacketDraws draws;
     PacketRays cameraRays;
     float cameraWeight[kMaxPacketLanes];
   };
-  auto batch = std::make_shared<Batch>(scene->geometry);
+  auto batch = std::make_shared<Batch>(scene->geometry, lanes ? size_t(integrator.samples) : 0);
   RowRenderer r;
   r.row = [camera, filter, scene, integrator, batch, lanes, packetCamera, plan, laneCount, kernels](
               int y, uint32_t pass, Sampler& sampler, Film& film, uint64_t& badSamples,

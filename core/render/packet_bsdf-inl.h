@@ -265,8 +265,8 @@ HWY_INLINE V3F reflected(const GlossySurfaces& g, MF m, const V3F& Le, const V3F
 // Sampler draw j of every lane.
 HWY_INLINE void loadDraw(const PacketDraws& draws, size_t j, VF& u0, VF& u1) {
   const DF df;
-  u0 = hn::LoadU(df, draws.u[j][0]);
-  u1 = hn::LoadU(df, draws.u[j][1]);
+  u0 = hn::LoadU(df, draws.draw[j].u[0]);
+  u1 = hn::LoadU(df, draws.draw[j].u[1]);
 }
 
 // A direction about +z by warp kWarp (Warp::squareToCosineHemisphere or squareToUniformHemisphere).

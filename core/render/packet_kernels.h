@@ -7,6 +7,7 @@
 // so the images are the same bit for bit.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -40,11 +41,27 @@ inline Ray cameraRay(const PacketRays& rays, int k) {
   return ray;
 }
 
-// The sampler's draws of each lane's shading samples (PacketScene::drawCount of them), in the order
-// the scalar integrator draws them: draw j in u[j][0] and u[j][1]. For light sampling, draw j is
-// light j / samples, sample j % samples.
-struct alignas(64) PacketDraws {
-  float u[kMaxPacketDraws][2][kMaxPacketLanes];
+// One draw of every lane: lane k's two floats in u[0][k] and u[1][k].
+struct alignas(64) PacketDraw {
+  float u[2][kMaxPacketLanes];
+};
+
+// The sampler's draws of each lane's shading samples, in the order the scalar integrator draws them:
+// draw j in draw[j]. For light sampling, draw j is light j / samples, sample j % samples. A view of
+// storage sized to the render's draws (one buffer per worker, PacketDrawBuffer).
+struct PacketDraws {
+  PacketDraw* draw = nullptr;
+};
+
+// Room for `count` draws of every lane (at least one), owned by one worker and reused packet after
+// packet.
+class PacketDrawBuffer {
+ public:
+  explicit PacketDrawBuffer(size_t count) : storage_(std::max<size_t>(count, 1)) {}
+  PacketDraws draws() { return {storage_.data()}; }
+
+ private:
+  std::vector<PacketDraw> storage_;
 };
 
 struct alignas(64) PacketRadiance {
@@ -92,7 +109,7 @@ struct PacketDrawPlan {
 };
 
 // Each lane's filter draw (the plan's first call, into u) and shading draws (the others, into
-// draws.u[0..]): what Sampler::next2D's forms return after Sampler::startPixelSample, for every
+// draws.draw[0..]): what Sampler::next2D's forms return after Sampler::startPixelSample, for every
 // sampler kind, computed in lanes.
 using PacketSamplerDraws = void (*)(const PacketStreamStart& start, const PacketDrawPlan& plan,
                                     float (&u)[2][kMaxPacketLanes], PacketDraws& draws);

@@ -82,7 +82,7 @@ void laneLightSamples(const Light& light, const ShadingPoint& sp, const PacketDr
   const LightTechnique<kMeasure, Light> technique(light, sp);
   if (!technique.canSample()) return;
   for (int i = 0; i < count; ++i) {
-    const LightSample s = technique.sample(drawOf(draws.u[firstDraw + size_t(i)], k));
+    const LightSample s = technique.sample(drawOf(draws.draw[firstDraw + size_t(i)].u, k));
     if (!(s.pdf > 0.f)) continue;
     setLane(out[i].wi, k, s.wi);
     out[i].dist[k] = s.dist;

@@ -19,9 +19,11 @@ namespace {
 
 // One per row renderer (per worker thread), reused packet after packet.
 struct PacketBuffers {
+  explicit PacketBuffers(size_t drawCount) : drawBuffer(drawCount), draws(drawBuffer.draws()) {}
   float filterU[2][kMaxPacketLanes];
   PacketStreamStart start;
   PacketRays rays;
+  PacketDrawBuffer drawBuffer;
   PacketDraws draws;
   PacketRadiance radiance;
   float weight[kMaxPacketLanes];
@@ -53,7 +55,8 @@ RowRenderer packetRowsFor(const RenderJob& job, RowRenderer scalar) {
   const int width = job.settings.camera.width;
   auto scene = std::make_shared<const PacketScene>(makePacketScene(job));
   auto plan = std::make_shared<const DrawPlan>(drawPlan(scene->draws));
-  auto buffers = std::make_shared<PacketBuffers>();
+  // The plan's first call is the filter's draw, which goes to filterU.
+  auto buffers = std::make_shared<PacketBuffers>(plan->calls.size() - 1);
   const int lanes = std::min(packetLanes(), kMaxPacketLanes);
   const PacketKernels& kernels = packetKernels();
   RowRenderer r;

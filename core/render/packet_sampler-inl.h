@@ -34,11 +34,11 @@ using DU64 = hn::RebindToUnsigned<DD>;
 using VU64 = hn::Vec<DU64>;
 
 // Where a draw plan's calls put their two values: call 0 (the filter's) into filterU, call i into
-// draws.u[i - 1].
+// draws.draw[i - 1].
 struct DrawOutputs {
   float (&filterU)[2][kMaxPacketLanes];
   PacketDraws& draws;
-  float* at(int call, int c) const { return call == 0 ? filterU[c] : draws.u[call - 1][c]; }
+  float* at(int call, int c) const { return call == 0 ? filterU[c] : draws.draw[call - 1].u[c]; }
 };
 
 HWY_INLINE VU64 setU64(uint64_t v) {
@@ -287,7 +287,7 @@ HWY_INLINE void sobolDraws(const PacketStreamStart& start, const PacketDrawPlan&
 }
 
 // Each lane's draws of the plan's calls from its sampler kind: the filter's into filterU, the
-// shading draws into draws.u.
+// shading draws into draws.draw.
 HWY_INLINE void samplerDraws(const PacketStreamStart& start, const PacketDrawPlan& plan,
                              float (&filterU)[2][kMaxPacketLanes], PacketDraws& draws) {
   const DrawOutputs outputs{filterU, draws};

@@ -158,8 +158,10 @@ struct PacketScene {
 // spheres and parallelograms, or when a polygon light is not one of those parallelograms whole.
 bool packetGeometryQueried(const Scene& scene);
 
-// The most light draws (lights × samples) a packet carries.
-inline constexpr int kMaxPacketDraws = 256;
+// The most shading draws (lights × samples) a packet carries: 1 MB of draws per worker (64 bytes a
+// draw). Above it a camera sample's draws would stream through memory instead of cache, and the row
+// loop takes one camera sample at a time.
+inline constexpr int kMaxPacketDraws = 16384;
 
 // Whether the kernels leave the samples of the scene's polygon lights by `measure` to the scalar
 // techniques, lane by lane: by the projected solid angle (the clipped polygon's map, which needs a

@@ -39,7 +39,8 @@ TEST(PacketStreams, DrawsEqualTheScalarSamplerForEveryKind) {
                 startPacketStreamRow(probe, pass, start);
                 startPacketStreams(o.x0, o.y, count, lanes, start);
                 float filterU[2][kMaxPacketLanes];
-                PacketDraws draws;
+                PacketDrawBuffer buffer(plan.calls.size() - 1);
+                PacketDraws draws = buffer.draws();
                 kernels.samplerDraws(start, plan.view(), filterU, draws);
                 Sampler sampler(SamplerKind(kind), sampleCount, seed);
                 for (int k = 0; k < lanes; ++k) {
@@ -47,8 +48,8 @@ TEST(PacketStreams, DrawsEqualTheScalarSamplerForEveryKind) {
                   for (size_t i = 0; i < plan.calls.size(); ++i) {
                     const SobolDrawCall& c = plan.calls[i];
                     const Vec2 v = c.m == 1 ? sampler.next2D(c.j, c.n) : sampler.next2D(c.j, c.n, c.k, c.m);
-                    const float* u[2] = {i == 0 ? filterU[0] : draws.u[i - 1][0],
-                                         i == 0 ? filterU[1] : draws.u[i - 1][1]};
+                    const float* u[2] = {i == 0 ? filterU[0] : draws.draw[i - 1].u[0],
+                                         i == 0 ? filterU[1] : draws.draw[i - 1].u[1]};
                     ASSERT_EQ(std::bit_cast<uint32_t>(u[0][k]), std::bit_cast<uint32_t>(v.x))
                         << target << " " << samplerKindName(SamplerKind(kind)) << " samples " << sampleCount
                         << " seed " << seed << " pass " << pass << " pixel " << o.x0 + k << "," << o.y
