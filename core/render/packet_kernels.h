@@ -54,10 +54,14 @@ struct PacketDraws {
 };
 
 // Room for `count` draws of every lane (at least one), owned by one worker and reused packet after
-// packet.
+// packet. Not copyable, so a view taken of it never points into a copy's storage (a move keeps it).
 class PacketDrawBuffer {
  public:
   explicit PacketDrawBuffer(size_t count) : storage_(std::max<size_t>(count, 1)) {}
+  PacketDrawBuffer(const PacketDrawBuffer&) = delete;
+  PacketDrawBuffer& operator=(const PacketDrawBuffer&) = delete;
+  PacketDrawBuffer(PacketDrawBuffer&&) noexcept = default;
+  PacketDrawBuffer& operator=(PacketDrawBuffer&&) noexcept = default;
   PacketDraws draws() { return {storage_.data()}; }
 
  private:
