@@ -81,11 +81,8 @@ HWY_INLINE void pickBvhLights(const PacketLightBvh& bvh, const V3F& pF, const V3
   const DD dd;
   const DI64 di;
   const VD zero = hn::Zero(dd);
-  if (bvh.power.empty()) {  // no area lights: nothing is picked
-    hn::Store(zero, dd, pmf);
-    for (size_t k = 0; k < hn::Lanes(dd); ++k) light[k] = -1.f;
-    return;
-  }
+  if (bvh.power.empty())  // no area lights: nothing is picked
+    return storeLightPicks(hn::FirstN(dd, 0), zero, zero, light, pmf);
   const V3D p = promote(pF), n = promote(nF);
   const MD nonzeroNormal = hn::Or(hn::Or(n.x != zero, n.y != zero), n.z != zero);
   VI64 index = hn::Zero(di);
@@ -123,11 +120,7 @@ HWY_INLINE void pickBvhLights(const PacketLightBvh& bvh, const V3F& pF, const V3
     walking = hn::AndNot(gatherNodes(bvh.leaf, index) != zero, walking);
   }
   const VD lightIndex = gatherNodes(bvh.child, index);
-  const MD some = hn::And(picked, probability > zero);
-  HWY_ALIGN double lights[kMaxPacketLanes];
-  hn::Store(hn::IfThenElse(some, lightIndex, setD(-1.0)), dd, lights);
-  hn::Store(hn::IfThenElseZero(some, probability), dd, pmf);
-  for (size_t k = 0; k < hn::Lanes(dd); ++k) light[k] = float(lights[k]);
+  storeLightPicks(hn::And(picked, probability > zero), lightIndex, probability, light, pmf);
 }
 
 }  // namespace HWY_NAMESPACE

@@ -27,11 +27,8 @@ HWY_INLINE void pickTableLights(const PacketLightTable& table, VF u0, VF u1, MF 
   const DD dd;
   const hn::RebindToSigned<DD> di;
   const size_t n = table.pmf.size();
-  if (n == 0) {  // no area lights: nothing is picked
-    hn::StoreU(hn::Zero(dd), dd, pmf);
-    for (size_t k = 0; k < hn::Lanes(dd); ++k) light[k] = -1.f;
-    return;
-  }
+  if (n == 0)  // no area lights: nothing is picked
+    return storeLightPicks(hn::FirstN(dd, 0), hn::Zero(dd), hn::Zero(dd), light, pmf);
   // AliasTable::sample: the bin static_cast<uint32_t>(u n) (truncation; u n ≥ 0), the last one where u
   // rounds up to 1, then its own light or its alias by the fraction left.
   const VD u = promote(u0) + promote(u1) * setD(0x1p-24);
@@ -45,11 +42,7 @@ HWY_INLINE void pickTableLights(const PacketLightTable& table, VF u0, VF u1, MF 
   const VD picked = hn::IfThenElse(x - bin < keep, bin, alias);
   const VD probability = hn::GatherIndex(dd, table.pmf.data(), hn::ConvertTo(di, picked));
   // The estimator's `pick.pmf > 0` test: a light of no power that an alias still reaches adds nothing.
-  const MD some = hn::And(toD(active), probability > hn::Zero(dd));
-  HWY_ALIGN double lights[kMaxPacketLanes];
-  hn::Store(hn::IfThenElse(some, picked, setD(-1.0)), dd, lights);
-  hn::StoreU(hn::IfThenElseZero(some, probability), dd, pmf);
-  for (size_t k = 0; k < hn::Lanes(dd); ++k) light[k] = float(lights[k]);
+  storeLightPicks(hn::And(toD(active), probability > hn::Zero(dd)), picked, probability, light, pmf);
 }
 
 }  // namespace HWY_NAMESPACE

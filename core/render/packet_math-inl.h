@@ -62,6 +62,16 @@ HWY_INLINE VF demote(VD v) {
 HWY_INLINE V3F demote(const V3D& v) {
   return {demote(v.x), demote(v.y), demote(v.z)};
 }
+// A light pick's outputs: light[k] the picked light's index where `some` (else -1) and pmf[k] its
+// probability (else 0).
+HWY_INLINE void storeLightPicks(MD some, VD lightIndex, VD probability, float* light, double* pmf) {
+  const DD dd;
+  HWY_ALIGN double lights[kMaxPacketLanes];
+  hn::Store(hn::IfThenElse(some, lightIndex, setD(-1.0)), dd, lights);
+  hn::StoreU(hn::IfThenElseZero(some, probability), dd, pmf);
+  for (size_t k = 0; k < hn::Lanes(dd); ++k) light[k] = float(lights[k]);
+}
+
 // A float-lane mask as a double-lane mask and back (same lane count).
 HWY_INLINE MD toD(MF m) {
   return hn::PromoteTo(DD(), hn::IfThenElseZero(m, setF(1.f))) == setD(1.0);

@@ -84,9 +84,7 @@ bool packetGeometryQueried(const Scene& scene) {
 }
 
 int PacketScene::drawCount() const {
-  int count = 0;
-  for (const DrawRequests& r : draws) count += r.repeats * r.n * r.parts;
-  return count;
+  return penumbra::drawCount(draws);
 }
 
 namespace {
@@ -106,15 +104,18 @@ std::vector<DrawRequests> drawRequestsOf(const IntegratorDesc& d, int lights) {
 
 }  // namespace
 
+int drawCount(const std::vector<DrawRequests>& requests) {
+  int draws = 0;
+  for (const DrawRequests& r : requests) draws += std::max(r.repeats, 0) * std::max(r.n, 0) * r.parts;
+  return draws;
+}
+
 std::string packetUnsupportedReason(const RenderJob& job) {
   const IntegratorDesc& d = job.settings.integrator;
   PacketKernel kernel;
   if (!kernelOf(d, kernel)) return "no packet kernel for " + strategyLabel(d);
   const Scene& scene = *job.scene;
-  int draws = 0;
-  for (const DrawRequests& r : drawRequestsOf(d, int(scene.areaLightCount())))
-    draws += std::max(r.repeats, 0) * std::max(r.n, 0) * r.parts;
-  if (draws > kMaxPacketDraws)
+  if (drawCount(drawRequestsOf(d, int(scene.areaLightCount()))) > kMaxPacketDraws)
     return "more shading samples per camera sample than a packet carries (" +
            std::to_string(kMaxPacketDraws) + ")";
   return {};

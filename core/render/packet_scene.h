@@ -121,6 +121,9 @@ struct DrawRequests {
   int parts = 1;
 };
 
+// How many draws `requests` make (each request's repeats × n × parts).
+int drawCount(const std::vector<DrawRequests>& requests);
+
 struct PacketScene {
   PacketKernel kernel = PacketKernel::LightArea;
   // The scene this was made from, which answers the kernels' queries lane by lane (packet_queries.h):
