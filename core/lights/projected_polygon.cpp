@@ -81,6 +81,44 @@ void radiusAt(const Edge& e, double gv, double v2, double& rho2, double& z2) {
 
 }  // namespace
 
+int ProjectedPolygon::azimuthIntervals(const double* alpha, int vertexCount, AzimuthInterval* out) {
+  int lo = 0, hi = 0;
+  for (int i = 0; i < vertexCount; ++i) {
+    if (alpha[i] < alpha[lo]) lo = i;
+    if (alpha[i] > alpha[hi]) hi = i;
+  }
+  // The two chains from lo to hi, as lists of edges (edge i runs from vertex i to i + 1).
+  int chainA[kMaxVertices], chainB[kMaxVertices], lenA = 0, lenB = 0;
+  for (int i = lo; i != hi; i = (i + 1) % vertexCount) chainA[lenA++] = i;
+  for (int i = lo; i != hi; i = (i + vertexCount - 1) % vertexCount)
+    chainB[lenB++] = (i + vertexCount - 1) % vertexCount;
+  // The vertices in azimuth order (insertion sort: at most five).
+  int order[kMaxVertices];
+  for (int i = 0; i < vertexCount; ++i) {
+    int j = i;
+    for (; j > 0 && alpha[order[j - 1]] > alpha[i]; --j) order[j] = order[j - 1];
+    order[j] = i;
+  }
+  // The chain edge whose azimuth range holds `mid` (chains run monotonically in azimuth).
+  auto edgeAt = [&](const int* chain, int length, bool forward, double mid) {
+    for (int c = 0; c < length; ++c) {
+      const int i = chain[c];
+      const int a = i, b = (i + 1) % vertexCount;
+      const double end = forward ? alpha[b] : alpha[a];
+      if (end >= mid || c == length - 1) return i;
+    }
+    return chain[length - 1];
+  };
+  int count = 0;
+  for (int s = 0; s + 1 < vertexCount; ++s) {
+    if (!(alpha[order[s + 1]] > alpha[order[s]])) continue;
+    const double mid = 0.5 * (alpha[order[s]] + alpha[order[s + 1]]);
+    out[count++] = {order[s], order[s + 1], edgeAt(chainA, lenA, true, mid),
+                    edgeAt(chainB, lenB, false, mid)};
+  }
+  return count;
+}
+
 bool ProjectedPolygon::init(const Vec3* vertices, int count, const Vec3& x, const Vec3& n) {
   projectedSolidAngle = 0;
   wedgeCount = 0;
@@ -199,40 +237,14 @@ bool ProjectedPolygon::init(const Vec3* vertices, int count, const Vec3& x, cons
     for (int i = 0; i < vertexCount; ++i) ref.x += az[i].x, ref.y += az[i].y;
     if (!(ref.x * ref.x + ref.y * ref.y > 0)) return false;
     double alpha[kMaxVertices];
-    int lo = 0, hi = 0;
-    for (int i = 0; i < vertexCount; ++i) {
-      alpha[i] = pseudoAngle(ref, az[i]);
-      if (alpha[i] < alpha[lo]) lo = i;
-      if (alpha[i] > alpha[hi]) hi = i;
-    }
-    // The two chains from lo to hi, as lists of edges (edge i runs from vertex i to i + 1).
-    int chainA[kMaxVertices], chainB[kMaxVertices], lenA = 0, lenB = 0;
-    for (int i = lo; i != hi; i = (i + 1) % vertexCount) chainA[lenA++] = i;
-    for (int i = lo; i != hi; i = (i + vertexCount - 1) % vertexCount)
-      chainB[lenB++] = (i + vertexCount - 1) % vertexCount;
-    // The vertices in azimuth order (insertion sort: at most five).
-    int order[kMaxVertices];
-    for (int i = 0; i < vertexCount; ++i) {
-      int j = i;
-      for (; j > 0 && alpha[order[j - 1]] > alpha[i]; --j) order[j] = order[j - 1];
-      order[j] = i;
-    }
-    // The chain edge whose azimuth range holds `mid` (chains run monotonically in azimuth).
-    auto edgeAt = [&](const int* chain, int length, bool forward, double mid) {
-      for (int c = 0; c < length; ++c) {
-        const int i = chain[c];
-        const int a = i, b = (i + 1) % vertexCount;
-        const double end = forward ? alpha[b] : alpha[a];
-        if (end >= mid || c == length - 1) return i;
-      }
-      return chain[length - 1];
-    };
-    for (int s = 0; s + 1 < vertexCount; ++s) {
-      const Azimuth &from = az[order[s]], &to = az[order[s + 1]];
-      if (!(alpha[order[s + 1]] > alpha[order[s]])) continue;
-      const double mid = 0.5 * (alpha[order[s]] + alpha[order[s + 1]]);
-      const Edge ea = edgeOf(edgeNormals[edgeAt(chainA, lenA, true, mid)]);
-      const Edge eb = edgeOf(edgeNormals[edgeAt(chainB, lenB, false, mid)]);
+    for (int i = 0; i < vertexCount; ++i) alpha[i] = pseudoAngle(ref, az[i]);
+    AzimuthInterval intervals[kMaxVertices];
+    const int intervalCount = azimuthIntervals(alpha, vertexCount, intervals);
+    for (int s = 0; s < intervalCount; ++s) {
+      const AzimuthInterval& interval = intervals[s];
+      const Azimuth &from = az[interval.from], &to = az[interval.to];
+      const Edge ea = edgeOf(edgeNormals[interval.edgeA]);
+      const Edge eb = edgeOf(edgeNormals[interval.edgeB]);
       // The outer edge at an azimuth inside: r² = k² |v|² / (k² |v|² + (g · v)²) is the larger.
       const Azimuth um{from.x + to.x, from.y + to.y};
       if (ea.k * std::fabs(gDot(eb, um)) >= eb.k * std::fabs(gDot(ea, um)))

@@ -63,6 +63,16 @@ struct ProjectedPolygon {
   // degenerate). Which side of the polygon emits is the light's business, not the map's.
   bool init(const Vec3* vertices, int count, const Vec3& x, const Vec3& n);
 
+  // Where the zenith is outside the clipped polygon, the wedges between consecutive vertex azimuths:
+  // the vertices ordered by `alpha` (any increasing function of their azimuth over less than a turn),
+  // each wedge with the vertices it starts and ends at and the edge of each chain from the lowest
+  // azimuth to the highest (A counter-clockwise, B clockwise) that bounds it there. Wedges of no width
+  // are left out; writes at most vertexCount − 1 and returns how many.
+  struct AzimuthInterval {
+    int from, to, edgeA, edgeB;
+  };
+  static int azimuthIntervals(const double* alpha, int vertexCount, AzimuthInterval* out);
+
   // The unit direction for u in [0,1)², in world coordinates, density pdfDirection.
   DVec3 sampleDirection(Vec2 u) const;
   // cos θ / Ω⊥ for a unit direction w inside the clipped polygon's cone above the horizon, else 0.

@@ -569,6 +569,27 @@ void TablePicks(const PacketLightTable& table, const float (&u)[2][kMaxPacketLan
   pickTableLights(table, hn::LoadU(df, u[0]), hn::LoadU(df, u[1]), hn::LoadU(df, active) != hn::Zero(df),
                   light, pmf);
 }
+void ProjectedPolygons(const std::vector<PacketPolygonLight>& polygons, const float (&x)[3][kMaxPacketLanes],
+                       const float (&n)[3][kMaxPacketLanes], const float (&active)[kMaxPacketLanes],
+                       const float (&u)[2][kMaxPacketLanes], double (&w)[3][kMaxPacketLanes],
+                       double (&projected)[kMaxPacketLanes], float (&mapped)[kMaxPacketLanes]) {
+  const DF df;
+  const DD dd;
+  HWY_ALIGN float index[kMaxPacketLanes];
+  for (size_t k = 0; k < hn::Lanes(df); ++k) index[k] = float(k);
+  const PolygonLanes light = gatherPolygons(polygons, index);
+  const V3F p{hn::LoadU(df, x[0]), hn::LoadU(df, x[1]), hn::LoadU(df, x[2])};
+  const V3F normal{hn::LoadU(df, n[0]), hn::LoadU(df, n[1]), hn::LoadU(df, n[2])};
+  ProjectedPolygonLanes map;
+  projectedPolygon(light, p, normal, hn::LoadU(df, active) != hn::Zero(df), map);
+  const V3D dir = sampleProjectedPolygon(map, hn::LoadU(df, u[0]), hn::LoadU(df, u[1]));
+  hn::StoreU(dir.x, dd, w[0]);
+  hn::StoreU(dir.y, dd, w[1]);
+  hn::StoreU(dir.z, dd, w[2]);
+  hn::StoreU(hn::IfThenElseZero(map.inLanes, map.projectedSolidAngle), dd, projected);
+  const VF one = setF(1.f);
+  hn::StoreU(hn::IfThenElse(toF(map.inLanes), one, hn::IfThenElseZero(map.byScalar, setF(2.f))), df, mapped);
+}
 int Lanes() {
   return static_cast<int>(hn::Lanes(DD()));
 }
@@ -589,8 +610,12 @@ struct PacketTarget {
 };
 
 // One compiled set's entry: its bit, its kernels, its lane count.
-#define PENUMBRA_PACKET_TARGET(bit, ns) \
-  { bit, {&ns::ShadePacket, &ns::CameraRays, &ns::SamplerDraws, &ns::FilmAdd, &ns::TablePicks}, &ns::Lanes }
+#define PENUMBRA_PACKET_TARGET(bit, ns)                               \
+  {                                                                   \
+    bit, {&ns::ShadePacket, &ns::CameraRays, &ns::SamplerDraws,       \
+          &ns::FilmAdd,     &ns::TablePicks, &ns::ProjectedPolygons}, \
+        &ns::Lanes                                                    \
+  }
 
 // The sets this file was compiled for, best first.
 constexpr PacketTarget kTargets[] = {

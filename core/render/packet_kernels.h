@@ -132,6 +132,17 @@ using PacketTablePicks = void (*)(const PacketLightTable& table, const float (&u
                                   const float (&active)[kMaxPacketLanes], float (&light)[kMaxPacketLanes],
                                   double (&pmf)[kMaxPacketLanes]);
 
+// LightTechnique<ProjectedSolidAngle, PolygonLight>'s map of lane k's polygon light (polygons[k]) seen
+// from x[.][k] with shading normal n[.][k], in the lanes whose active[k] is not 0: mapped[k] is 1 where
+// the lanes sample it (then w[.][k] is the direction of draw u and projected[k] its Ω⊥), 2 where the
+// scalar technique does (the polygon reaches below the horizon), 0 where nothing is sampled. The
+// shading kernels sample this way; this entry lets the map be tested alone.
+using PacketProjectedPolygons =
+    void (*)(const std::vector<PacketPolygonLight>& polygons, const float (&x)[3][kMaxPacketLanes],
+             const float (&n)[3][kMaxPacketLanes], const float (&active)[kMaxPacketLanes],
+             const float (&u)[2][kMaxPacketLanes], double (&w)[3][kMaxPacketLanes],
+             double (&projected)[kMaxPacketLanes], float (&mapped)[kMaxPacketLanes]);
+
 // The kernels of one instruction set.
 struct PacketKernels {
   PacketShader shade;
@@ -139,6 +150,7 @@ struct PacketKernels {
   PacketSamplerDraws samplerDraws;
   PacketFilmAdd filmAdd;
   PacketTablePicks tablePicks;
+  PacketProjectedPolygons projectedPolygons;
 };
 // The kernels of the instruction set in use when it is called (a row renderer takes them once, not
 // per packet).

@@ -1,9 +1,11 @@
 // The light-sampling techniques of polygon lights in the packet kernels (LightTechnique<measure,
 // PolygonLight> in lanes), of one light broadcast to every lane or of each lane's own: by area in lanes
 // (samplePolygonArea); by the solid angle in lanes on the spherical triangles' and rectangles' maps
-// (packet_spherical_polygons-inl.h); the rest (sheared parallelograms and polygons too small for the
-// maps by the solid angle, every polygon by the projected solid angle) by the scalar techniques lane by
-// lane (ScalarLightSamples), the rest of each draw (shadow ray, reflection, weights, sums) in lanes.
+// (packet_spherical_polygons-inl.h); by the projected solid angle in lanes on the clipped polygon's map
+// (packet_projected_polygon-inl.h); the rest (sheared parallelograms and polygons too small for the maps
+// by the solid angle, polygons reaching below a lane's horizon by the projected solid angle) by the
+// scalar techniques lane by lane (ScalarLightSamples), the rest of each draw (shadow ray, reflection,
+// weights, sums) in lanes.
 // Part of the packet kernels: included by packet_kernels.cpp once per instruction set (Highway's
 // re-inclusion toggle below), inside that set's namespace.
 #if defined(PENUMBRA_PACKET_POLYGON_TECHNIQUES_INL_H_) == defined(HWY_TARGET_TOGGLE)
@@ -16,11 +18,13 @@
 #include <hwy/highway.h>
 
 #include <cfloat>
+#include <type_traits>
 
 #include "core/render/packet_bsdf-inl.h"
 #include "core/render/packet_geometry-inl.h"
 #include "core/render/packet_lights-inl.h"
 #include "core/render/packet_math-inl.h"
+#include "core/render/packet_projected_polygon-inl.h"
 #include "core/render/packet_scalar_samples-inl.h"
 #include "core/render/packet_scene.h"
 #include "core/render/packet_spherical_polygons-inl.h"
@@ -54,17 +58,22 @@ HWY_INLINE PacketLightSample sampleAlong(const PolygonLanes& light, const V3D& x
 template <LightMeasure kMeasure>
 struct PolygonTechnique {
   static constexpr bool kMaps = kMeasure == LightMeasure::SolidAngle;
+  static constexpr bool kProjected = kMeasure == LightMeasure::ProjectedSolidAngle;
+  struct NoMap {};
   const PolygonLanes& light;
-  V3F x;
+  V3F x, n;
   // By the solid angle: the triangle lights' and the parallelogram lights' maps.
   SphericalTriangleLanes triangle;
   SphericalRectangleLanes rectangle;
   bool anyTriangle = false, anyRectangle = false;
+  // By the projected solid angle: the clipped polygon's map.
+  std::conditional_t<kProjected, ProjectedPolygonLanes, NoMap> projected;
+  bool anyProjected = false;
   ScalarLightSamples<kMeasure> scalar;
 
   PolygonTechnique(const PacketScene& scene, const PolygonLanes& l, const float* index, const PacketHit& h,
                    MF active, size_t drawEnd)
-      : light(l), x(h.p), scalar(scene, index, h, byScalar(active), drawEnd) {}
+      : light(l), x(h.p), n(h.ns), scalar(scene, index, h, byScalar(active), drawEnd) {}
 
   PacketLightSample sample(const PacketDraws& draws, size_t j) const {
     VF u0, u1;
@@ -73,6 +82,16 @@ struct PolygonTechnique {
     const VF zero = hn::Zero(DF());
     PacketLightSample s{hn::FirstN(DF(), 0), V3F{zero, zero, zero}, zero, zero, zero};
     const V3D origin = promote(x);
+    if constexpr (kProjected) {
+      if (anyProjected) {
+        // The density of the map's own sample, cos θ / Ω⊥, without its inside test.
+        const V3D w = sampleProjectedPolygon(projected, u0, u1);
+        s = sampleAlong(light, origin, w, dot(w, projected.ez) / projected.projectedSolidAngle,
+                        projected.inLanes);
+        s.projected = projected.projected;
+      }
+      return scalar.merge(draws, j, s);
+    }
     if (anyTriangle) {
       const V3D w = sampleSphericalTriangle(triangle, u0, u1);
       s = sampleAlong(light, origin, w, pdfSphericalTriangle(triangle, w), triangle.inLanes);
@@ -91,7 +110,13 @@ struct PolygonTechnique {
  private:
   // The lanes the scalar technique samples; sets up the maps of the others.
   MF byScalar(MF active) {
-    if constexpr (!kMaps) return kMeasure == LightMeasure::Area ? hn::FirstN(DF(), 0) : active;
+    if constexpr (kProjected) {
+      if (hn::AllFalse(DF(), active)) return active;
+      projectedPolygon(light, x, n, active, projected);
+      anyProjected = !hn::AllFalse(DD(), projected.inLanes);
+      return projected.byScalar;
+    }
+    if constexpr (!kMaps) return hn::FirstN(DF(), 0);
     const MF triangles = hn::AndNot(light.parallelogram, active);
     const MF parallelograms = hn::And(light.parallelogram, active);
     MF scalarLanes = hn::FirstN(DF(), 0);

@@ -15,6 +15,7 @@
 #include "core/render/packet_kernels.h"
 #include "core/render/packet_scene.h"
 #include "core/render/packet_target_test_support.h"
+#include "core/render/row_renderer.h"
 #include "core/render/strategy_axes.h"
 #include "core/sampling/sampler_table.h"
 
@@ -288,7 +289,7 @@ TEST(PacketRowLoop, PicksNothingWithoutAreaLights) {
       for (const LightMeasure measure : {LightMeasure::Area, LightMeasure::SolidAngle}) {
         SCOPED_TRACE(target + " " + strategyLabel(directByLight(measure, selection)));
         const auto job = jobFor(t, directByLight(measure, selection), 1, SamplerKind::Sobol);
-        ASSERT_EQ(packetPathDeclinedReason(*job), "");
+        ASSERT_EQ(packetUnsupportedReason(*job), "");
         EXPECT_EQ(renderSums(job, true, 1), renderSums(job, false, 1));
       }
   }
@@ -314,7 +315,7 @@ TEST(PacketRowLoop, CameraRaysAndFilterWeightsEqualTheScalarLoopForEveryFilter) 
           job->settings.camera.width = width;
           job->settings.camera.height = 11;
           job->settings.camera.fovDegrees = 23.f;
-          ASSERT_EQ(packetPathDeclinedReason(*job), "");
+          ASSERT_EQ(packetUnsupportedReason(*job), "");
           EXPECT_EQ(renderSums(job, true, 2), renderSums(job, false, 2));
         }
   }
@@ -410,31 +411,29 @@ TEST(PacketRowLoop, SupportsItsStrategies) {
   EXPECT_EQ(packetUnsupportedReason(*job), "");
 }
 
-// Packets are declined where they would do little in lanes but the sums: rays queried one at a time
-// and the measure's light samples drawn lane by lane (polygon lights by the projected solid angle). With flat
-// geometry, a measure sampled in lanes (sphere lights by every measure), or MIS (whose surface samples stay
-// in lanes), the packet path is taken.
-TEST(PacketRowLoop, IsDeclinedWhereRaysAndLightSamplesAreAllOneLaneAtATime) {
+// Every direct strategy takes packets in every scene kind, rays queried or flat,
+// with sphere or polygon lights: polygons by the projected solid angle too, whose map is set up and
+// sampled in lanes (the row loop says so).
+TEST(PacketRowLoop, TakesPacketsForEveryStrategyWithPolygonLights) {
   const TestScene queried = packetTestScene(1.f, false, Geometry::BvhWithPolygonLights);
   const TestScene flat = packetTestScene(1.f, false, Geometry::FlatWithPolygonLights);
   const TestScene spheres = packetTestScene(1.f, false, Geometry::Bvh);
-  auto declined = [](const TestScene& t, const IntegratorDesc& d) {
-    return !packetPathDeclinedReason(*jobFor(t, d, 1, SamplerKind::Sobol)).empty();
-  };
-  for (const LightSelection selection : {LightSelection::All, LightSelection::Bvh}) {
-    EXPECT_FALSE(declined(queried, directByLight(LightMeasure::SolidAngle, selection)));
-    EXPECT_TRUE(declined(queried, directByLight(LightMeasure::ProjectedSolidAngle, selection)));
-    EXPECT_FALSE(declined(spheres, directByLight(LightMeasure::ProjectedSolidAngle, selection)));
-    EXPECT_FALSE(declined(spheres, directByLight(LightMeasure::SolidAngle, selection)));
-    EXPECT_FALSE(declined(queried, directByLight(LightMeasure::Area, selection)));
-    EXPECT_FALSE(declined(flat, directByLight(LightMeasure::SolidAngle, selection)));
-    EXPECT_FALSE(declined(flat, directByLight(LightMeasure::ProjectedSolidAngle, selection)));
+  std::vector<IntegratorDesc> strategies = {directByHemisphere(HemisphereWarp::Cosine)};
+  for (const LightMeasure measure :
+       {LightMeasure::Area, LightMeasure::SolidAngle, LightMeasure::ProjectedSolidAngle}) {
+    for (const LightSelection selection : {LightSelection::All, LightSelection::Power, LightSelection::Bvh})
+      strategies.push_back(directByLight(measure, selection));
+    strategies.push_back(directByMis(measure, MisHeuristic::Power));
   }
-  EXPECT_FALSE(declined(queried, directByHemisphere(HemisphereWarp::Cosine)));
-  EXPECT_FALSE(declined(queried, aoBy(HemisphereWarp::Cosine)));
-  // MIS keeps its surface samples' weights and sums in lanes: measured no slower there.
-  EXPECT_FALSE(declined(queried, directByMis(LightMeasure::SolidAngle, MisHeuristic::Power)));
-  EXPECT_FALSE(declined(queried, directByMis(LightMeasure::ProjectedSolidAngle, MisHeuristic::Power)));
+  for (const TestScene* t : {&queried, &flat, &spheres})
+    for (const IntegratorDesc& d : strategies) {
+      const auto job = jobFor(*t, d, 1, SamplerKind::Sobol);
+      SCOPED_TRACE(strategyLabel(d));
+      EXPECT_EQ(packetUnsupportedReason(*job), "");
+      if (packetPathEnabled()) {
+        EXPECT_EQ(rowLoopSummary(*job).rfind("packets of ", 0), 0u) << rowLoopSummary(*job);
+      }
+    }
 }
 
 // Every instruction set this binary has kernels for runs here and can be chosen; an unknown name

@@ -164,29 +164,6 @@ PacketLightTable packetLightTable(const PowerLightSelection& selection) {
   return t;
 }
 
-bool polygonSamplesByLane(LightMeasure measure, const Scene& scene) {
-  switch (measure) {
-    case LightMeasure::Area:
-    case LightMeasure::SolidAngle:
-      return false;
-    case LightMeasure::ProjectedSolidAngle:
-      return !scene.polygonLights.empty();
-  }
-  return false;
-}
-
-std::string packetPathDeclinedReason(const RenderJob& job) {
-  std::string reason = packetUnsupportedReason(job);
-  if (!reason.empty()) return reason;
-  const IntegratorDesc& d = job.settings.integrator;
-  const Scene& scene = *job.scene;
-  if (d.type != IntegratorType::Direct || d.estimator != Estimator::Light || !packetGeometryQueried(scene))
-    return {};
-  if (polygonSamplesByLane(d.lightMeasure, scene))
-    return "rays and " + strategyLabel(d) + " light samples would both go one lane at a time";
-  return {};
-}
-
 PacketScene makePacketScene(const RenderJob& job) {
   const Scene& scene = *job.scene;
   const SceneGeometry& g = scene.geometry;
@@ -250,19 +227,21 @@ PacketScene makePacketScene(const RenderJob& job) {
     pl.geometrySphere = l.geometryIndex;
     p.lights.push_back(pl);
   }
-  for (const PolygonLight& l : scene.polygonLights) {
-    PacketPolygonLight pl{};
-    for (int c = 0; c < 3; ++c) {
-      pl.p0[c] = l.p0[c], pl.e1[c] = l.e1[c], pl.e2[c] = l.e2[c], pl.n[c] = l.n[c];
-      pl.radiance[c] = l.radiance[c];
-    }
-    pl.area = l.area;
-    pl.scale = lightScaleOf(l);
-    pl.parallelogram = l.parallelogram;
-    pl.skipped = isBlack(l.radiance) || !l.valid();
-    p.polygons.push_back(pl);
-  }
+  for (const PolygonLight& l : scene.polygonLights) p.polygons.push_back(packetPolygonLight(l));
   return p;
+}
+
+PacketPolygonLight packetPolygonLight(const PolygonLight& l) {
+  PacketPolygonLight pl{};
+  for (int c = 0; c < 3; ++c) {
+    pl.p0[c] = l.p0[c], pl.e1[c] = l.e1[c], pl.e2[c] = l.e2[c], pl.n[c] = l.n[c];
+    pl.radiance[c] = l.radiance[c];
+  }
+  pl.area = l.area;
+  pl.scale = lightScaleOf(l);
+  pl.parallelogram = l.parallelogram;
+  pl.skipped = isBlack(l.radiance) || !l.valid();
+  return pl;
 }
 
 }  // namespace penumbra

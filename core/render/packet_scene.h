@@ -11,6 +11,7 @@
 
 #include "core/geometry/parallelogram.h"
 #include "core/lights/light_selection.h"
+#include "core/lights/polygon_light.h"
 #include "core/render/render_job.h"
 
 namespace penumbra {
@@ -59,6 +60,8 @@ struct PacketPolygonLight {
   float radiance[3];
   bool skipped;  // radiance 0 or no area: no sample lights anything (its draws are still consumed)
 };
+// A polygon light as the kernels read it.
+PacketPolygonLight packetPolygonLight(const PolygonLight& light);
 
 // The light BVH's nodes (LightBvh::nodes) as the kernels walk them, one array per field: the bounding
 // sphere of each node's bounds (centre 0.5 (lo + hi), squared radius 0.25 |hi − lo|², both in double as
@@ -138,8 +141,7 @@ struct PacketScene {
   bool anyGlossy = false;           // some object's BSDF is glossy
   std::vector<PacketLight> lights;  // sphere lights
   // Polygon lights (Scene::polygonLights, after the sphere lights in the area lights' order): sampled in
-  // lanes by area and the solid angle, by the projected solid angle lane by lane with the scalar
-  // techniques (polygonSamplesByLane).
+  // lanes by every measure (packet_polygon_techniques-inl.h).
   std::vector<PacketPolygonLight> polygons;
   std::vector<PacketPointLight> pointLights;
   std::vector<PacketDirectionalLight> directionalLights;
@@ -166,20 +168,8 @@ bool packetGeometryQueried(const Scene& scene);
 // loop takes one camera sample at a time.
 inline constexpr int kMaxPacketDraws = 16384;
 
-// Whether the kernels leave the samples of the scene's polygon lights by `measure` to the scalar
-// techniques, lane by lane: by the projected solid angle (the clipped polygon's map, which needs a
-// clip per shading point, atan2 and an iterative inversion); the rest of each draw is in lanes
-// (packet_polygon_techniques-inl.h). By area and the solid angle they are sampled in lanes (but for
-// sheared parallelograms and polygons too small for the maps, rare enough to leave aside here).
-bool polygonSamplesByLane(LightMeasure measure, const Scene& scene);
-
 // Why no packet kernel computes `job` (empty when one does).
 std::string packetUnsupportedReason(const RenderJob& job);
-// Why the row loop renders `job` one camera sample at a time (empty when it takes packets): no kernel
-// computes it, or the kernel would be no faster because both its rays and its light samples go one lane
-// at a time (direct light sampling in a queried scene whose measure samples its lights lane by lane; MIS
-// keeps its surface samples in lanes and is measured no slower there).
-std::string packetPathDeclinedReason(const RenderJob& job);
 // The packet scene of a job for which packetUnsupportedReason is empty.
 PacketScene makePacketScene(const RenderJob& job);
 

@@ -102,7 +102,7 @@ RowRenderer makeRowRenderer(const RenderJob& job) {
   if (d.type == IntegratorType::Ao && job.scene->geometry.usesEmbree())
     return withWarp(d.warp,
                     [&](auto w) { return aoBatchRowsFor(job, AoIntegrator<decltype(w)::value>{d.samples}); });
-  if (packetPathEnabled() && packetPathDeclinedReason(job).empty())
+  if (packetPathEnabled() && packetUnsupportedReason(job).empty())
     return packetRowsFor(job, makeScalarRowRenderer(job));
   return makeScalarRowRenderer(job);
 }
@@ -110,7 +110,7 @@ RowRenderer makeRowRenderer(const RenderJob& job) {
 std::string rowLoopSummary(const RenderJob& job) {
   if (job.settings.integrator.type == IntegratorType::Ao && job.scene->geometry.usesEmbree())
     return "ambient occlusion rays in batches of " + std::to_string(kAoBatchRays);
-  const std::string reason = packetPathEnabled() ? packetPathDeclinedReason(job) : "PENUMBRA_SIMD=off";
+  const std::string reason = packetPathEnabled() ? packetUnsupportedReason(job) : "PENUMBRA_SIMD=off";
   if (reason.empty())
     return "packets of " + std::to_string(packetLanes()) + " camera samples (" + packetTargetName() + ")" +
            (packetGeometryQueried(*job.scene) ? ", rays traced one at a time" : "");

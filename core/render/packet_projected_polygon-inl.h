@@ -1,0 +1,470 @@
+// The projected solid angle's map of polygon lights in lanes: ProjectedPolygon (Nusselt's projection
+// of the polygon onto the disk, wedges between vertex azimuths, the azimuth inverted by Newton's method
+// with bisection) set up for each lane's light at its shading point and sampled, mirrored operation by
+// operation in double; libm's atan2 and hypot are called lane by lane on the lanes that need them. A
+// polygon wholly in the closed upper half space of a lane's shading normal is mapped in lanes; one that
+// reaches below the horizon (which the map clips, changing its vertex count) is left to the scalar
+// technique in its lane.
+// Part of the packet kernels: included by packet_kernels.cpp once per instruction set (Highway's
+// re-inclusion toggle below), inside that set's namespace.
+#if defined(PENUMBRA_PACKET_PROJECTED_POLYGON_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef PENUMBRA_PACKET_PROJECTED_POLYGON_INL_H_
+#undef PENUMBRA_PACKET_PROJECTED_POLYGON_INL_H_
+#else
+#define PENUMBRA_PACKET_PROJECTED_POLYGON_INL_H_
+#endif
+
+#include <hwy/highway.h>
+
+#include <cmath>
+#include <limits>
+
+#include "core/lights/projected_polygon.h"
+#include "core/render/packet_lights-inl.h"
+#include "core/render/packet_math-inl.h"
+
+HWY_BEFORE_NAMESPACE();
+namespace penumbra {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+// ProjectedPolygon's data in lanes: a wedge per slot, each lane's wedges in the scalar map's order with
+// slots it does not use left empty (`real` false, area 0).
+struct ProjectedPolygonLanes {
+  // Four edges or azimuth intervals, each halved at most once.
+  static constexpr int kIntervals = 4, kSlots = 2 * kIntervals;
+  struct EdgeLanes {
+    VD k, gx, gy, p0, pd, alpha, beta;
+  };
+  struct WedgeLanes {
+    VD ax, ay, dx, dy, sigma, area, start;  // start: the areas of the wedges before it
+    EdgeLanes outer, inner;
+    MD hasInner, real;
+  };
+  V3D origin, ex, ey, ez;
+  WedgeLanes wedges[kSlots];
+  bool slotUsed[kSlots];  // real in some lane
+  VD projectedSolidAngle;
+  VF projected;  // Ω⊥ as LightTechnique rounds it (0 where nothing is sampled in lanes)
+  MD inLanes;    // mapped in lanes with something to sample
+  MF byScalar;   // left to the scalar technique: the polygon reaches below the horizon
+};
+
+namespace projected_polygon {
+
+using EdgeLanes = ProjectedPolygonLanes::EdgeLanes;
+using WedgeLanes = ProjectedPolygonLanes::WedgeLanes;
+
+struct AzimuthLanes {
+  VD x, y;
+};
+
+HWY_INLINE VD cross(const AzimuthLanes& a, const AzimuthLanes& b) {
+  return a.x * b.y - a.y * b.x;
+}
+HWY_INLINE VD dot(const AzimuthLanes& a, const AzimuthLanes& b) {
+  return a.x * b.x + a.y * b.y;
+}
+HWY_INLINE VD gDot(const EdgeLanes& e, const AzimuthLanes& v) {
+  return e.gx * v.x + e.gy * v.y;
+}
+HWY_INLINE MD select(MD m, MD a, MD b) {
+  return hn::Or(hn::And(m, a), hn::AndNot(m, b));
+}
+HWY_INLINE AzimuthLanes select(MD m, const AzimuthLanes& a, const AzimuthLanes& b) {
+  return {hn::IfThenElse(m, a.x, b.x), hn::IfThenElse(m, a.y, b.y)};
+}
+HWY_INLINE EdgeLanes select(MD m, const EdgeLanes& a, const EdgeLanes& b) {
+  return {hn::IfThenElse(m, a.k, b.k),      hn::IfThenElse(m, a.gx, b.gx),
+          hn::IfThenElse(m, a.gy, b.gy),    hn::IfThenElse(m, a.p0, b.p0),
+          hn::IfThenElse(m, a.pd, b.pd),    hn::IfThenElse(m, a.alpha, b.alpha),
+          hn::IfThenElse(m, a.beta, b.beta)};
+}
+HWY_INLINE WedgeLanes select(MD m, const WedgeLanes& a, const WedgeLanes& b) {
+  return {hn::IfThenElse(m, a.ax, b.ax),
+          hn::IfThenElse(m, a.ay, b.ay),
+          hn::IfThenElse(m, a.dx, b.dx),
+          hn::IfThenElse(m, a.dy, b.dy),
+          hn::IfThenElse(m, a.sigma, b.sigma),
+          hn::IfThenElse(m, a.area, b.area),
+          hn::IfThenElse(m, a.start, b.start),
+          select(m, a.outer, b.outer),
+          select(m, a.inner, b.inner),
+          select(m, a.hasInner, b.hasInner),
+          select(m, a.real, b.real)};
+}
+// v[index] per lane (index a small whole number, below n).
+template <class T>
+HWY_INLINE T atIndex(VD index, const T* v, int n) {
+  T r = v[0];
+  for (int i = 1; i < n; ++i) r = select(index == setD(double(i)), v[i], r);
+  return r;
+}
+HWY_INLINE V3D select(MD m, const V3D& a, const V3D& b) {
+  return HWY_NAMESPACE::select(m, a, b);
+}
+
+HWY_INLINE VD atan2Lanes(MD m, VD y, VD x) {
+  return libmLanes(m, y, x, [](double a, double b) { return std::atan2(a, b); });
+}
+
+// projected_polygon.cpp's pseudoAngle: grows with the counter-clockwise angle from ref to a.
+HWY_INLINE VD pseudoAngle(const AzimuthLanes& ref, const AzimuthLanes& a) {
+  const VD x = dot(ref, a), y = cross(ref, a);
+  const VD q = y / (hn::Abs(x) + hn::Abs(y));
+  return hn::IfThenElse(x >= hn::Zero(DD()), q,
+                        hn::IfThenElse(y >= hn::Zero(DD()), setD(2.0) - q, setD(-2.0) - q));
+}
+
+// edgeOf: the boundary edge on the great circle with unit normal m.
+HWY_INLINE EdgeLanes edgeOf(const V3D& m) {
+  const VD zero = hn::Zero(DD());
+  EdgeLanes e{hn::Abs(m.z), zero, zero, zero, zero, zero, zero};
+  const VD sign = hn::IfThenElse(m.z < zero, setD(1.0), setD(-1.0));
+  e.gx = sign * m.x;
+  e.gy = sign * m.y;
+  return e;
+}
+
+// placeEdge in the lanes of m: the edge's terms in a wedge from a to a + d, and its swept area.
+HWY_INLINE VD placeEdge(MD m, EdgeLanes& e, const AzimuthLanes& a, const AzimuthLanes& d, VD sigma) {
+  const VD zero = hn::Zero(DD());
+  const VD ga = gDot(e, a);
+  e.p0 = e.k * e.k + ga * ga;
+  e.pd = e.k * e.k * dot(a, d) + ga * gDot(e, d);
+  const VD area = setD(0.5) * e.k * atan2Lanes(m, e.k * sigma, e.p0 + e.pd);
+  e.alpha = hn::IfThenElseZero(e.p0 > zero, setD(0.5) * e.k * e.k * sigma / e.p0);
+  e.beta = hn::IfThenElseZero(area > zero, e.alpha / area - setD(1.0));
+  return area;
+}
+
+// placeWedge in the lanes of m (`real` there, empty elsewhere): w the wedge from a to b.
+HWY_INLINE void placeWedge(MD m, const AzimuthLanes& a, const AzimuthLanes& b, const EdgeLanes& outer,
+                           const EdgeLanes& inner, MD hasInner, WedgeLanes& w) {
+  const VD zero = hn::Zero(DD());
+  const AzimuthLanes d{b.x - a.x, b.y - a.y};
+  w.ax = a.x, w.ay = a.y, w.dx = d.x, w.dy = d.y;
+  w.sigma = cross(a, d);
+  w.outer = outer;
+  w.inner = inner;
+  w.hasInner = hasInner;
+  w.real = m;
+  VD area = placeEdge(m, w.outer, a, d, w.sigma);
+  const MD withInner = hn::And(m, hasInner);
+  area = hn::IfThenElse(withInner, area - placeEdge(withInner, w.inner, a, d, w.sigma), area);
+  w.area = hn::IfThenElseZero(hn::And(m, zero < area), area);
+}
+
+// w a slot no lane uses (sampling reads only these two of its fields).
+HWY_INLINE void clearWedge(WedgeLanes& w) {
+  w.area = hn::Zero(DD());
+  w.real = hn::FirstN(DD(), 0);
+}
+
+// atanStep of projected_polygon.cpp in the lanes of m: the series where the ratio is small, else atan2.
+HWY_INLINE VD atanStep(MD m, VD y, VD x) {
+  const MD series = hn::Abs(y) <= setD(0x1p-6) * x;
+  const VD z = y / x, z2 = z * z;
+  const VD s =
+      z *
+      (setD(1.0) + z2 * (setD(-1.0 / 3) + z2 * (setD(1.0 / 5) + z2 * (setD(-1.0 / 7) + z2 * setD(1.0 / 9)))));
+  return hn::IfThenElse(series, s, atan2Lanes(hn::AndNot(series, m), y, x));
+}
+
+// radiusAt: r² / |v|² and z² of the edge's point at azimuth v.
+HWY_INLINE void radiusAt(const EdgeLanes& e, VD gv, VD v2, VD& rho2, VD& z2) {
+  const VD k2 = e.k * e.k, sum = k2 * v2 + gv * gv;
+  const MD some = sum > hn::Zero(DD());
+  rho2 = hn::IfThenElseZero(some, k2 / sum);
+  z2 = hn::IfThenElse(some, gv * gv / sum, setD(1.0));
+}
+
+}  // namespace projected_polygon
+
+// LightTechnique<ProjectedSolidAngle, PolygonLight>'s set-up (ProjectedPolygon::init) of each lane's
+// polygon light seen from x with shading normal n, in the lanes of `active`, into c (written in place:
+// it is kilobytes).
+HWY_INLINE void projectedPolygon(const PolygonLanes& light, const V3F& x, const V3F& n, MF active,
+                                 ProjectedPolygonLanes& c) {
+  namespace pp = projected_polygon;
+  using pp::AzimuthLanes;
+  using pp::EdgeLanes;
+  using pp::WedgeLanes;
+  const DD dd;
+  const VD zero = hn::Zero(dd), one = setD(1.0);
+  constexpr int kIntervals = ProjectedPolygonLanes::kIntervals;
+  c.origin = promote(x);
+  // light.valid() and light.faces(x).
+  const VD margin = setD(0x1p-20) * promote(maxOf(light.scale, maxAbs(x)));
+  MD ok = hn::And(toD(hn::And(active, light.area > hn::Zero(DF()))),
+                  dot(promote(light.n), minus(c.origin, promote(light.p0))) > margin);
+  c.inLanes = hn::FirstN(dd, 0);
+  c.byScalar = hn::FirstN(DF(), 0);
+  c.projected = hn::Zero(DF());
+  if (hn::AllFalse(dd, ok)) return;  // no lane sees the light's emitting side
+  // The local frame: orthonormalBasis about the normalised normal.
+  c.ez = normalized(promote(n));
+  const VD sign = hn::CopySign(one, c.ez.z);
+  const VD a = setD(-1.0) / (sign + c.ez.z);
+  const VD b = c.ez.x * c.ez.y * a;
+  c.ex = {one + sign * c.ez.x * c.ez.x * a, sign * b, hn::Neg(sign) * c.ez.x};
+  c.ey = {b, sign + c.ez.y * c.ez.y * a, hn::Neg(c.ez.y)};
+  auto toLocal = [&](const V3D& v) { return V3D{dot(v, c.ex), dot(v, c.ey), dot(v, c.ez)}; };
+
+  // PolygonLight::vertices (in float) and each one's successor; slot 3 only for parallelograms.
+  const MD quad = toD(light.parallelogram);
+  V3F vf[4];
+  vf[0] = light.p0;
+  vf[1] = plus(light.p0, light.e1);
+  vf[3] = plus(light.p0, light.e2);
+  vf[2] = HWY_NAMESPACE::select(light.parallelogram, plus(vf[1], light.e2), vf[3]);
+  V3D vd[4], rel[4], edges[4];
+  for (int i = 0; i < 4; ++i) vd[i] = promote(vf[i]);
+  for (int i = 0; i < 4; ++i) {
+    const V3D next = i == 2 ? pp::select(quad, vd[3], vd[0]) : vd[(i + 1) % 4];
+    rel[i] = toLocal(minus(vd[i], c.origin));
+    edges[i] = toLocal(minus(next, vd[i]));
+  }
+  const V3D planeNormal = cross(edges[0], edges[1]);
+  const VD side = dot(rel[0], planeNormal);
+  ok = hn::And(ok, side * side > setD(1e-24) * dot(rel[0], rel[0]) * dot(planeNormal, planeNormal));
+  // Wound so that the inside is where m · w ≥ 0: forward, or (0, n−1, ..., 1) with each edge reversed.
+  const MD forward = side > zero;
+  auto negated = [](const V3D& v) { return V3D{hn::Neg(v.x), hn::Neg(v.y), hn::Neg(v.z)}; };
+  const V3D reversedPts[4] = {rel[0], pp::select(quad, rel[3], rel[2]), pp::select(quad, rel[2], rel[1]),
+                              rel[1]};
+  const V3D reversedEdges[4] = {pp::select(quad, edges[3], edges[2]), pp::select(quad, edges[2], edges[1]),
+                                pp::select(quad, edges[1], edges[0]), edges[0]};
+  V3D pts[4], m[4];
+  for (int i = 0; i < 4; ++i) {
+    pts[i] = pp::select(forward, rel[i], reversedPts[i]);
+    m[i] = pp::select(forward, cross(rel[i], edges[i]), cross(reversedPts[i], negated(reversedEdges[i])));
+  }
+  // Every vertex above the horizon or on it: the clip keeps the polygon as it is. Else the scalar map.
+  MD above = hn::And(pts[0].z >= zero, hn::And(pts[1].z >= zero, pts[2].z >= zero));
+  above = hn::And(above, hn::Or(hn::Not(quad), pts[3].z >= zero));
+  c.byScalar = toF(hn::AndNot(above, ok));
+  ok = hn::And(ok, above);
+  if (hn::AllFalse(dd, ok)) return;
+
+  // Unit edge normals, the zenith's side, the vertices' unit azimuths.
+  V3D en[4];
+  AzimuthLanes az[4];
+  MD hasAzimuth[4];
+  MD zenithInside = hn::Not(hn::FirstN(dd, 0));
+  for (int i = 0; i < 4; ++i) {
+    const MD present = i < 3 ? hn::Not(hn::FirstN(dd, 0)) : quad;
+    const VD len2 = dot(m[i], m[i]);
+    const MD nonZero = len2 > zero;
+    const V3D unit = scaled(m[i], one / hn::Sqrt(len2));
+    en[i] = {hn::IfThenElseZero(nonZero, unit.x), hn::IfThenElseZero(nonZero, unit.y),
+             hn::IfThenElseZero(nonZero, unit.z)};
+    zenithInside = hn::AndNot(hn::And(present, en[i].z < zero), zenithInside);
+    const VD r2 = pts[i].x * pts[i].x + pts[i].y * pts[i].y;
+    hasAzimuth[i] = r2 > zero;
+    const VD inv = hn::IfThenElseZero(hasAzimuth[i], one / hn::Sqrt(r2));
+    az[i] = {hn::IfThenElse(hasAzimuth[i], pts[i].x * inv, one),
+             hn::IfThenElseZero(hasAzimuth[i], pts[i].y * inv)};
+  }
+
+  // Where the zenith is outside: the vertices' pseudo-angles about the sum of their azimuths, and each
+  // lane's wedges between consecutive azimuths (ProjectedPolygon::azimuthIntervals, lane by lane).
+  AzimuthLanes ref{zero, zero};
+  for (int i = 0; i < 4; ++i) {
+    const MD present = i < 3 ? hn::Not(hn::FirstN(dd, 0)) : quad;
+    ref = pp::select(present, AzimuthLanes{ref.x + az[i].x, ref.y + az[i].y}, ref);
+  }
+  const MD outside = hn::AndNot(zenithInside, ok);
+  ok = hn::AndNot(hn::AndNot(ref.x * ref.x + ref.y * ref.y > zero, outside), ok);
+  HWY_ALIGN double alpha[4][kMaxPacketLanes], onOutside[kMaxPacketLanes], quads[kMaxPacketLanes];
+  HWY_ALIGN double intervals[4][kIntervals][kMaxPacketLanes];  // from, to, edgeA, edgeB; -1: none
+  for (int i = 0; i < 4; ++i) hn::Store(pp::pseudoAngle(ref, az[i]), dd, alpha[i]);
+  hn::Store(hn::IfThenElseZero(hn::And(ok, outside), one), dd, onOutside);
+  hn::Store(hn::IfThenElseZero(quad, one), dd, quads);
+  for (size_t k = 0; k < hn::Lanes(dd); ++k) {
+    ProjectedPolygon::AzimuthInterval found[ProjectedPolygon::kMaxVertices];
+    int count = 0;
+    if (onOutside[k] != 0) {
+      const double laneAlpha[4] = {alpha[0][k], alpha[1][k], alpha[2][k], alpha[3][k]};
+      count = ProjectedPolygon::azimuthIntervals(laneAlpha, quads[k] != 0 ? 4 : 3, found);
+    }
+    for (int s = 0; s < kIntervals; ++s) {
+      const bool has = s < count;
+      intervals[0][s][k] = has ? found[s].from : -1;
+      intervals[1][s][k] = has ? found[s].to : -1;
+      intervals[2][s][k] = has ? found[s].edgeA : -1;
+      intervals[3][s][k] = has ? found[s].edgeB : -1;
+    }
+  }
+
+  // addWedge per interval: one wedge, or two halves when it spans more than 3π/4.
+  for (int s = 0; s < kIntervals; ++s) {
+    // The zenith inside: the wedge from vertex s to its successor, under edge s.
+    const int next = (s + 1) % 4;
+    const AzimuthLanes insideTo = s == 2 ? pp::select(quad, az[3], az[0]) : az[next];
+    const MD insideHasTo = s == 2 ? pp::select(quad, hasAzimuth[3], hasAzimuth[0]) : hasAzimuth[next];
+    const MD insideReal = hn::And(hn::And(zenithInside, s < 3 ? hn::Not(hn::FirstN(dd, 0)) : quad),
+                                  hn::And(hasAzimuth[s], insideHasTo));
+    // The zenith outside: between two consecutive azimuths, under one edge of each chain.
+    const VD fromIndex = hn::Load(dd, intervals[0][s]), toIndex = hn::Load(dd, intervals[1][s]);
+    const MD outsideReal = fromIndex >= zero;
+    MD placed = hn::And(ok, pp::select(zenithInside, insideReal, outsideReal));
+    if (hn::AllFalse(dd, placed)) {
+      pp::clearWedge(c.wedges[2 * s]);
+      pp::clearWedge(c.wedges[2 * s + 1]);
+      continue;
+    }
+    const AzimuthLanes outsideFrom = pp::atIndex(fromIndex, az, 4), outsideTo = pp::atIndex(toIndex, az, 4);
+    const EdgeLanes ea = pp::edgeOf(pp::atIndex(hn::Load(dd, intervals[2][s]), en, 4));
+    const EdgeLanes eb = pp::edgeOf(pp::atIndex(hn::Load(dd, intervals[3][s]), en, 4));
+    const AzimuthLanes um{outsideFrom.x + outsideTo.x, outsideFrom.y + outsideTo.y};
+    const MD aOuter = ea.k * hn::Abs(pp::gDot(eb, um)) >= eb.k * hn::Abs(pp::gDot(ea, um));
+
+    const AzimuthLanes from = pp::select(zenithInside, az[s], outsideFrom);
+    const AzimuthLanes to = pp::select(zenithInside, insideTo, outsideTo);
+    const EdgeLanes outer = pp::select(zenithInside, pp::edgeOf(en[s]), pp::select(aOuter, ea, eb));
+    const EdgeLanes inner = pp::select(aOuter, eb, ea);
+    const MD hasInner = hn::Not(zenithInside);
+    placed = hn::And(placed, pp::cross(from, to) > zero);
+    const MD halved = hn::And(placed, pp::dot(from, to) < setD(-0.70710678118654752));
+    if (hn::AllFalse(dd, halved)) {
+      pp::placeWedge(placed, from, to, outer, inner, hasInner, c.wedges[2 * s]);
+      pp::clearWedge(c.wedges[2 * s + 1]);
+      continue;
+    }
+    const VD bx = to.y - from.y, by = from.x - to.x;
+    const VD inv = one / libmLanes(halved, bx, by, [](double u, double v) { return std::hypot(u, v); });
+    const AzimuthLanes mid{bx * inv, by * inv};
+    pp::placeWedge(placed, from, pp::select(halved, mid, to), outer, inner, hasInner, c.wedges[2 * s]);
+    pp::placeWedge(halved, mid, to, outer, inner, hasInner, c.wedges[2 * s + 1]);
+  }
+
+  // The wedges' cumulative areas in order (an empty slot adds +0: the scalar map's sums).
+  VD total = zero;
+  for (int s = 0; s < ProjectedPolygonLanes::kSlots; ++s) {
+    c.wedges[s].start = total;
+    total = total + c.wedges[s].area;
+    c.slotUsed[s] = !hn::AllFalse(dd, c.wedges[s].real);
+  }
+  c.projectedSolidAngle = total;
+  ok = hn::And(ok, hn::And(total > zero, total < setD(INFINITY)));
+  // LightTechnique keeps Ω⊥ as a float and samples only where that is positive.
+  c.projected = demote(hn::IfThenElseZero(ok, total));
+  c.inLanes = hn::And(ok, toD(c.projected > hn::Zero(DF())));
+  c.projected = hn::IfThenElseZero(toF(c.inLanes), c.projected);
+}
+
+// ProjectedPolygon::sampleDirection in the lanes of c.inLanes: the unit direction for (u0, u1).
+HWY_INLINE V3D sampleProjectedPolygon(const ProjectedPolygonLanes& c, VF u0, VF u1) {
+  namespace pp = projected_polygon;
+  using pp::AzimuthLanes;
+  const DD dd;
+  const VD zero = hn::Zero(dd), one = setD(1.0);
+  const VD target = promote(u0) * c.projectedSolidAngle;
+  // The last wedge that starts at or below the target.
+  ProjectedPolygonLanes::WedgeLanes w = c.wedges[0];
+  for (int s = 0; s < ProjectedPolygonLanes::kSlots; ++s) {
+    if (!c.slotUsed[s]) continue;
+    w = pp::select(hn::And(c.wedges[s].real, c.wedges[s].start <= target), c.wedges[s], w);
+  }
+  const pp::EdgeLanes &eo = w.outer, &ei = w.inner;
+  const VD shifted = target - w.start;
+  const VD tau = hn::IfThenElse(shifted < zero, zero, hn::IfThenElse(w.area < shifted, w.area, shifted));
+
+  // The first λ: the model's root in [0, 1], else λ proportional to τ.
+  VD t = hn::IfThenElseZero(w.area > zero, tau / w.area);
+  {
+    const VD ao = eo.alpha, bo = eo.beta;
+    const VD ai = hn::IfThenElseZero(w.hasInner, ei.alpha), bi = hn::IfThenElseZero(w.hasInner, ei.beta);
+    const VD c2 = tau * bo * bi - ao * bi + ai * bo, c1 = tau * (bo + bi) - ao + ai;
+    const VD disc = c1 * c1 - setD(4.0) * c2 * tau;
+    const VD q = setD(-0.5) * (c1 + hn::CopySign(hn::Sqrt(disc), c1));
+    const VD r1 = tau / q, r2 = q / c2;
+    const MD solved = disc >= zero;
+    const MD r1In = hn::And(solved, hn::And(r1 >= zero, r1 <= one));
+    const MD r2In = hn::AndNot(r1In, hn::And(solved, hn::And(r2 >= zero, r2 <= one)));
+    t = hn::IfThenElse(r1In, r1, hn::IfThenElse(r2In, r2, t));
+  }
+  // Against the horizon: two Newton steps on the cubic with the wedge's area and end slopes.
+  const MD horizon = hn::And(c.inLanes, hn::And(eo.gx == zero, eo.gy == zero));
+  if (!hn::AllFalse(dd, horizon)) {
+    const AzimuthLanes v1{w.ax + w.dx, w.ay + w.dy};
+    const VD q1 = pp::dot(v1, v1), go1 = pp::gDot(eo, v1);
+    VD s1 = eo.k * eo.k / (eo.k * eo.k * q1 + go1 * go1);
+    const VD gi1 = pp::gDot(ei, v1);
+    s1 = hn::IfThenElse(w.hasInner, s1 - ei.k * ei.k / (ei.k * ei.k * q1 + gi1 * gi1), s1);
+    s1 = s1 * (setD(0.5) * w.sigma);
+    const VD s0 = eo.alpha - hn::IfThenElseZero(w.hasInner, ei.alpha), a1 = w.area;
+    const MD steep = hn::And(horizon, hn::Or(s0 < setD(1e-2) * a1, s1 < setD(1e-2) * a1));
+    const VD h2 = setD(3.0) * a1 - setD(2.0) * s0 - s1, h3 = s0 + s1 - setD(2.0) * a1;
+    for (int k = 0; k < 2; ++k) {
+      const VD h = t * (s0 + t * (h2 + t * h3)) - tau, dh = s0 + t * (setD(2.0) * h2 + setD(3.0) * t * h3);
+      const VD next = hn::IfThenElse(dh > zero, t - h / dh, setD(-1.0));
+      t = hn::IfThenElse(hn::And(steep, hn::And(next >= zero, next <= one)), next, t);
+    }
+  }
+
+  // Newton's method on the wedge's area below v(λ), safeguarded by bisection.
+  VD lo = zero, hi = one;
+  const VD tolerance = setD(ProjectedPolygon::kAreaTolerance) * w.area;
+  const VD ulps = setD(4 * std::numeric_limits<double>::epsilon());
+  const VD halfKo = setD(0.5) * eo.k, halfKi = setD(0.5) * ei.k;
+  const VD ko2 = eo.k * eo.k, ki2 = ei.k * ei.k;
+  AzimuthLanes v{w.ax + t * w.dx, w.ay + t * w.dy};
+  VD go = pp::gDot(eo, v), gi = hn::IfThenElseZero(w.hasInner, pp::gDot(ei, v));
+  const MD withInner = hn::And(c.inLanes, w.hasInner);
+  VD area = halfKo * pp::atan2Lanes(c.inLanes, t * eo.k * w.sigma, eo.p0 + t * eo.pd);
+  area = hn::IfThenElse(
+      withInner, area - halfKi * pp::atan2Lanes(withInner, t * ei.k * w.sigma, ei.p0 + t * ei.pd), area);
+  MD running = c.inLanes;
+  for (int step = 0; step < ProjectedPolygon::kMaxInversionSteps; ++step) {
+    const VD f = area - tau;
+    running = hn::AndNot(hn::Abs(f) <= tolerance, running);
+    const MD below = f < zero;
+    lo = hn::IfThenElse(hn::And(running, below), t, lo);
+    hi = hn::IfThenElse(hn::AndNot(below, running), t, hi);
+    running = hn::And(running, hi - lo > ulps);
+    if (hn::AllFalse(dd, running)) break;
+    const VD v2 = pp::dot(v, v);
+    VD slope = ko2 / (ko2 * v2 + go * go);
+    slope = hn::IfThenElse(w.hasInner, slope - ki2 / (ki2 * v2 + gi * gi), slope);
+    slope = slope * (setD(0.5) * w.sigma);
+    VD next = hn::IfThenElse(slope > zero, t - f / slope, lo - one);
+    next = hn::IfThenElse(hn::And(next > lo, next < hi), next, setD(0.5) * (lo + hi));
+    const AzimuthLanes vn{w.ax + next * w.dx, w.ay + next * w.dy};
+    const VD vv = pp::dot(v, vn), goN = pp::gDot(eo, vn), giN = pp::gDot(ei, vn);
+    const VD advance = next - t;
+    VD stepped = area + halfKo * pp::atanStep(running, advance * eo.k * w.sigma, ko2 * vv + go * goN);
+    const MD runningInner = hn::And(running, w.hasInner);
+    stepped = hn::IfThenElse(
+        w.hasInner,
+        stepped - halfKi * pp::atanStep(runningInner, advance * ei.k * w.sigma, ki2 * vv + gi * giN),
+        stepped);
+    area = hn::IfThenElse(running, stepped, area);
+    go = hn::IfThenElse(running, goN, go);
+    gi = hn::IfThenElse(runningInner, giN, gi);
+    t = hn::IfThenElse(running, next, t);
+    v = pp::select(running, vn, v);
+  }
+
+  // r² and z² uniform between the wedge's edges at v.
+  const VD v2 = pp::dot(v, v);
+  VD rhoOuter2, zOuter2, rhoInner2, zInner2;
+  pp::radiusAt(eo, go, v2, rhoOuter2, zOuter2);
+  pp::radiusAt(ei, gi, v2, rhoInner2, zInner2);
+  rhoInner2 = hn::IfThenElseZero(w.hasInner, rhoInner2);
+  zInner2 = hn::IfThenElse(w.hasInner, zInner2, one);
+  const VD s = promote(u1);
+  const VD rhoMix = (one - s) * rhoInner2 + s * rhoOuter2, zMix = (one - s) * zInner2 + s * zOuter2;
+  const VD rho = hn::Sqrt(hn::IfThenElseZero(zero < rhoMix, rhoMix));
+  const VD z = hn::Sqrt(hn::IfThenElseZero(zero < zMix, zMix));
+  const VD x = rho * v.x, y = rho * v.y;
+  return {c.ex.x * x + c.ey.x * y + c.ez.x * z, c.ex.y * x + c.ey.y * y + c.ez.y * z,
+          c.ex.z * x + c.ey.z * y + c.ez.z * z};
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace penumbra
+HWY_AFTER_NAMESPACE();
+
+#endif
