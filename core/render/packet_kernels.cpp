@@ -582,7 +582,10 @@ void ProjectedPolygons(const std::vector<PacketPolygonLight>& polygons, const fl
   const V3F normal{hn::LoadU(df, n[0]), hn::LoadU(df, n[1]), hn::LoadU(df, n[2])};
   ProjectedPolygonLanes map;
   projectedPolygon(light, p, normal, hn::LoadU(df, active) != hn::Zero(df), map);
-  const V3D dir = sampleProjectedPolygon(map, hn::LoadU(df, u[0]), hn::LoadU(df, u[1]));
+  const VD zero = hn::Zero(dd);
+  const V3D dir = hn::AllFalse(dd, map.inLanes)
+                      ? V3D{zero, zero, zero}
+                      : sampleProjectedPolygon(map, hn::LoadU(df, u[0]), hn::LoadU(df, u[1]));
   hn::StoreU(dir.x, dd, w[0]);
   hn::StoreU(dir.y, dd, w[1]);
   hn::StoreU(dir.z, dd, w[2]);

@@ -201,6 +201,8 @@ HWY_INLINE void projectedPolygon(const PolygonLanes& light, const V3F& x, const 
   c.inLanes = hn::FirstN(dd, 0);
   c.byScalar = hn::FirstN(DF(), 0);
   c.projected = hn::Zero(DF());
+  c.projectedSolidAngle = zero;
+  for (bool& used : c.slotUsed) used = false;
   if (hn::AllFalse(dd, ok)) return;  // no lane sees the light's emitting side
   // The local frame: orthonormalBasis about the normalised normal.
   c.ez = normalized(promote(n));
@@ -361,9 +363,11 @@ HWY_INLINE V3D sampleProjectedPolygon(const ProjectedPolygonLanes& c, VF u0, VF 
   const DD dd;
   const VD zero = hn::Zero(dd), one = setD(1.0);
   const VD target = promote(u0) * c.projectedSolidAngle;
-  // The last wedge that starts at or below the target.
-  ProjectedPolygonLanes::WedgeLanes w = c.wedges[0];
-  for (int s = 0; s < ProjectedPolygonLanes::kSlots; ++s) {
+  // The last wedge that starts at or below the target (some slot is used where any lane samples).
+  int first = 0;
+  while (first + 1 < ProjectedPolygonLanes::kSlots && !c.slotUsed[first]) ++first;
+  ProjectedPolygonLanes::WedgeLanes w = c.wedges[first];
+  for (int s = first + 1; s < ProjectedPolygonLanes::kSlots; ++s) {
     if (!c.slotUsed[s]) continue;
     w = pp::select(hn::And(c.wedges[s].real, c.wedges[s].start <= target), c.wedges[s], w);
   }
