@@ -66,6 +66,15 @@ struct Builder {
     return index;
   }
 
+  // The bucket of `it`'s centroid along `axis`, of `buckets` across the centroids' bounds. The ratio is
+  // tested before the cast, which is defined only in range: centroids spanning an infinite extent give
+  // NaN or infinite ratios, which go to the end buckets.
+  static int bucket(const BuildItem& it, int axis, const Bounds& centroids, int buckets) {
+    const float t = float(buckets) * ((it.centroid[axis] - centroids.min[axis]) / centroids.extent()[axis]);
+    if (!(t >= 1.f)) return 0;
+    return t < float(buckets) ? int(t) : buckets - 1;
+  }
+
   // Bucketed split minimising power × surface area on each side, each axis weighted by how much
   // narrower than the widest it is (pbrt-v4's Kr); the median by centroid when no split separates.
   uint32_t split(uint32_t begin, uint32_t end, const Bounds& centroids) {
@@ -78,10 +87,7 @@ struct Builder {
       if (!(extent[axis] > 0.f)) continue;
       std::array<Bounds, kBuckets> boxes;
       std::array<double, kBuckets> powers{};
-      auto bucketOf = [&](const BuildItem& it) {
-        int b = int(kBuckets * ((it.centroid[axis] - centroids.min[axis]) / extent[axis]));
-        return std::clamp(b, 0, kBuckets - 1);
-      };
+      auto bucketOf = [&](const BuildItem& it) { return bucket(it, axis, centroids, kBuckets); };
       for (uint32_t i = begin; i < end; ++i) {
         const int b = bucketOf(items[i]);
         boxes[b].expand(items[i].box);
@@ -110,8 +116,7 @@ struct Builder {
     if (bestAxis >= 0) {
       const int axis = bestAxis;
       BuildItem* midPtr = std::partition(first, last, [&](const BuildItem& it) {
-        int b = int(kBuckets * ((it.centroid[axis] - centroids.min[axis]) / extent[axis]));
-        return std::clamp(b, 0, kBuckets - 1) <= bestBucket;
+        return bucket(it, axis, centroids, kBuckets) <= bestBucket;
       });
       if (midPtr != first && midPtr != last) return static_cast<uint32_t>(midPtr - items.data());
     }

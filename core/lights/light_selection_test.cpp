@@ -243,6 +243,25 @@ TEST(LightBvh, PmfsSumToOneAndMatchPicksAtManyShadingPoints) {
   }
 }
 
+// Lights whose centroids span more than the largest float (at ±1e38 and beyond) still build a tree of
+// every light: the split's bucket ratios are NaN or infinite there (UBSan checks the cast to a bucket).
+TEST(LightBvh, CentroidsSpanningAnInfiniteExtentStillBuild) {
+  std::vector<LightSummary> lights;
+  for (const float x : {-3e38f, -1e38f, 0.f, 1.f, 1e38f, 3e38f, INFINITY}) {
+    LightSummary l;
+    l.centroid = Vec3(x, 0.5f * x, 1.f);
+    l.box.expand(l.centroid);
+    l.power = 1.0;
+    lights.push_back(l);
+  }
+  const LightBvh bvh = makeLightBvh(lights);
+  ASSERT_EQ(bvh.nodes.size(), 2 * lights.size() - 1);
+  std::vector<int> leaves(lights.size(), 0);
+  for (const LightBvhNode& node : bvh.nodes)
+    if (node.leaf) ++leaves[node.child];
+  for (int count : leaves) EXPECT_EQ(count, 1);
+}
+
 TEST(LightBvh, DrawsFollowThePmf) {
   const auto lights = randomLights(40, 11);
   const LightBvh bvh = makeLightBvh(summarizeLights(lights));
