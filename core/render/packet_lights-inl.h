@@ -223,6 +223,16 @@ HWY_INLINE PolygonLanes gatherPolygons(const std::vector<PacketPolygonLight>& po
           load3(14)};
 }
 
+// PolygonLight::faces: x above the light's plane by more than 2^-20 of the coordinates' magnitude.
+HWY_INLINE MD faces(const PolygonLanes& light, const V3F& x) {
+  const VD margin = setD(0x1p-20) * promote(maxOf(light.scale, maxAbs(x)));
+  return dot(promote(light.n), minus(promote(x), promote(light.p0))) > margin;
+}
+// The lanes of m whose light a direction map can sample from x: light.valid() and light.faces(x).
+HWY_INLINE MD validAndFacing(const PolygonLanes& light, const V3F& x, MF m) {
+  return hn::And(toD(hn::And(m, light.area > hn::Zero(DF()))), faces(light, x));
+}
+
 // PolygonLight::sampleArea: a uniform point (Heitz's triangle map on triangles), its solid-angle
 // density d² / (area |cos θp|) in double (areaDensityAsSolidAngle), valid where x faces the light.
 HWY_INLINE PacketLightSample samplePolygonArea(const PolygonLanes& light, const V3F& x, VF u0, VF u1) {
@@ -244,12 +254,9 @@ HWY_INLINE PacketLightSample samplePolygonArea(const PolygonLanes& light, const 
   const VD cosArea = hn::Abs(dot(n, d)) * promote(light.area);
   const VD pdf = d2 * dist / cosArea;
   const MD finite = hn::And(cosArea > zero, pdf < setD(double(FLT_MAX)));
-  // PolygonLight::faces: above the plane by more than 2^-20 of the coordinates' magnitude.
-  const VD margin = setD(0x1p-20) * promote(maxOf(light.scale, maxAbs(x)));
-  const MD faces = dot(n, V3D{xD.x - p0.x, xD.y - p0.y, xD.z - p0.z}) > margin;
   PacketLightSample s;
   s.pdf = demote(hn::IfThenElseZero(finite, pdf));
-  s.valid = hn::And(toF(faces), s.pdf > hn::Zero(DF()));
+  s.valid = hn::And(toF(faces(light, x)), s.pdf > hn::Zero(DF()));
   s.wi = demote(V3D{d.x / dist, d.y / dist, d.z / dist});
   s.dist = demote(dist);
   s.projected = hn::Zero(DF());

@@ -194,10 +194,7 @@ HWY_INLINE void projectedPolygon(const PolygonLanes& light, const V3F& x, const 
   const VD zero = hn::Zero(dd), one = setD(1.0);
   constexpr int kIntervals = ProjectedPolygonLanes::kIntervals;
   c.origin = promote(x);
-  // light.valid() and light.faces(x).
-  const VD margin = setD(0x1p-20) * promote(maxOf(light.scale, maxAbs(x)));
-  MD ok = hn::And(toD(hn::And(active, light.area > hn::Zero(DF()))),
-                  dot(promote(light.n), minus(c.origin, promote(light.p0))) > margin);
+  MD ok = validAndFacing(light, x, active);
   c.inLanes = hn::FirstN(dd, 0);
   c.byScalar = hn::FirstN(DF(), 0);
   c.projected = hn::Zero(DF());
@@ -253,15 +250,16 @@ HWY_INLINE void projectedPolygon(const PolygonLanes& light, const V3F& x, const 
   V3D en[4];
   AzimuthLanes az[4];
   MD hasAzimuth[4];
-  MD zenithInside = hn::Not(hn::FirstN(dd, 0));
+  const MD all = hn::Not(hn::FirstN(dd, 0));
+  const MD present[4] = {all, all, all, quad};  // slot 3: parallelograms only
+  MD zenithInside = all;
   for (int i = 0; i < 4; ++i) {
-    const MD present = i < 3 ? hn::Not(hn::FirstN(dd, 0)) : quad;
     const VD len2 = dot(m[i], m[i]);
     const MD nonZero = len2 > zero;
     const V3D unit = scaled(m[i], one / hn::Sqrt(len2));
     en[i] = {hn::IfThenElseZero(nonZero, unit.x), hn::IfThenElseZero(nonZero, unit.y),
              hn::IfThenElseZero(nonZero, unit.z)};
-    zenithInside = hn::AndNot(hn::And(present, en[i].z < zero), zenithInside);
+    zenithInside = hn::AndNot(hn::And(present[i], en[i].z < zero), zenithInside);
     const VD r2 = pts[i].x * pts[i].x + pts[i].y * pts[i].y;
     hasAzimuth[i] = r2 > zero;
     const VD inv = hn::IfThenElseZero(hasAzimuth[i], one / hn::Sqrt(r2));
@@ -272,10 +270,8 @@ HWY_INLINE void projectedPolygon(const PolygonLanes& light, const V3F& x, const 
   // Where the zenith is outside: the vertices' pseudo-angles about the sum of their azimuths, and each
   // lane's wedges between consecutive azimuths (ProjectedPolygon::azimuthIntervals, lane by lane).
   AzimuthLanes ref{zero, zero};
-  for (int i = 0; i < 4; ++i) {
-    const MD present = i < 3 ? hn::Not(hn::FirstN(dd, 0)) : quad;
-    ref = pp::select(present, AzimuthLanes{ref.x + az[i].x, ref.y + az[i].y}, ref);
-  }
+  for (int i = 0; i < 4; ++i)
+    ref = pp::select(present[i], AzimuthLanes{ref.x + az[i].x, ref.y + az[i].y}, ref);
   const MD outside = hn::AndNot(zenithInside, ok);
   ok = hn::AndNot(hn::AndNot(ref.x * ref.x + ref.y * ref.y > zero, outside), ok);
   HWY_ALIGN double alpha[4][kMaxPacketLanes], onOutside[kMaxPacketLanes], quads[kMaxPacketLanes];
@@ -305,8 +301,7 @@ HWY_INLINE void projectedPolygon(const PolygonLanes& light, const V3F& x, const 
     const int next = (s + 1) % 4;
     const AzimuthLanes insideTo = s == 2 ? pp::select(quad, az[3], az[0]) : az[next];
     const MD insideHasTo = s == 2 ? pp::select(quad, hasAzimuth[3], hasAzimuth[0]) : hasAzimuth[next];
-    const MD insideReal = hn::And(hn::And(zenithInside, s < 3 ? hn::Not(hn::FirstN(dd, 0)) : quad),
-                                  hn::And(hasAzimuth[s], insideHasTo));
+    const MD insideReal = hn::And(hn::And(zenithInside, present[s]), hn::And(hasAzimuth[s], insideHasTo));
     // The zenith outside: between two consecutive azimuths, under one edge of each chain.
     const VD fromIndex = hn::Load(dd, intervals[0][s]), toIndex = hn::Load(dd, intervals[1][s]);
     const MD outsideReal = fromIndex >= zero;

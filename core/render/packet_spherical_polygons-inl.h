@@ -45,9 +45,7 @@ HWY_INLINE SphericalTriangleLanes sphericalTriangle(const PolygonLanes& light, c
   const V3D v1 = promote(V3F{light.p0.x + light.e1.x, light.p0.y + light.e1.y, light.p0.z + light.e1.z});
   const V3D v2 = promote(V3F{light.p0.x + light.e2.x, light.p0.y + light.e2.y, light.p0.z + light.e2.z});
   t.origin = promote(x);
-  const VD margin = setD(0x1p-20) * promote(maxOf(light.scale, maxAbs(x)));
-  MD ok = hn::And(toD(hn::And(m, light.area > hn::Zero(DF()))),
-                  dot(promote(light.n), minus(t.origin, p0)) > margin);
+  MD ok = validAndFacing(light, x, m);
   const V3D e1 = minus(v1, p0), e2 = minus(v2, p0);
   const V3D n = cross(e1, e2);
   const VD twiceArea = hn::Sqrt(dot(n, n));
@@ -149,9 +147,7 @@ HWY_INLINE SphericalRectangleLanes sphericalRectangle(const PolygonLanes& light,
   const VD zero = hn::Zero(dd), one = setD(1.0), infinity = setD(INFINITY);
   SphericalRectangleLanes r;
   const V3D xD = promote(x), corner = promote(light.p0);
-  const VD margin = setD(0x1p-20) * promote(maxOf(light.scale, maxAbs(x)));
-  MD ok = hn::And(toD(hn::And(m, light.area > hn::Zero(DF()))),
-                  dot(promote(light.n), minus(xD, corner)) > margin);
+  MD ok = validAndFacing(light, x, m);
   r.eu = promote(light.e1);
   r.ev = promote(light.e2);
   const V3D n = cross(r.eu, r.ev);
