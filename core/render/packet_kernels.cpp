@@ -398,8 +398,8 @@ HWY_INLINE VF misWeight(VF a, VF b) {
 // MisIntegrator<measure, heuristic> through directRadiance: every light sampled by the measure and the
 // surface's own directions (the cosine hemisphere on diffuse lanes, the BSDF's sampler on glossy ones),
 // each sample weighted by the heuristic of the two densities. Light samples and light densities the
-// lanes cannot compute exactly come from the scalar techniques lane by lane (ScalarLightSamples,
-// queryLightPdfs).
+// lanes cannot compute exactly (PolygonTechnique's and SphereTechnique's scalar lanes) come from the
+// scalar techniques lane by lane (ScalarLightSamples, queryLightPdfs).
 // With PacketScene::lightShare, MisLightShareIntegrator's channels instead of the radiance.
 template <LightMeasure kMeasure, MisHeuristic kHeuristic>
 HWY_INLINE void shadeMis(const PacketScene& scene, const PacketRays& rays, const PacketDraws& draws,
@@ -446,9 +446,12 @@ HWY_INLINE void shadeMis(const PacketScene& scene, const PacketRays& rays, const
                 if (scene.lights[l].radius > 0.f)
                   pL = SphereTechnique<kMeasure>(scene, l, h, lanes, 0).pdf(w, p, n);
               } else if (nLight > 0) {
-                HWY_ALIGN float index[kMaxPacketLanes];
+                // Each lane's polygon light, its technique set up at the lane's shading point.
+                HWY_ALIGN float index[kMaxPacketLanes], polygon[kMaxPacketLanes];
                 hn::Store(lightIndex, df, index);
-                pL = ScalarLightSamples<kMeasure>(scene, index, h, lanes, 0).mergePdf(w, p, n, zero);
+                hn::Store(hn::IfThenElse(lanes, lightIndex - setF(float(spheres)), setF(-1.f)), df, polygon);
+                const PolygonLanes light = gatherPolygons(scene.polygons, polygon);
+                pL = PolygonTechnique<kMeasure>(scene, light, index, h, lanes, 0).pdf(w, p, n);
               }
               const VF weight = misWeight<kHeuristic>(nB * d.pdf, nL * pL);
               addRadiance(lanes, times(Le, d.weight), d.cosOverPdf * weight, bsdfPart);
@@ -593,6 +596,40 @@ void ProjectedPolygons(const std::vector<PacketPolygonLight>& polygons, const fl
   const VF one = setF(1.f);
   hn::StoreU(hn::IfThenElse(toF(map.inLanes), one, hn::IfThenElseZero(map.byScalar, setF(2.f))), df, mapped);
 }
+template <LightMeasure kMeasure>
+void polygonLightPdfs(const std::vector<PacketPolygonLight>& polygons, const V3F& x, const V3F& n, MF active,
+                      const V3F& w, const V3F& p, float (&pdf)[kMaxPacketLanes],
+                      float (&byScalar)[kMaxPacketLanes]) {
+  const DF df;
+  HWY_ALIGN float index[kMaxPacketLanes];
+  for (size_t k = 0; k < hn::Lanes(df); ++k) index[k] = float(k);
+  PacketScene scene;  // the scalar lanes are reported, not computed: no scene to query
+  scene.polygons = polygons;
+  PacketHit h{};
+  h.p = x;
+  h.ns = n;
+  const PolygonLanes light = gatherPolygons(polygons, index);
+  const PolygonTechnique<kMeasure> technique(scene, light, index, h, active, 0);
+  hn::StoreU(hn::IfThenZeroElse(technique.scalarLanes, technique.lanesPdf(w, p)), df, pdf);
+  hn::StoreU(hn::IfThenElseZero(technique.scalarLanes, setF(1.f)), df, byScalar);
+}
+void PolygonLightPdfs(LightMeasure measure, const std::vector<PacketPolygonLight>& polygons,
+                      const float (&x)[3][kMaxPacketLanes], const float (&n)[3][kMaxPacketLanes],
+                      const float (&active)[kMaxPacketLanes], const float (&w)[3][kMaxPacketLanes],
+                      const float (&p)[3][kMaxPacketLanes], float (&pdf)[kMaxPacketLanes],
+                      float (&byScalar)[kMaxPacketLanes]) {
+  const DF df;
+  const MF on = hn::LoadU(df, active) != hn::Zero(df);
+  const V3F xs = loadF3(x), ns = loadF3(n), ws = loadF3(w), ps = loadF3(p);
+  switch (measure) {
+    case LightMeasure::Area:
+      return polygonLightPdfs<LightMeasure::Area>(polygons, xs, ns, on, ws, ps, pdf, byScalar);
+    case LightMeasure::SolidAngle:
+      return polygonLightPdfs<LightMeasure::SolidAngle>(polygons, xs, ns, on, ws, ps, pdf, byScalar);
+    case LightMeasure::ProjectedSolidAngle:
+      return polygonLightPdfs<LightMeasure::ProjectedSolidAngle>(polygons, xs, ns, on, ws, ps, pdf, byScalar);
+  }
+}
 int Lanes() {
   return static_cast<int>(hn::Lanes(DD()));
 }
@@ -613,11 +650,11 @@ struct PacketTarget {
 };
 
 // One compiled set's entry: its bit, its kernels, its lane count.
-#define PENUMBRA_PACKET_TARGET(bit, ns)                               \
-  {                                                                   \
-    bit, {&ns::ShadePacket, &ns::CameraRays, &ns::SamplerDraws,       \
-          &ns::FilmAdd,     &ns::TablePicks, &ns::ProjectedPolygons}, \
-        &ns::Lanes                                                    \
+#define PENUMBRA_PACKET_TARGET(bit, ns)                                                 \
+  {                                                                                     \
+    bit, {&ns::ShadePacket, &ns::CameraRays,        &ns::SamplerDraws,    &ns::FilmAdd, \
+          &ns::TablePicks,  &ns::ProjectedPolygons, &ns::PolygonLightPdfs},             \
+        &ns::Lanes                                                                      \
   }
 
 // The sets this file was compiled for, best first.

@@ -143,6 +143,19 @@ using PacketProjectedPolygons =
              const float (&u)[2][kMaxPacketLanes], double (&w)[3][kMaxPacketLanes],
              double (&projected)[kMaxPacketLanes], float (&mapped)[kMaxPacketLanes]);
 
+// LightTechnique<measure, PolygonLight>::pdf of unit direction w[.][k], which reaches lane k's polygon
+// light (polygons[k]) at p[.][k], seen from x[.][k] with shading normal n[.][k], in the lanes whose
+// active[k] is not 0, as the lanes compute it: byScalar[k] is 1 (and pdf[k] 0) where the scalar
+// technique computes it instead. MIS's shading kernels weight this way; this entry lets the densities
+// be tested alone.
+using PacketPolygonLightPdfs = void (*)(LightMeasure measure, const std::vector<PacketPolygonLight>& polygons,
+                                        const float (&x)[3][kMaxPacketLanes],
+                                        const float (&n)[3][kMaxPacketLanes],
+                                        const float (&active)[kMaxPacketLanes],
+                                        const float (&w)[3][kMaxPacketLanes],
+                                        const float (&p)[3][kMaxPacketLanes], float (&pdf)[kMaxPacketLanes],
+                                        float (&byScalar)[kMaxPacketLanes]);
+
 // The kernels of one instruction set.
 struct PacketKernels {
   PacketShader shade;
@@ -151,6 +164,7 @@ struct PacketKernels {
   PacketFilmAdd filmAdd;
   PacketTablePicks tablePicks;
   PacketProjectedPolygons projectedPolygons;
+  PacketPolygonLightPdfs polygonLightPdfs;
 };
 // The kernels of the instruction set in use when it is called (a row renderer takes them once, not
 // per packet).

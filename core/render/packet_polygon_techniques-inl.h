@@ -34,6 +34,24 @@ namespace penumbra {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
+// The techniques' floatDensity: a density as a float, 0 where it is not positive or does not fit.
+HWY_INLINE VF floatDensity(VD pdf) {
+  return demote(hn::IfThenElseZero(hn::And(pdf > hn::Zero(DD()), pdf < setD(3.4e38)), pdf));
+}
+
+// PolygonLight::pdfAreaAsSolidAngle: the density of area sampling reaching point p of the light from x,
+// d² / (area |cos θp|), 0 where it is not a finite positive float.
+HWY_INLINE VF pdfPolygonArea(const PolygonLanes& light, const V3F& x, const V3F& p) {
+  const DD dd;
+  const V3D toPoint = minus(promote(p), promote(x));
+  const VD d2 = dot(toPoint, toPoint);
+  const VD cosArea = hn::Abs(dot(promote(light.n), toPoint)) * promote(light.area);
+  const VD pdf = d2 * hn::Sqrt(d2) / cosArea;
+  const MD ok =
+      hn::And(toD(light.area > hn::Zero(DF())), hn::And(cosArea > hn::Zero(dd), pdf < setD(double(FLT_MAX))));
+  return demote(hn::IfThenElseZero(ok, pdf));
+}
+
 // PolygonLight::sampleAlong and the solid-angle technique's density: the sample of unit direction w
 // from x towards the light (valid where it meets its plane in front of x and the density fits a float).
 HWY_INLINE PacketLightSample sampleAlong(const PolygonLanes& light, const V3D& x, const V3D& w, VD pdf,
@@ -44,9 +62,7 @@ HWY_INLINE PacketLightSample sampleAlong(const PolygonLanes& light, const V3D& x
   PacketLightSample s;
   s.wi = demote(w);
   s.dist = demote(t);
-  // floatDensity: 0 where it does not fit a float.
-  const MD fits = hn::And(pdf > hn::Zero(DD()), pdf < setD(3.4e38));
-  s.pdf = demote(hn::IfThenElseZero(hn::And(along, fits), pdf));
+  s.pdf = hn::IfThenElseZero(toF(along), floatDensity(pdf));
   s.valid = s.pdf > hn::Zero(DF());
   s.projected = hn::Zero(DF());
   return s;
@@ -69,6 +85,7 @@ struct PolygonTechnique {
   // By the projected solid angle: the clipped polygon's map.
   std::conditional_t<kProjected, ProjectedPolygonLanes, NoMap> projected;
   bool anyProjected = false;
+  MF scalarLanes;  // the lanes the scalar technique samples (set by the constructor)
   ScalarLightSamples<kMeasure> scalar;
 
   PolygonTechnique(const PacketScene& scene, const PolygonLanes& l, const float* index, const PacketHit& h,
@@ -107,9 +124,35 @@ struct PolygonTechnique {
     return scalar.merge(draws, j, s);
   }
 
+  // LightTechnique<kMeasure, PolygonLight>::pdf of unit direction w that reached the lanes' light at p
+  // (its normal nLight): in lanes, and the scalar technique's in the lanes it samples.
+  VF pdf(const V3F& w, const V3F& p, const V3F& nLight) const {
+    return scalar.mergePdf(w, p, nLight, lanesPdf(w, p));
+  }
+  // The same density outside scalarLanes.
+  VF lanesPdf(const V3F& w, const V3F& p) const {
+    if constexpr (kMeasure == LightMeasure::Area) {
+      return pdfPolygonArea(light, x, p);
+    } else {
+      VD d = hn::Zero(DD());
+      const V3D wD = promote(w);
+      if constexpr (kProjected) {
+        if (anyProjected) d = pdfProjectedPolygon(projected, wD);
+      } else {
+        if (anyTriangle) d = pdfSphericalTriangle(triangle, wD);
+        if (anyRectangle) d = hn::IfThenElse(rectangle.inLanes, pdfSphericalRectangle(rectangle, wD), d);
+      }
+      return floatDensity(d);
+    }
+  }
+
  private:
-  // The lanes the scalar technique samples; sets up the maps of the others.
+  // scalarLanes, found by setting up the maps of the other lanes of `active`.
   MF byScalar(MF active) {
+    scalarLanes = lanesByScalar(active);
+    return scalarLanes;
+  }
+  MF lanesByScalar(MF active) {
     if constexpr (kProjected) {
       if (hn::AllFalse(DF(), active)) return active;
       projectedPolygon(light, x, n, active, projected);

@@ -42,6 +42,7 @@ struct ProjectedPolygonLanes {
     MD hasInner, real;
   };
   V3D origin, ex, ey, ez;
+  V3D edgeNormals[4];  // unit, in the local frame; slot 3 zero for triangles
   WedgeLanes wedges[kSlots];
   bool slotUsed[kSlots];  // real in some lane
   VD projectedSolidAngle;
@@ -259,6 +260,9 @@ HWY_INLINE void projectedPolygon(const PolygonLanes& light, const V3F& x, const 
     const V3D unit = scaled(m[i], one / hn::Sqrt(len2));
     en[i] = {hn::IfThenElseZero(nonZero, unit.x), hn::IfThenElseZero(nonZero, unit.y),
              hn::IfThenElseZero(nonZero, unit.z)};
+    const MD kept = hn::And(nonZero, present[i]);
+    c.edgeNormals[i] = {hn::IfThenElseZero(kept, unit.x), hn::IfThenElseZero(kept, unit.y),
+                        hn::IfThenElseZero(kept, unit.z)};
     zenithInside = hn::AndNot(hn::And(present[i], en[i].z < zero), zenithInside);
     const VD r2 = pts[i].x * pts[i].x + pts[i].y * pts[i].y;
     hasAzimuth[i] = r2 > zero;
@@ -349,6 +353,17 @@ HWY_INLINE void projectedPolygon(const PolygonLanes& light, const V3F& x, const 
   c.projected = demote(hn::IfThenElseZero(ok, total));
   c.inLanes = hn::And(ok, toD(c.projected > hn::Zero(DF())));
   c.projected = hn::IfThenElseZero(toF(c.inLanes), c.projected);
+}
+
+// ProjectedPolygon::pdfDirection of unit direction w in the lanes of c.inLanes (0 elsewhere): cos θ / Ω⊥
+// inside the polygon, to 1e-12 outside each edge.
+HWY_INLINE VD pdfProjectedPolygon(const ProjectedPolygonLanes& c, const V3D& w) {
+  const VD zero = hn::Zero(DD());
+  const VD z = dot(w, c.ez);
+  const V3D local{dot(w, c.ex), dot(w, c.ey), z};
+  MD inside = hn::And(c.inLanes, z > zero);
+  for (const V3D& m : c.edgeNormals) inside = hn::AndNot(dot(m, local) < setD(-1e-12), inside);
+  return hn::IfThenElseZero(inside, z / c.projectedSolidAngle);
 }
 
 // ProjectedPolygon::sampleDirection in the lanes of c.inLanes: the unit direction for (u0, u1).

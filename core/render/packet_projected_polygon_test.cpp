@@ -10,6 +10,7 @@
 #include "core/lights/polygon_light.h"
 #include "core/lights/projected_polygon.h"
 #include "core/render/packet_kernels.h"
+#include "core/render/packet_polygon_settings_test_support.h"
 #include "core/render/packet_scene.h"
 #include "core/render/packet_target_test_support.h"
 #include "core/sampling/rng.h"
@@ -18,73 +19,7 @@ namespace penumbra {
 namespace {
 
 using test::ForcedTarget;
-
-// A polygon light and a shading point (x, normal n) that sees it.
-struct Setting {
-  PolygonLight light;
-  Vec3 x, n;
-};
-
-Vec3 randomUnit(Rng& rng) {
-  for (;;) {
-    const Vec3 v(2 * rng.nextFloat() - 1, 2 * rng.nextFloat() - 1, 2 * rng.nextFloat() - 1);
-    const float len2 = glm::dot(v, v);
-    if (len2 > 1e-4f && len2 <= 1.f) return v / std::sqrt(len2);
-  }
-}
-
-// The light on p0, e1, e2 wound to emit towards x (its normal faces x).
-PolygonLight facing(const Vec3& p0, Vec3 e1, Vec3 e2, bool parallelogram, const Vec3& x) {
-  if (glm::dot(glm::cross(e1, e2), x - p0) < 0.f) std::swap(e1, e2);
-  return PolygonLight::make(p0, e1, e2, parallelogram, Color3(1.f));
-}
-
-// Settings of every shape the map meets: a horizontal light over a tilted receiver (the zenith inside
-// the polygon or outside it), lights large and near (wedges wider than 3π/4, halved), small and far,
-// sheared parallelograms, random ones reaching below the horizon, at scales 1e-4 to 1e4 away from the
-// origin; and ones with nothing to sample (behind the light, in its plane, a degenerate light).
-std::vector<Setting> settings(Rng& rng) {
-  std::vector<Setting> out;
-  for (int i = 0; i < 3000; ++i) {
-    const bool parallelogram = rng.nextU32() % 2 == 0;
-    const int kind = int(rng.nextU32() % 5);
-    const float scale = std::array<float, 3>{1e-4f, 1.f, 1e4f}[rng.nextU32() % 3];
-    const Vec3 offset = scale * Vec3(10 * rng.nextFloat(), -5 * rng.nextFloat(), 3 * rng.nextFloat());
-    Vec3 x(0.f), n(0.f, 1.f, 0.f), p0, e1, e2;
-    if (kind == 0 || kind == 1) {
-      // A light at height 1 (overhead) or 0.05 (large and near) over a receiver tilted up to 24°, the
-      // point below it about half the time.
-      const float height = kind == 0 ? 1.f : 0.05f, size = kind == 0 ? 1.f : 4.f;
-      e1 = Vec3(size * (0.2f + rng.nextFloat()), 0.f, 0.3f * size * (rng.nextFloat() - 0.5f));
-      e2 = Vec3(0.3f * size * (rng.nextFloat() - 0.5f), 0.f, size * (0.2f + rng.nextFloat()));
-      p0 = Vec3(0.f, height, 0.f) - (1.4f * rng.nextFloat() - 0.2f) * e1 -
-           (1.4f * rng.nextFloat() - 0.2f) * e2;
-      n = glm::normalize(Vec3(0.f, 1.f, 0.f) + 0.4f * randomUnit(rng) * rng.nextFloat());
-    } else if (kind == 2) {
-      // Small and far: 1e-5 across at distance 1 to 100.
-      const Vec3 towards = randomUnit(rng);
-      p0 = towards * (1.f + 99.f * rng.nextFloat());
-      e1 = 1e-5f * randomUnit(rng);
-      e2 = 1e-5f * randomUnit(rng);
-      n = glm::normalize(towards + 0.5f * randomUnit(rng));
-    } else {
-      // Anywhere near x, seen from any normal (many reach below the horizon).
-      p0 = 2.f * randomUnit(rng);
-      e1 = randomUnit(rng) * (0.1f + rng.nextFloat());
-      e2 = randomUnit(rng) * (0.1f + rng.nextFloat());
-      n = randomUnit(rng);
-    }
-    x = x * scale + offset;
-    p0 = p0 * scale + offset;
-    out.push_back({facing(p0, e1 * scale, e2 * scale, parallelogram, x), x, n});
-  }
-  const Vec3 p0(0.f, 1.f, 0.f), e1(1.f, 0.f, 0.f), e2(0.f, 0.f, 1.f);
-  const Vec3 up(0.f, 1.f, 0.f);
-  out.push_back({facing(p0, e1, e2, true, Vec3(0.f)), Vec3(0.5f, 2.f, 0.5f), up});     // behind it
-  out.push_back({facing(p0, e1, e2, true, Vec3(0.f)), Vec3(3.f, 1.f, 0.5f), up});      // in its plane
-  out.push_back({PolygonLight::make(p0, e1, e1, false, Color3(1.f)), Vec3(0.f), up});  // degenerate
-  return out;
-}
+using test::Setting;
 
 // What LightTechnique<ProjectedSolidAngle, PolygonLight> sets up for `s`: false where it samples nothing.
 bool scalarMap(const Setting& s, ProjectedPolygon& map) {
@@ -94,17 +29,6 @@ bool scalarMap(const Setting& s, ProjectedPolygon& map) {
   return map.init(v, s.light.vertexCount(), s.x, s.n) && float(map.projectedSolidAngle) > 0.f;
 }
 
-// The lowest vertex's height over x's horizon.
-double lowestVertex(const Setting& s) {
-  Vec3 v[4];
-  s.light.vertices(v);
-  const DVec3 n = glm::normalize(DVec3(s.n));
-  double lowest = std::numeric_limits<double>::infinity();
-  for (int i = 0; i < s.light.vertexCount(); ++i)
-    lowest = std::min(lowest, glm::dot(DVec3(v[i]) - DVec3(s.x), n));
-  return lowest;
-}
-
 // The projected solid angle's map of polygon lights in lanes sets up and samples what ProjectedPolygon
 // does, bit for bit (its Ω⊥ and every direction), on every instruction set: lanes with the zenith
 // inside the polygon and outside it, wedges halved, triangles and parallelograms side by side, draws at
@@ -112,7 +36,7 @@ double lowestVertex(const Setting& s) {
 // sampled where the scalar technique samples nothing.
 TEST(PacketProjectedPolygon, MapsWhatTheScalarMapMaps) {
   Rng settingRng(3, 7);
-  const std::vector<Setting> all = settings(settingRng);
+  const std::vector<Setting> all = test::polygonSettings(settingRng);
   const float belowOne = std::nextafter(1.f, 0.f);
   for (const std::string& target : availablePacketTargets()) {
     ForcedTarget forced(target);
@@ -162,7 +86,7 @@ TEST(PacketProjectedPolygon, MapsWhatTheScalarMapMaps) {
             if (map.wedgeCount > (inside ? vertices : vertices - 1)) ++halved;
           } else if (mapped[k] == 2.f) {
             ASSERT_TRUE(s.light.valid() && s.light.faces(s.x));
-            ASSERT_FALSE(lowestVertex(s) > 0.0);
+            ASSERT_FALSE(test::lowestVertexHeight(s) > 0.0);
             if (draw == 0) ++byScalar;
           } else {
             ASSERT_EQ(mapped[k], 0.f);
