@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "core/math/frame.h"
+#include "core/math/portable_atan2.h"
 
 namespace penumbra {
 
@@ -53,7 +54,7 @@ double atanStep(double y, double x) {
     const double z = y / x, z2 = z * z;  // truncated after z⁹: below 2^-60 of the value
     return z * (1 + z2 * (-1.0 / 3 + z2 * (1.0 / 5 + z2 * (-1.0 / 7 + z2 * (1.0 / 9)))));
   }
-  return std::atan2(y, x);
+  return portableAtan2(y, x);
 }
 
 // The edge's terms in a wedge from a to a + d (σ = a × d): its start, its swept area at λ = 1 and the
@@ -62,7 +63,7 @@ double placeEdge(Edge& e, const Azimuth& a, const Azimuth& d, double sigma) {
   const double ga = gDot(e, a);
   e.p0 = e.k * e.k + ga * ga;
   e.pd = e.k * e.k * dot(a, d) + ga * gDot(e, d);
-  const double area = 0.5 * e.k * std::atan2(e.k * sigma, e.p0 + e.pd);
+  const double area = 0.5 * e.k * portableAtan2(e.k * sigma, e.p0 + e.pd);
   e.alpha = e.p0 > 0 ? 0.5 * e.k * e.k * sigma / e.p0 : 0;
   e.beta = area > 0 ? e.alpha / area - 1 : 0;
   return area;
@@ -320,8 +321,8 @@ DVec3 ProjectedPolygon::sampleDirection(Vec2 u) const {
   const Azimuth a{w.ax, w.ay}, d{w.dx, w.dy};
   Azimuth v{a.x + t * d.x, a.y + t * d.y};
   double go = gDot(eo, v), gi = w.hasInner ? gDot(ei, v) : 0;
-  double area = 0.5 * eo.k * std::atan2(t * eo.k * w.sigma, eo.p0 + t * eo.pd);
-  if (w.hasInner) area -= 0.5 * ei.k * std::atan2(t * ei.k * w.sigma, ei.p0 + t * ei.pd);
+  double area = 0.5 * eo.k * portableAtan2(t * eo.k * w.sigma, eo.p0 + t * eo.pd);
+  if (w.hasInner) area -= 0.5 * ei.k * portableAtan2(t * ei.k * w.sigma, ei.p0 + t * ei.pd);
   for (int step = 0; step < kMaxInversionSteps; ++step) {
     const double f = area - tau;
     if (std::fabs(f) <= tolerance) break;

@@ -12,6 +12,7 @@
 #include <hwy/highway.h>
 
 #include "core/math/float_util.h"
+#include "core/math/portable_atan2.h"
 #include "core/math/sincos_turns.h"
 #include "core/math/vec.h"
 #include "core/render/packet_kernels.h"
@@ -158,6 +159,39 @@ HWY_INLINE void sinCosQuarterPi(VF x, VF& s, VF& c) {
   const VF x2 = x * x;
   s = x + x * x2 * (setF(K::kSin1) + x2 * (setF(K::kSin2) + x2 * setF(K::kSin3)));
   c = setF(1.f) - setF(0.5f) * x2 + x2 * x2 * (setF(K::kCos1) + x2 * (setF(K::kCos2) + x2 * setF(K::kCos3)));
+}
+
+// portableAtan2 (core/math/portable_atan2.h) in every lane, bit for bit; std::atan2 in the lanes of m
+// with a non-finite argument.
+HWY_INLINE VD portableAtan2Lanes(MD m, VD y, VD x) {
+  using K = PortableAtan2;
+  const DD dd;
+  const VD zero = hn::Zero(dd), one = setD(1.0);
+  const VD ax = hn::Abs(x), ay = hn::Abs(y);
+  const MD swap = ay > ax;
+  const VD num = hn::IfThenElse(swap, ax, ay), den = hn::IfThenElse(swap, ay, ax);
+  const MD reduced = num > setD(K::kTanPiOver8) * den;
+  VD z = hn::IfThenElse(reduced, (num - den) / (num + den), num / den);
+  z = hn::IfThenElseZero(den > zero, z);
+  const VD s = z * z;
+  VD p = setD(K::kP[0]);
+  for (int i = 1; i < 11; ++i) p = p * s + setD(K::kP[i]);
+  const VD tail = z * (s * p);
+  VD high = hn::IfThenElseZero(reduced, setD(K::kPiOver4)),
+     low = hn::IfThenElseZero(reduced, setD(K::kPiOver4Low));
+  VD sign = one;
+  high = hn::IfThenElse(swap, setD(K::kPiOver2) - high, high);
+  low = hn::IfThenElse(swap, setD(K::kPiOver2Low) - low, low);
+  sign = hn::IfThenElse(swap, hn::Neg(sign), sign);
+  const MD negativeX = hn::CopySign(one, x) < zero;
+  high = hn::IfThenElse(negativeX, setD(K::kPi) - high, high);
+  low = hn::IfThenElse(negativeX, setD(K::kPiLow) - low, low);
+  sign = hn::IfThenElse(negativeX, hn::Neg(sign), sign);
+  const VD r = hn::CopySign(high + (sign * z + (low + sign * tail)), y);
+  const MD special = hn::AndNot(hn::And(hn::IsFinite(x), hn::IsFinite(y)), m);
+  if (HWY_LIKELY(hn::AllFalse(dd, special))) return r;
+  return hn::IfThenElse(special,
+                        libmLanes(special, y, x, [](double a, double b) { return std::atan2(a, b); }), r);
 }
 
 // sinCosTurns (core/math/sincos_turns.h).

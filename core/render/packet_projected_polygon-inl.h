@@ -1,7 +1,8 @@
 // The projected solid angle's map of polygon lights in lanes: ProjectedPolygon (Nusselt's projection
 // of the polygon onto the disk, wedges between vertex azimuths, the azimuth inverted by Newton's method
 // with bisection) set up for each lane's light at its shading point and sampled, mirrored operation by
-// operation in double; libm's atan2 and hypot are called lane by lane on the lanes that need them. A
+// operation in double; its atan2 is portableAtan2 (the same bits in lanes), and libm's hypot is called
+// lane by lane on the lanes that need it. A
 // polygon wholly in the closed upper half space of a lane's shading normal is mapped in lanes; one that
 // reaches below the horizon (which the map clips, changing its vertex count) is left to the scalar
 // technique in its lane.
@@ -105,8 +106,9 @@ HWY_INLINE V3D select(MD m, const V3D& a, const V3D& b) {
   return HWY_NAMESPACE::select(m, a, b);
 }
 
+// projected_polygon.cpp's atan2 (portableAtan2) in the lanes of m, 0 elsewhere.
 HWY_INLINE VD atan2Lanes(MD m, VD y, VD x) {
-  return libmLanes(m, y, x, [](double a, double b) { return std::atan2(a, b); });
+  return hn::IfThenElseZero(m, portableAtan2Lanes(m, y, x));
 }
 
 // projected_polygon.cpp's pseudoAngle: grows with the counter-clockwise angle from ref to a.
