@@ -1,5 +1,5 @@
 // atan2 from +, −, ×, ÷ and comparisons alone, in a fixed order, so that SIMD lanes (packet_math-inl.h's
-// portableAtan2) compute it bit for bit where libm's atan2 could only be called lane by lane: the
+// portableAtan2Lanes) compute it bit for bit where libm's atan2 could only be called lane by lane: the
 // projected polygon's map calls it in every Newton step of its inversion. Within 2.5 ulp of the exact
 // value for finite arguments, with atan2's signs and zeros (portable_atan2_test.cpp); a non-finite
 // argument goes to std::atan2.

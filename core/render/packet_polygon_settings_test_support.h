@@ -11,6 +11,8 @@
 
 #include "core/lights/polygon_light.h"
 #include "core/math/vec.h"
+#include "core/render/packet_kernels.h"
+#include "core/render/packet_scene.h"
 #include "core/sampling/rng.h"
 
 namespace penumbra::test {
@@ -91,6 +93,24 @@ inline double lowestVertexHeight(const Setting& s) {
   for (int i = 0; i < s.light.vertexCount(); ++i)
     lowest = std::min(lowest, glm::dot(DVec3(v[i]) - DVec3(s.x), n));
   return lowest;
+}
+
+// The settings first .. first + lanes − 1 of `all` in one packet's lanes (the last repeated past the
+// end): their lights, points and normals; a lane is active when its setting exists and every seventh
+// is not, so that inactive lanes sit between active ones.
+struct SettingLanes {
+  std::vector<PacketPolygonLight> polygons;
+  float x[3][kMaxPacketLanes] = {}, n[3][kMaxPacketLanes] = {}, active[kMaxPacketLanes] = {};
+};
+inline SettingLanes settingLanes(const std::vector<Setting>& all, size_t first, int lanes) {
+  SettingLanes out;
+  for (int k = 0; k < lanes; ++k) {
+    const Setting& s = all[std::min(first + size_t(k), all.size() - 1)];
+    out.polygons.push_back(packetPolygonLight(s.light));
+    for (int c = 0; c < 3; ++c) out.x[c][k] = s.x[c], out.n[c][k] = s.n[c];
+    out.active[k] = first + size_t(k) < all.size() && (first + size_t(k)) % 7 != 6 ? 1.f : 0.f;
+  }
+  return out;
 }
 
 }  // namespace penumbra::test

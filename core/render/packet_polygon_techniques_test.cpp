@@ -85,14 +85,10 @@ void expectScalarDensities() {
     std::array<int, size_t(Aim::Count)> positive{}, zero{};
     int byScalar = 0;
     for (size_t first = 0; first < all.size(); first += size_t(lanes)) {
-      std::vector<PacketPolygonLight> polygons;
-      float x[3][kMaxPacketLanes] = {}, n[3][kMaxPacketLanes] = {}, active[kMaxPacketLanes] = {};
-      for (int k = 0; k < lanes; ++k) {
-        const Setting& s = all[std::min(first + size_t(k), all.size() - 1)];
-        polygons.push_back(packetPolygonLight(s.light));
-        for (int c = 0; c < 3; ++c) x[c][k] = s.x[c], n[c][k] = s.n[c];
-        active[k] = first + size_t(k) < all.size() && (first + size_t(k)) % 7 != 6 ? 1.f : 0.f;
-      }
+      const test::SettingLanes packet = test::settingLanes(all, first, lanes);
+      const auto& polygons = packet.polygons;
+      const auto &x = packet.x, &n = packet.n;
+      const auto& active = packet.active;
       for (int kind = 0; kind < int(Aim::Count); ++kind) {
         float w[3][kMaxPacketLanes] = {}, p[3][kMaxPacketLanes] = {}, pdf[kMaxPacketLanes],
               scalarLanes[kMaxPacketLanes];

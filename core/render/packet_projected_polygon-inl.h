@@ -262,9 +262,8 @@ HWY_INLINE void projectedPolygon(const PolygonLanes& light, const V3F& x, const 
     const V3D unit = scaled(m[i], one / hn::Sqrt(len2));
     en[i] = {hn::IfThenElseZero(nonZero, unit.x), hn::IfThenElseZero(nonZero, unit.y),
              hn::IfThenElseZero(nonZero, unit.z)};
-    const MD kept = hn::And(nonZero, present[i]);
-    c.edgeNormals[i] = {hn::IfThenElseZero(kept, unit.x), hn::IfThenElseZero(kept, unit.y),
-                        hn::IfThenElseZero(kept, unit.z)};
+    c.edgeNormals[i] = {hn::IfThenElseZero(present[i], en[i].x), hn::IfThenElseZero(present[i], en[i].y),
+                        hn::IfThenElseZero(present[i], en[i].z)};
     zenithInside = hn::AndNot(hn::And(present[i], en[i].z < zero), zenithInside);
     const VD r2 = pts[i].x * pts[i].x + pts[i].y * pts[i].y;
     hasAzimuth[i] = r2 > zero;

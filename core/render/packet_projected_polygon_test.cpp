@@ -44,14 +44,10 @@ TEST(PacketProjectedPolygon, MapsWhatTheScalarMapMaps) {
     Rng rng(5, 1);
     int inLanes = 0, byScalar = 0, none = 0, zenithInside = 0, zenithOutside = 0, halved = 0;
     for (size_t first = 0; first < all.size(); first += size_t(lanes)) {
-      std::vector<PacketPolygonLight> polygons;
-      float x[3][kMaxPacketLanes] = {}, n[3][kMaxPacketLanes] = {}, active[kMaxPacketLanes] = {};
-      for (int k = 0; k < lanes; ++k) {
-        const Setting& s = all[std::min(first + size_t(k), all.size() - 1)];
-        polygons.push_back(packetPolygonLight(s.light));
-        for (int c = 0; c < 3; ++c) x[c][k] = s.x[c], n[c][k] = s.n[c];
-        active[k] = first + size_t(k) < all.size() && (first + size_t(k)) % 7 != 6 ? 1.f : 0.f;
-      }
+      const test::SettingLanes packet = test::settingLanes(all, first, lanes);
+      const auto& polygons = packet.polygons;
+      const auto &x = packet.x, &n = packet.n;
+      const auto& active = packet.active;
       for (int draw = 0; draw < 6; ++draw) {
         float u[2][kMaxPacketLanes];
         for (int k = 0; k < lanes; ++k) {
