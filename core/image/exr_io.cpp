@@ -9,6 +9,7 @@
 #include <ImfStringAttribute.h>
 #include <ImfThreading.h>
 #include <half.h>
+#include <openexr.h>
 
 #include <algorithm>
 #include <cstdint>
@@ -222,10 +223,56 @@ void checkExrHeader(const std::string& path) {
   std::fclose(f);
 }
 
+void ignoreExrCoreError(exr_const_context_t, exr_result_t, const char*) {}
+
+// Every chunk of the first part's level-0 image must have a valid entry in the chunk offset table
+// (OpenEXR's core library checks each entry against the file's size). A corrupt file declaring a huge
+// data window in a few hundred bytes is then refused before memory for the window is allocated; the
+// C++ library would allocate first and notice the missing chunks while reading them.
+void checkExrChunks(const std::string& path) {
+  exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+  init.error_handler_fn = ignoreExrCoreError;
+  exr_context_t context = nullptr;
+  if (exr_start_read(&context, path.c_str(), &init) != EXR_ERR_SUCCESS) {
+    exr_finish(&context);
+    return;  // the C++ library reports what is wrong with the header
+  }
+  exr_storage_t storage{};
+  exr_attr_box2i_t window{};
+  const bool ok = exr_get_storage(context, 0, &storage) == EXR_ERR_SUCCESS &&
+                  exr_get_data_window(context, 0, &window) == EXR_ERR_SUCCESS;
+  std::string missing;
+  exr_chunk_info_t chunk;
+  if (ok && storage == EXR_STORAGE_SCANLINE) {
+    int32_t linesPerChunk = 0;
+    if (exr_get_scanlines_per_chunk(context, 0, &linesPerChunk) != EXR_ERR_SUCCESS || linesPerChunk < 1)
+      linesPerChunk = 1;
+    for (int64_t y = window.min.y; y <= window.max.y && missing.empty(); y += linesPerChunk)
+      if (exr_read_scanline_chunk_info(context, 0, int(y), &chunk) != EXR_ERR_SUCCESS)
+        missing = "scan line " + std::to_string(y);
+  } else if (ok && storage == EXR_STORAGE_TILED) {
+    int32_t tileW = 0, tileH = 0;
+    if (exr_get_tile_sizes(context, 0, 0, 0, &tileW, &tileH) == EXR_ERR_SUCCESS && tileW > 0 && tileH > 0) {
+      const int64_t tilesX = (int64_t(window.max.x) - window.min.x + tileW) / tileW;
+      const int64_t tilesY = (int64_t(window.max.y) - window.min.y + tileH) / tileH;
+      for (int64_t ty = 0; ty < tilesY && missing.empty(); ++ty)
+        for (int64_t tx = 0; tx < tilesX && missing.empty(); ++tx)
+          if (exr_read_tile_chunk_info(context, 0, int(tx), int(ty), 0, 0, &chunk) != EXR_ERR_SUCCESS)
+            missing = "tile (" + std::to_string(tx) + ", " + std::to_string(ty) + ")";
+    }
+  }
+  exr_finish(&context);
+  if (!missing.empty())
+    throw Error(
+        path, 0,
+        "EXR is incomplete or corrupt: the chunk of " + missing + " is missing or lies outside the file");
+}
+
 }  // namespace
 
 Image readExr(const std::string& path, ImageMetadata* metadata) {
   checkExrHeader(path);
+  checkExrChunks(path);
   try {
     Imf::InputFile file(path.c_str());
     const Imf::Header& header = file.header();
