@@ -120,6 +120,24 @@ int ProjectedPolygon::azimuthIntervals(const double* alpha, int vertexCount, Azi
   return count;
 }
 
+int ProjectedPolygon::clipToUpperHalfSpace(const DVec3* points, const DVec3* normals, int count,
+                                           DVec3* clipped, DVec3* clippedNormals) {
+  int out = 0;
+  for (int i = 0; i < count; ++i) {
+    const DVec3& a = points[i];
+    const DVec3& b = points[(i + 1) % count];
+    const bool aIn = a.z >= 0, bIn = b.z >= 0;
+    if (aIn) clipped[out] = a, clippedNormals[out++] = normals[i];
+    if (aIn != bIn) {
+      DVec3 p = a + (b - a) * (a.z / (a.z - b.z));
+      p.z = 0;
+      clipped[out] = p;
+      clippedNormals[out++] = aIn ? DVec3(0, 0, 1) : normals[i];
+    }
+  }
+  return out;
+}
+
 bool ProjectedPolygon::init(const Vec3* vertices, int count, const Vec3& x, const Vec3& n) {
   projectedSolidAngle = 0;
   wedgeCount = 0;
@@ -154,23 +172,8 @@ bool ProjectedPolygon::init(const Vec3* vertices, int count, const Vec3& x, cons
     }
   }
 
-  // Clip to the upper half space (Sutherland–Hodgman); each output vertex carries the normal of the edge
-  // that starts at it: the original edge's (its part above the horizon lies on the same great circle)
-  // or, from a point where the polygon leaves the upper half space, the horizon's.
   DVec3 clipped[kMaxVertices], normals[kMaxVertices];
-  int vertexCount = 0;
-  for (int i = 0; i < count; ++i) {
-    const DVec3& a = pts[i];
-    const DVec3& b = pts[(i + 1) % count];
-    const bool aIn = a.z >= 0, bIn = b.z >= 0;
-    if (aIn) clipped[vertexCount] = a, normals[vertexCount++] = m[i];
-    if (aIn != bIn) {
-      DVec3 p = a + (b - a) * (a.z / (a.z - b.z));
-      p.z = 0;
-      clipped[vertexCount] = p;
-      normals[vertexCount++] = aIn ? DVec3(0, 0, 1) : m[i];
-    }
-  }
+  const int vertexCount = clipToUpperHalfSpace(pts, m, count, clipped, normals);
   if (vertexCount < 3) return false;
 
   // Unit edge normals; the zenith is inside when every edge has it on its inner side.

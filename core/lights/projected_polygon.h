@@ -63,6 +63,14 @@ struct ProjectedPolygon {
   // degenerate). Which side of the polygon emits is the light's business, not the map's.
   bool init(const Vec3* vertices, int count, const Vec3& x, const Vec3& n);
 
+  // Sutherland–Hodgman against the upper half space z ≥ 0 of the local frame: `points` (count of them,
+  // in order) with the normal of the edge that starts at each, into `clipped` and `clippedNormals` (at
+  // most count + 1 each). An edge's part above the horizon keeps its great circle's normal; from a point
+  // where the polygon leaves the upper half space the edge runs along the horizon, normal (0, 0, 1).
+  // Returns the clipped vertex count.
+  static int clipToUpperHalfSpace(const DVec3* points, const DVec3* normals, int count, DVec3* clipped,
+                                  DVec3* clippedNormals);
+
   // Where the zenith is outside the clipped polygon, the wedges between consecutive vertex azimuths:
   // the vertices ordered by `alpha` (any increasing function of their azimuth over less than a turn),
   // each wedge with the vertices it starts and ends at and the edge of each chain from the lowest

@@ -593,8 +593,7 @@ void ProjectedPolygons(const std::vector<PacketPolygonLight>& polygons, const fl
   hn::StoreU(dir.y, dd, w[1]);
   hn::StoreU(dir.z, dd, w[2]);
   hn::StoreU(hn::IfThenElseZero(map.inLanes, map.projectedSolidAngle), dd, projected);
-  const VF one = setF(1.f);
-  hn::StoreU(hn::IfThenElse(toF(map.inLanes), one, hn::IfThenElseZero(map.byScalar, setF(2.f))), df, mapped);
+  hn::StoreU(hn::IfThenElseZero(toF(map.inLanes), setF(1.f)), df, mapped);
 }
 template <LightMeasure kMeasure>
 void polygonLightPdfs(const std::vector<PacketPolygonLight>& polygons, const V3F& x, const V3F& n, MF active,

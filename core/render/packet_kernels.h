@@ -134,9 +134,8 @@ using PacketTablePicks = void (*)(const PacketLightTable& table, const float (&u
 
 // LightTechnique<ProjectedSolidAngle, PolygonLight>'s map of lane k's polygon light (polygons[k]) seen
 // from x[.][k] with shading normal n[.][k], in the lanes whose active[k] is not 0: mapped[k] is 1 where
-// the lanes sample it (then w[.][k] is the direction of draw u and projected[k] its Ω⊥), 2 where the
-// scalar technique does (the polygon reaches below the horizon), 0 where nothing is sampled. The
-// shading kernels sample this way; this entry lets the map be tested alone.
+// the lanes sample it (then w[.][k] is the direction of draw u and projected[k] its Ω⊥), 0 where nothing
+// is sampled. The shading kernels sample this way; this entry lets the map be tested alone.
 using PacketProjectedPolygons =
     void (*)(const std::vector<PacketPolygonLight>& polygons, const float (&x)[3][kMaxPacketLanes],
              const float (&n)[3][kMaxPacketLanes], const float (&active)[kMaxPacketLanes],

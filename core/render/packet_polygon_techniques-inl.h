@@ -157,7 +157,7 @@ struct PolygonTechnique {
       if (hn::AllFalse(DF(), active)) return active;
       projectedPolygon(light, x, n, active, projected);
       anyProjected = !hn::AllFalse(DD(), projected.inLanes);
-      return projected.byScalar;
+      return hn::FirstN(DF(), 0);  // every polygon is mapped in lanes, clipped to the horizon or not
     }
     if constexpr (!kMaps) return hn::FirstN(DF(), 0);
     const MF triangles = hn::AndNot(light.parallelogram, active);

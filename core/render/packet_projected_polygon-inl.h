@@ -2,10 +2,9 @@
 // of the polygon onto the disk, wedges between vertex azimuths, the azimuth inverted by Newton's method
 // with bisection) set up for each lane's light at its shading point and sampled, mirrored operation by
 // operation in double; its atan2 is portableAtan2 (the same bits in lanes), and libm's hypot is called
-// lane by lane on the lanes that need it. A
-// polygon wholly in the closed upper half space of a lane's shading normal is mapped in lanes; one that
-// reaches below the horizon (which the map clips, changing its vertex count) is left to the scalar
-// technique in its lane.
+// lane by lane on the lanes that need it. A polygon that reaches below the horizon of a lane's shading
+// normal is clipped in that lane by the scalar map's own clip (its vertex count changes: up to five
+// vertices, one edge on the horizon); everything after the clip runs in lanes.
 // Part of the packet kernels: included by packet_kernels.cpp once per instruction set (Highway's
 // re-inclusion toggle below), inside that set's namespace.
 #if defined(PENUMBRA_PACKET_PROJECTED_POLYGON_INL_H_) == defined(HWY_TARGET_TOGGLE)
@@ -32,8 +31,10 @@ namespace hn = hwy::HWY_NAMESPACE;
 // ProjectedPolygon's data in lanes: a wedge per slot, each lane's wedges in the scalar map's order with
 // slots it does not use left empty (`real` false, area 0).
 struct ProjectedPolygonLanes {
-  // Four edges or azimuth intervals, each halved at most once.
-  static constexpr int kIntervals = 4, kSlots = 2 * kIntervals;
+  // Five edges (a parallelogram clipped to the horizon) or four azimuth intervals, each halved at most
+  // once.
+  static constexpr int kVertices = ProjectedPolygon::kMaxVertices;
+  static constexpr int kIntervals = kVertices, kSlots = 2 * kIntervals;
   struct EdgeLanes {
     VD k, gx, gy, p0, pd, alpha, beta;
   };
@@ -43,13 +44,12 @@ struct ProjectedPolygonLanes {
     MD hasInner, real;
   };
   V3D origin, ex, ey, ez;
-  V3D edgeNormals[4];  // unit, in the local frame; slot 3 zero for triangles
+  V3D edgeNormals[kVertices];  // unit, in the local frame; zero past the clipped polygon's edges
   WedgeLanes wedges[kSlots];
   bool slotUsed[kSlots];  // real in some lane
   VD projectedSolidAngle;
   VF projected;  // Ω⊥ as LightTechnique rounds it (0 where nothing is sampled in lanes)
   MD inLanes;    // mapped in lanes with something to sample
-  MF byScalar;   // left to the scalar technique: the polygon reaches below the horizon
 };
 
 namespace projected_polygon {
@@ -182,6 +182,51 @@ HWY_INLINE void radiusAt(const EdgeLanes& e, VD gv, VD v2, VD& rho2, VD& z2) {
   z2 = hn::IfThenElse(some, gv * gv / sum, setD(1.0));
 }
 
+// ProjectedPolygon::clipToUpperHalfSpace in the lanes of `clip`, lane by lane (the clip changes the
+// vertex count): the polygon pts (count vertices, edge normals m) into cp and cm, count updated. Other
+// lanes keep theirs.
+HWY_INLINE void clipLanes(MD clip, const V3D* pts, const V3D* m, V3D* cp, V3D* cm, VD& count) {
+  constexpr int kVertices = ProjectedPolygonLanes::kVertices;
+  const DD dd;
+  HWY_ALIGN double in[2][4][3][kMaxPacketLanes], out[2][kVertices][3][kMaxPacketLanes];
+  HWY_ALIGN double counts[kMaxPacketLanes], clipped[kMaxPacketLanes];
+  for (int i = 0; i < 4; ++i) {
+    const V3D* sources[2] = {&pts[i], &m[i]};
+    for (int j = 0; j < 2; ++j) {
+      hn::Store(sources[j]->x, dd, in[j][i][0]);
+      hn::Store(sources[j]->y, dd, in[j][i][1]);
+      hn::Store(sources[j]->z, dd, in[j][i][2]);
+    }
+  }
+  hn::Store(count, dd, counts);
+  hn::Store(hn::IfThenElseZero(clip, setD(1.0)), dd, clipped);
+  for (size_t k = 0; k < hn::Lanes(dd); ++k) {
+    DVec3 points[4], normals[4], outPoints[kVertices], outNormals[kVertices];
+    int n = 0;
+    if (clipped[k] != 0) {
+      const int vertices = int(counts[k]);
+      for (int i = 0; i < vertices; ++i) {
+        points[i] = DVec3(in[0][i][0][k], in[0][i][1][k], in[0][i][2][k]);
+        normals[i] = DVec3(in[1][i][0][k], in[1][i][1][k], in[1][i][2][k]);
+      }
+      n = ProjectedPolygon::clipToUpperHalfSpace(points, normals, vertices, outPoints, outNormals);
+      counts[k] = n;
+    }
+    for (int i = 0; i < kVertices; ++i)
+      for (int a = 0; a < 3; ++a) {
+        out[0][i][a][k] = i < n ? outPoints[i][a] : 0.0;
+        out[1][i][a][k] = i < n ? outNormals[i][a] : 0.0;
+      }
+  }
+  for (int i = 0; i < kVertices; ++i) {
+    const V3D p{hn::Load(dd, out[0][i][0]), hn::Load(dd, out[0][i][1]), hn::Load(dd, out[0][i][2])};
+    const V3D q{hn::Load(dd, out[1][i][0]), hn::Load(dd, out[1][i][1]), hn::Load(dd, out[1][i][2])};
+    cp[i] = HWY_NAMESPACE::select(clip, p, cp[i]);
+    cm[i] = HWY_NAMESPACE::select(clip, q, cm[i]);
+  }
+  count = hn::IfThenElse(clip, hn::Load(dd, counts), count);
+}
+
 }  // namespace projected_polygon
 
 // LightTechnique<ProjectedSolidAngle, PolygonLight>'s set-up (ProjectedPolygon::init) of each lane's
@@ -195,11 +240,10 @@ HWY_INLINE void projectedPolygon(const PolygonLanes& light, const V3F& x, const 
   using pp::WedgeLanes;
   const DD dd;
   const VD zero = hn::Zero(dd), one = setD(1.0);
-  constexpr int kIntervals = ProjectedPolygonLanes::kIntervals;
+  constexpr int kIntervals = ProjectedPolygonLanes::kIntervals, kVertices = ProjectedPolygonLanes::kVertices;
   c.origin = promote(x);
   MD ok = validAndFacing(light, x, active);
   c.inLanes = hn::FirstN(dd, 0);
-  c.byScalar = hn::FirstN(DF(), 0);
   c.projected = hn::Zero(DF());
   c.projectedSolidAngle = zero;
   for (bool& used : c.slotUsed) used = false;
@@ -242,70 +286,76 @@ HWY_INLINE void projectedPolygon(const PolygonLanes& light, const V3F& x, const 
     pts[i] = pp::select(forward, rel[i], reversedPts[i]);
     m[i] = pp::select(forward, cross(rel[i], edges[i]), cross(reversedPts[i], negated(reversedEdges[i])));
   }
-  // Every vertex above the horizon or on it: the clip keeps the polygon as it is. Else the scalar map.
+  // Clipped to the upper half space: a polygon with every vertex on or above the horizon is kept as it
+  // is; one reaching below it is clipped lane by lane.
+  V3D cp[kVertices], cm[kVertices];
+  for (int i = 0; i < 4; ++i) cp[i] = pts[i], cm[i] = m[i];
+  cp[4] = cm[4] = V3D{zero, zero, zero};
+  VD count = hn::IfThenElse(quad, setD(4.0), setD(3.0));
   MD above = hn::And(pts[0].z >= zero, hn::And(pts[1].z >= zero, pts[2].z >= zero));
   above = hn::And(above, hn::Or(hn::Not(quad), pts[3].z >= zero));
-  c.byScalar = toF(hn::AndNot(above, ok));
-  ok = hn::And(ok, above);
+  const MD clip = hn::AndNot(above, ok);
+  if (!hn::AllFalse(dd, clip)) pp::clipLanes(clip, pts, m, cp, cm, count);
+  ok = hn::And(ok, count >= setD(3.0));
   if (hn::AllFalse(dd, ok)) return;
 
   // Unit edge normals, the zenith's side, the vertices' unit azimuths.
-  V3D en[4];
-  AzimuthLanes az[4];
-  MD hasAzimuth[4];
-  const MD all = hn::Not(hn::FirstN(dd, 0));
-  const MD present[4] = {all, all, all, quad};  // slot 3: parallelograms only
-  MD zenithInside = all;
-  for (int i = 0; i < 4; ++i) {
-    const VD len2 = dot(m[i], m[i]);
+  V3D en[kVertices];
+  AzimuthLanes az[kVertices];
+  MD hasAzimuth[kVertices], present[kVertices];
+  MD zenithInside = hn::Not(hn::FirstN(dd, 0));
+  for (int i = 0; i < kVertices; ++i) {
+    present[i] = count > setD(double(i));
+    const VD len2 = dot(cm[i], cm[i]);
     const MD nonZero = len2 > zero;
-    const V3D unit = scaled(m[i], one / hn::Sqrt(len2));
+    const V3D unit = scaled(cm[i], one / hn::Sqrt(len2));
     en[i] = {hn::IfThenElseZero(nonZero, unit.x), hn::IfThenElseZero(nonZero, unit.y),
              hn::IfThenElseZero(nonZero, unit.z)};
     c.edgeNormals[i] = {hn::IfThenElseZero(present[i], en[i].x), hn::IfThenElseZero(present[i], en[i].y),
                         hn::IfThenElseZero(present[i], en[i].z)};
     zenithInside = hn::AndNot(hn::And(present[i], en[i].z < zero), zenithInside);
-    const VD r2 = pts[i].x * pts[i].x + pts[i].y * pts[i].y;
+    const VD r2 = cp[i].x * cp[i].x + cp[i].y * cp[i].y;
     hasAzimuth[i] = r2 > zero;
     const VD inv = hn::IfThenElseZero(hasAzimuth[i], one / hn::Sqrt(r2));
-    az[i] = {hn::IfThenElse(hasAzimuth[i], pts[i].x * inv, one),
-             hn::IfThenElseZero(hasAzimuth[i], pts[i].y * inv)};
+    az[i] = {hn::IfThenElse(hasAzimuth[i], cp[i].x * inv, one),
+             hn::IfThenElseZero(hasAzimuth[i], cp[i].y * inv)};
   }
 
   // Where the zenith is outside: the vertices' pseudo-angles about the sum of their azimuths, and each
   // lane's wedges between consecutive azimuths (ProjectedPolygon::azimuthIntervals, lane by lane).
   AzimuthLanes ref{zero, zero};
-  for (int i = 0; i < 4; ++i)
+  for (int i = 0; i < kVertices; ++i)
     ref = pp::select(present[i], AzimuthLanes{ref.x + az[i].x, ref.y + az[i].y}, ref);
   const MD outside = hn::AndNot(zenithInside, ok);
   ok = hn::AndNot(hn::AndNot(ref.x * ref.x + ref.y * ref.y > zero, outside), ok);
-  HWY_ALIGN double alpha[4][kMaxPacketLanes], onOutside[kMaxPacketLanes], quads[kMaxPacketLanes];
+  HWY_ALIGN double alpha[kVertices][kMaxPacketLanes], onOutside[kMaxPacketLanes], counts[kMaxPacketLanes];
   HWY_ALIGN double intervals[4][kIntervals][kMaxPacketLanes];  // from, to, edgeA, edgeB; -1: none
-  for (int i = 0; i < 4; ++i) hn::Store(pp::pseudoAngle(ref, az[i]), dd, alpha[i]);
+  for (int i = 0; i < kVertices; ++i) hn::Store(pp::pseudoAngle(ref, az[i]), dd, alpha[i]);
   hn::Store(hn::IfThenElseZero(hn::And(ok, outside), one), dd, onOutside);
-  hn::Store(hn::IfThenElseZero(quad, one), dd, quads);
+  hn::Store(count, dd, counts);
   for (size_t k = 0; k < hn::Lanes(dd); ++k) {
-    ProjectedPolygon::AzimuthInterval found[ProjectedPolygon::kMaxVertices];
-    int count = 0;
+    ProjectedPolygon::AzimuthInterval intervalsFound[kVertices];
+    int found = 0;
     if (onOutside[k] != 0) {
-      const double laneAlpha[4] = {alpha[0][k], alpha[1][k], alpha[2][k], alpha[3][k]};
-      count = ProjectedPolygon::azimuthIntervals(laneAlpha, quads[k] != 0 ? 4 : 3, found);
+      double laneAlpha[kVertices];
+      for (int i = 0; i < kVertices; ++i) laneAlpha[i] = alpha[i][k];
+      found = ProjectedPolygon::azimuthIntervals(laneAlpha, int(counts[k]), intervalsFound);
     }
     for (int s = 0; s < kIntervals; ++s) {
-      const bool has = s < count;
-      intervals[0][s][k] = has ? found[s].from : -1;
-      intervals[1][s][k] = has ? found[s].to : -1;
-      intervals[2][s][k] = has ? found[s].edgeA : -1;
-      intervals[3][s][k] = has ? found[s].edgeB : -1;
+      const bool has = s < found;
+      intervals[0][s][k] = has ? intervalsFound[s].from : -1;
+      intervals[1][s][k] = has ? intervalsFound[s].to : -1;
+      intervals[2][s][k] = has ? intervalsFound[s].edgeA : -1;
+      intervals[3][s][k] = has ? intervalsFound[s].edgeB : -1;
     }
   }
 
   // addWedge per interval: one wedge, or two halves when it spans more than 3π/4.
   for (int s = 0; s < kIntervals; ++s) {
     // The zenith inside: the wedge from vertex s to its successor, under edge s.
-    const int next = (s + 1) % 4;
-    const AzimuthLanes insideTo = s == 2 ? pp::select(quad, az[3], az[0]) : az[next];
-    const MD insideHasTo = s == 2 ? pp::select(quad, hasAzimuth[3], hasAzimuth[0]) : hasAzimuth[next];
+    const VD next = hn::IfThenElseZero(count > setD(double(s + 1)), setD(double(s + 1)));
+    const AzimuthLanes insideTo = pp::atIndex(next, az, kVertices);
+    const MD insideHasTo = pp::atIndex(next, hasAzimuth, kVertices);
     const MD insideReal = hn::And(hn::And(zenithInside, present[s]), hn::And(hasAzimuth[s], insideHasTo));
     // The zenith outside: between two consecutive azimuths, under one edge of each chain.
     const VD fromIndex = hn::Load(dd, intervals[0][s]), toIndex = hn::Load(dd, intervals[1][s]);
@@ -316,9 +366,10 @@ HWY_INLINE void projectedPolygon(const PolygonLanes& light, const V3F& x, const 
       pp::clearWedge(c.wedges[2 * s + 1]);
       continue;
     }
-    const AzimuthLanes outsideFrom = pp::atIndex(fromIndex, az, 4), outsideTo = pp::atIndex(toIndex, az, 4);
-    const EdgeLanes ea = pp::edgeOf(pp::atIndex(hn::Load(dd, intervals[2][s]), en, 4));
-    const EdgeLanes eb = pp::edgeOf(pp::atIndex(hn::Load(dd, intervals[3][s]), en, 4));
+    const AzimuthLanes outsideFrom = pp::atIndex(fromIndex, az, kVertices);
+    const AzimuthLanes outsideTo = pp::atIndex(toIndex, az, kVertices);
+    const EdgeLanes ea = pp::edgeOf(pp::atIndex(hn::Load(dd, intervals[2][s]), en, kVertices));
+    const EdgeLanes eb = pp::edgeOf(pp::atIndex(hn::Load(dd, intervals[3][s]), en, kVertices));
     const AzimuthLanes um{outsideFrom.x + outsideTo.x, outsideFrom.y + outsideTo.y};
     const MD aOuter = ea.k * hn::Abs(pp::gDot(eb, um)) >= eb.k * hn::Abs(pp::gDot(ea, um));
 
