@@ -629,6 +629,20 @@ void PolygonLightPdfs(LightMeasure measure, const std::vector<PacketPolygonLight
       return polygonLightPdfs<LightMeasure::ProjectedSolidAngle>(polygons, xs, ns, on, ws, ps, pdf, byScalar);
   }
 }
+void AzimuthIntervals(const double (&alpha)[5][kMaxPacketLanes], const double (&count)[kMaxPacketLanes],
+                      double (&intervals)[4][4][kMaxPacketLanes]) {
+  const DD dd;
+  VD alphas[5];
+  for (int i = 0; i < 5; ++i) alphas[i] = hn::LoadU(dd, alpha[i]);
+  projected_polygon::IntervalLanes found[ProjectedPolygonLanes::kIntervals];
+  projected_polygon::azimuthIntervals(alphas, hn::LoadU(dd, count), found);
+  for (int s = 0; s < 4; ++s) {
+    hn::StoreU(found[s].from, dd, intervals[s][0]);
+    hn::StoreU(found[s].to, dd, intervals[s][1]);
+    hn::StoreU(found[s].edgeA, dd, intervals[s][2]);
+    hn::StoreU(found[s].edgeB, dd, intervals[s][3]);
+  }
+}
 int Lanes() {
   return static_cast<int>(hn::Lanes(DD()));
 }
@@ -649,11 +663,11 @@ struct PacketTarget {
 };
 
 // One compiled set's entry: its bit, its kernels, its lane count.
-#define PENUMBRA_PACKET_TARGET(bit, ns)                                                 \
-  {                                                                                     \
-    bit, {&ns::ShadePacket, &ns::CameraRays,        &ns::SamplerDraws,    &ns::FilmAdd, \
-          &ns::TablePicks,  &ns::ProjectedPolygons, &ns::PolygonLightPdfs},             \
-        &ns::Lanes                                                                      \
+#define PENUMBRA_PACKET_TARGET(bit, ns)                                                            \
+  {                                                                                                \
+    bit, {&ns::ShadePacket, &ns::CameraRays,        &ns::SamplerDraws,     &ns::FilmAdd,           \
+          &ns::TablePicks,  &ns::ProjectedPolygons, &ns::PolygonLightPdfs, &ns::AzimuthIntervals}, \
+        &ns::Lanes                                                                                 \
   }
 
 // The sets this file was compiled for, best first.

@@ -155,6 +155,14 @@ using PacketPolygonLightPdfs = void (*)(LightMeasure measure, const std::vector<
                                         const float (&p)[3][kMaxPacketLanes], float (&pdf)[kMaxPacketLanes],
                                         float (&byScalar)[kMaxPacketLanes]);
 
+// ProjectedPolygon::azimuthIntervals as the projected polygon's lanes compute it, for lane k's vertex
+// pseudo-angles alpha[.][k] (count[k] of them, 3 to 5): intervals[s][.][k] is interval s's from, to,
+// edgeA and edgeB, or -1 each where the s-th and (s+1)-th azimuths in order are equal (the non-empty
+// ones, in order, are the scalar function's). This entry lets the intervals be tested alone.
+using PacketAzimuthIntervals = void (*)(const double (&alpha)[5][kMaxPacketLanes],
+                                        const double (&count)[kMaxPacketLanes],
+                                        double (&intervals)[4][4][kMaxPacketLanes]);
+
 // The kernels of one instruction set.
 struct PacketKernels {
   PacketShader shade;
@@ -164,6 +172,7 @@ struct PacketKernels {
   PacketTablePicks tablePicks;
   PacketProjectedPolygons projectedPolygons;
   PacketPolygonLightPdfs polygonLightPdfs;
+  PacketAzimuthIntervals azimuthIntervals;
 };
 // The kernels of the instruction set in use when it is called (a row renderer takes them once, not
 // per packet).

@@ -95,6 +95,9 @@ HWY_INLINE WedgeLanes select(MD m, const WedgeLanes& a, const WedgeLanes& b) {
           select(m, a.hasInner, b.hasInner),
           select(m, a.real, b.real)};
 }
+HWY_INLINE VD select(MD m, VD a, VD b) {
+  return hn::IfThenElse(m, a, b);
+}
 // v[index] per lane (index a small whole number, below n).
 template <class T>
 HWY_INLINE T atIndex(VD index, const T* v, int n) {
@@ -180,6 +183,80 @@ HWY_INLINE void radiusAt(const EdgeLanes& e, VD gv, VD v2, VD& rho2, VD& z2) {
   const MD some = sum > hn::Zero(DD());
   rho2 = hn::IfThenElseZero(some, k2 / sum);
   z2 = hn::IfThenElse(some, gv * gv / sum, setD(1.0));
+}
+
+// ProjectedPolygon::AzimuthInterval in lanes: vertex and edge indices as whole numbers, -1 for none.
+struct IntervalLanes {
+  VD from, to, edgeA, edgeB;
+};
+
+// ProjectedPolygon::azimuthIntervals in lanes, without compaction: interval s lies between the s-th
+// and (s+1)-th vertex in azimuth order, none where those two azimuths are equal or the polygon has
+// fewer vertices (the non-empty ones keep the scalar function's order, so the wedges' cumulative sums,
+// which add +0 for empty slots, are its sums). alpha[i] is vertex i's pseudo-angle, count the vertex
+// count (3 to 5) per lane; writes out[0] to out[3].
+HWY_INLINE void azimuthIntervals(const VD* alpha, VD count, IntervalLanes* out) {
+  constexpr int kVertices = ProjectedPolygonLanes::kVertices;
+  const VD zero = hn::Zero(DD()), one = setD(1.0), none = setD(-1.0);
+  MD present[kVertices];
+  for (int i = 0; i < kVertices; ++i) present[i] = count > setD(double(i));
+  // The first lowest and first highest vertex (the scalar loop's strict comparisons).
+  VD lo = zero, hi = zero, alphaLo = alpha[0], alphaHi = alpha[0];
+  for (int i = 1; i < kVertices; ++i) {
+    const MD lower = hn::And(present[i], alpha[i] < alphaLo),
+             higher = hn::And(present[i], alpha[i] > alphaHi);
+    lo = hn::IfThenElse(lower, setD(double(i)), lo);
+    alphaLo = hn::IfThenElse(lower, alpha[i], alphaLo);
+    hi = hn::IfThenElse(higher, setD(double(i)), hi);
+    alphaHi = hn::IfThenElse(higher, alpha[i], alphaHi);
+  }
+  // The vertices in azimuth order, ties by index (the scalar insertion sort is stable): a sorting
+  // network on (key, index), absent vertices keyed +∞ so that they sort last.
+  VD key[kVertices], order[kVertices];
+  for (int i = 0; i < kVertices; ++i) {
+    key[i] = hn::IfThenElse(present[i], alpha[i], setD(INFINITY));
+    order[i] = setD(double(i));
+  }
+  auto exchange = [&](int a, int b) {
+    const MD swap = hn::Or(key[a] > key[b], hn::And(key[a] == key[b], order[a] > order[b]));
+    const VD ka = key[a], oa = order[a];
+    key[a] = hn::IfThenElse(swap, key[b], ka);
+    key[b] = hn::IfThenElse(swap, ka, key[b]);
+    order[a] = hn::IfThenElse(swap, order[b], oa);
+    order[b] = hn::IfThenElse(swap, oa, order[b]);
+  };
+  static_assert(kVertices == 5, "the sorting network below sorts five");
+  exchange(0, 3), exchange(1, 4), exchange(0, 2), exchange(1, 3), exchange(0, 1);
+  exchange(2, 4), exchange(1, 2), exchange(3, 4), exchange(2, 3);
+  // (i + 1) mod count and (i − 1) mod count of a vertex index i in [0, count).
+  auto successor = [&](VD i) { return hn::IfThenElseZero(i + one < count, i + one); };
+  auto predecessor = [&](VD i) { return hn::IfThenElse(i > zero, i - one, count - one); };
+  for (int s = 0; s + 1 < kVertices; ++s) {
+    const MD has = hn::And(present[s + 1], key[s + 1] > key[s]);
+    IntervalLanes& r = out[s];
+    r.from = hn::IfThenElse(has, order[s], none);
+    r.to = hn::IfThenElse(has, order[s + 1], none);
+    r.edgeA = r.edgeB = none;
+    if (hn::AllFalse(DD(), has)) continue;
+    const VD mid = setD(0.5) * (key[s] + key[s + 1]);
+    // Chain A runs counter-clockwise from lo to hi (edge i from vertex i to i + 1), chain B clockwise
+    // (edge i − 1 from vertex i to i − 1); each interval lies under the first edge of each chain whose
+    // far end reaches mid, or under the chain's last edge.
+    VD vertexA = lo, vertexB = lo;
+    MD openA = has, openB = has;
+    for (int c = 0; c < kVertices - 1; ++c) {
+      const VD nextA = successor(vertexA);
+      const MD takeA = hn::And(openA, hn::Or(atIndex(nextA, alpha, kVertices) >= mid, nextA == hi));
+      r.edgeA = hn::IfThenElse(takeA, vertexA, r.edgeA);
+      openA = hn::AndNot(takeA, openA);
+      vertexA = nextA;
+      const VD edgeB = predecessor(vertexB);
+      const MD takeB = hn::And(openB, hn::Or(atIndex(edgeB, alpha, kVertices) >= mid, edgeB == hi));
+      r.edgeB = hn::IfThenElse(takeB, edgeB, r.edgeB);
+      openB = hn::AndNot(takeB, openB);
+      vertexB = edgeB;
+    }
+  }
 }
 
 // ProjectedPolygon::clipToUpperHalfSpace in the lanes of `clip`, lane by lane (the clip changes the
@@ -322,33 +399,18 @@ HWY_INLINE void projectedPolygon(const PolygonLanes& light, const V3F& x, const 
   }
 
   // Where the zenith is outside: the vertices' pseudo-angles about the sum of their azimuths, and each
-  // lane's wedges between consecutive azimuths (ProjectedPolygon::azimuthIntervals, lane by lane).
+  // lane's wedges between consecutive azimuths.
   AzimuthLanes ref{zero, zero};
   for (int i = 0; i < kVertices; ++i)
     ref = pp::select(present[i], AzimuthLanes{ref.x + az[i].x, ref.y + az[i].y}, ref);
   const MD outside = hn::AndNot(zenithInside, ok);
   ok = hn::AndNot(hn::AndNot(ref.x * ref.x + ref.y * ref.y > zero, outside), ok);
-  HWY_ALIGN double alpha[kVertices][kMaxPacketLanes], onOutside[kMaxPacketLanes], counts[kMaxPacketLanes];
-  HWY_ALIGN double intervals[4][kIntervals][kMaxPacketLanes];  // from, to, edgeA, edgeB; -1: none
-  for (int i = 0; i < kVertices; ++i) hn::Store(pp::pseudoAngle(ref, az[i]), dd, alpha[i]);
-  hn::Store(hn::IfThenElseZero(hn::And(ok, outside), one), dd, onOutside);
-  hn::Store(count, dd, counts);
-  for (size_t k = 0; k < hn::Lanes(dd); ++k) {
-    ProjectedPolygon::AzimuthInterval intervalsFound[kVertices];
-    int found = 0;
-    if (onOutside[k] != 0) {
-      double laneAlpha[kVertices];
-      for (int i = 0; i < kVertices; ++i) laneAlpha[i] = alpha[i][k];
-      found = ProjectedPolygon::azimuthIntervals(laneAlpha, int(counts[k]), intervalsFound);
-    }
-    for (int s = 0; s < kIntervals; ++s) {
-      const bool has = s < found;
-      intervals[0][s][k] = has ? intervalsFound[s].from : -1;
-      intervals[1][s][k] = has ? intervalsFound[s].to : -1;
-      intervals[2][s][k] = has ? intervalsFound[s].edgeA : -1;
-      intervals[3][s][k] = has ? intervalsFound[s].edgeB : -1;
-    }
-  }
+  VD alpha[kVertices];
+  for (int i = 0; i < kVertices; ++i) alpha[i] = pp::pseudoAngle(ref, az[i]);
+  const VD none = setD(-1.0);
+  pp::IntervalLanes intervals[kIntervals];
+  for (pp::IntervalLanes& interval : intervals) interval = {none, none, none, none};
+  if (!hn::AllFalse(dd, hn::And(ok, outside))) pp::azimuthIntervals(alpha, count, intervals);
 
   // addWedge per interval: one wedge, or two halves when it spans more than 3π/4.
   for (int s = 0; s < kIntervals; ++s) {
@@ -358,8 +420,8 @@ HWY_INLINE void projectedPolygon(const PolygonLanes& light, const V3F& x, const 
     const MD insideHasTo = pp::atIndex(next, hasAzimuth, kVertices);
     const MD insideReal = hn::And(hn::And(zenithInside, present[s]), hn::And(hasAzimuth[s], insideHasTo));
     // The zenith outside: between two consecutive azimuths, under one edge of each chain.
-    const VD fromIndex = hn::Load(dd, intervals[0][s]), toIndex = hn::Load(dd, intervals[1][s]);
-    const MD outsideReal = fromIndex >= zero;
+    const VD fromIndex = intervals[s].from, toIndex = intervals[s].to;
+    const MD outsideReal = hn::And(outside, fromIndex >= zero);
     MD placed = hn::And(ok, pp::select(zenithInside, insideReal, outsideReal));
     if (hn::AllFalse(dd, placed)) {
       pp::clearWedge(c.wedges[2 * s]);
@@ -368,8 +430,8 @@ HWY_INLINE void projectedPolygon(const PolygonLanes& light, const V3F& x, const 
     }
     const AzimuthLanes outsideFrom = pp::atIndex(fromIndex, az, kVertices);
     const AzimuthLanes outsideTo = pp::atIndex(toIndex, az, kVertices);
-    const EdgeLanes ea = pp::edgeOf(pp::atIndex(hn::Load(dd, intervals[2][s]), en, kVertices));
-    const EdgeLanes eb = pp::edgeOf(pp::atIndex(hn::Load(dd, intervals[3][s]), en, kVertices));
+    const EdgeLanes ea = pp::edgeOf(pp::atIndex(intervals[s].edgeA, en, kVertices));
+    const EdgeLanes eb = pp::edgeOf(pp::atIndex(intervals[s].edgeB, en, kVertices));
     const AzimuthLanes um{outsideFrom.x + outsideTo.x, outsideFrom.y + outsideTo.y};
     const MD aOuter = ea.k * hn::Abs(pp::gDot(eb, um)) >= eb.k * hn::Abs(pp::gDot(ea, um));
 

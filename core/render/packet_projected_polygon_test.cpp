@@ -102,5 +102,57 @@ TEST(PacketProjectedPolygon, MapsWhatTheScalarMapMaps) {
   }
 }
 
+// The lanes' azimuth intervals are ProjectedPolygon::azimuthIntervals' for every vertex count and every
+// order of pseudo-angles drawn from three values (each of 3^3 + 3^4 + 3^5 arrays: ties of two, three
+// and more vertices, ties at the lowest and the highest azimuth), on every instruction set.
+TEST(PacketProjectedPolygon, AzimuthIntervalsAreTheScalarOnes) {
+  for (const std::string& target : availablePacketTargets()) {
+    ForcedTarget forced(target);
+    const int lanes = std::min(packetLanes(), kMaxPacketLanes);
+    std::vector<std::pair<int, std::array<double, 5>>> cases;
+    for (int count = 3; count <= 5; ++count) {
+      int arrays = 1;
+      for (int i = 0; i < count; ++i) arrays *= 3;
+      for (int code = 0; code < arrays; ++code) {
+        std::array<double, 5> alpha{9, 9, 9, 9, 9};  // absent vertices: values no present one has
+        for (int i = 0, c = code; i < count; ++i, c /= 3) alpha[size_t(i)] = -1.5 + c % 3;
+        cases.push_back({count, alpha});
+      }
+    }
+    int withIntervals = 0;
+    for (size_t first = 0; first < cases.size(); first += size_t(lanes)) {
+      double alpha[5][kMaxPacketLanes], count[kMaxPacketLanes], intervals[4][4][kMaxPacketLanes];
+      for (int k = 0; k < lanes; ++k) {
+        const auto& c = cases[std::min(first + size_t(k), cases.size() - 1)];
+        count[k] = c.first;
+        for (int i = 0; i < 5; ++i) alpha[i][k] = c.second[size_t(i)];
+      }
+      packetKernels().azimuthIntervals(alpha, count, intervals);
+      for (int k = 0; k < lanes && first + size_t(k) < cases.size(); ++k) {
+        const auto& c = cases[first + size_t(k)];
+        SCOPED_TRACE(target + " case " + std::to_string(first + size_t(k)));
+        ProjectedPolygon::AzimuthInterval expected[ProjectedPolygon::kMaxVertices];
+        const int found = ProjectedPolygon::azimuthIntervals(c.second.data(), c.first, expected);
+        int next = 0;
+        for (int s = 0; s < 4; ++s) {
+          if (intervals[s][0][k] < 0) {
+            ASSERT_EQ(intervals[s][1][k], -1);
+            continue;
+          }
+          ASSERT_LT(next, found);
+          EXPECT_EQ(intervals[s][0][k], expected[next].from);
+          EXPECT_EQ(intervals[s][1][k], expected[next].to);
+          EXPECT_EQ(intervals[s][2][k], expected[next].edgeA);
+          EXPECT_EQ(intervals[s][3][k], expected[next].edgeB);
+          ++next;
+        }
+        ASSERT_EQ(next, found);
+        withIntervals += found > 0;
+      }
+    }
+    EXPECT_EQ(withIntervals, 27 + 81 + 243 - 9);  // all but the three arrays of equal values per count
+  }
+}
+
 }  // namespace
 }  // namespace penumbra
