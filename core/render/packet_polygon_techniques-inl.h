@@ -2,10 +2,9 @@
 // PolygonLight> in lanes), of one light broadcast to every lane or of each lane's own: by area in lanes
 // (samplePolygonArea); by the solid angle in lanes on the spherical triangles' and rectangles' maps
 // (packet_spherical_polygons-inl.h); by the projected solid angle in lanes on the clipped polygon's map
-// (packet_projected_polygon-inl.h); the rest (sheared parallelograms and polygons too small for the maps
-// by the solid angle, polygons reaching below a lane's horizon by the projected solid angle) by the
-// scalar techniques lane by lane (ScalarLightSamples), the rest of each draw (shadow ray, reflection,
-// weights, sums) in lanes.
+// (packet_projected_polygon-inl.h, clipped to each lane's horizon); the rest (sheared parallelograms
+// and polygons too small for the maps by the solid angle) by the scalar techniques lane by lane
+// (ScalarLightSamples), the rest of each draw (shadow ray, reflection, weights, sums) in lanes.
 // Part of the packet kernels: included by packet_kernels.cpp once per instruction set (Highway's
 // re-inclusion toggle below), inside that set's namespace.
 #if defined(PENUMBRA_PACKET_POLYGON_TECHNIQUES_INL_H_) == defined(HWY_TARGET_TOGGLE)

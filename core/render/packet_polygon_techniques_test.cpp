@@ -72,8 +72,8 @@ Towards aim(const Setting& s, Aim kind, Rng& rng) {
 
 // The lanes' light density of each measure is LightTechnique<measure, PolygonLight>::pdf's, bit for bit,
 // on every instruction set, for directions inside each polygon light, on its boundary, just outside and
-// anywhere; lanes left to the scalar technique are those the lanes cannot map (none by area; polygons
-// reaching below the horizon by the projected solid angle).
+// anywhere; lanes left to the scalar technique are those the lanes cannot map (none by area or by the
+// projected solid angle, which clips polygons reaching below the horizon in lanes).
 template <LightMeasure kMeasure>
 void expectScalarDensities() {
   Rng settingRng(11, 3);
