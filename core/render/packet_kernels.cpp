@@ -565,84 +565,6 @@ uint32_t FilmAdd(const PacketRadiance& radiance, const float (&weight)[kMaxPacke
                  double* sums) {
   return filmAdd(radiance, weight, count, sums);
 }
-void TablePicks(const PacketLightTable& table, const float (&u)[2][kMaxPacketLanes],
-                const float (&active)[kMaxPacketLanes], float (&light)[kMaxPacketLanes],
-                double (&pmf)[kMaxPacketLanes]) {
-  const DF df;
-  pickTableLights(table, hn::LoadU(df, u[0]), hn::LoadU(df, u[1]), hn::LoadU(df, active) != hn::Zero(df),
-                  light, pmf);
-}
-void ProjectedPolygons(const std::vector<PacketPolygonLight>& polygons, const float (&x)[3][kMaxPacketLanes],
-                       const float (&n)[3][kMaxPacketLanes], const float (&active)[kMaxPacketLanes],
-                       const float (&u)[2][kMaxPacketLanes], double (&w)[3][kMaxPacketLanes],
-                       double (&projected)[kMaxPacketLanes], float (&mapped)[kMaxPacketLanes]) {
-  const DF df;
-  const DD dd;
-  HWY_ALIGN float index[kMaxPacketLanes];
-  for (size_t k = 0; k < hn::Lanes(df); ++k) index[k] = float(k);
-  const PolygonLanes light = gatherPolygons(polygons, index);
-  const V3F p{hn::LoadU(df, x[0]), hn::LoadU(df, x[1]), hn::LoadU(df, x[2])};
-  const V3F normal{hn::LoadU(df, n[0]), hn::LoadU(df, n[1]), hn::LoadU(df, n[2])};
-  ProjectedPolygonLanes map;
-  projectedPolygon(light, p, normal, hn::LoadU(df, active) != hn::Zero(df), map);
-  const VD zero = hn::Zero(dd);
-  const V3D dir = hn::AllFalse(dd, map.inLanes)
-                      ? V3D{zero, zero, zero}
-                      : sampleProjectedPolygon(map, hn::LoadU(df, u[0]), hn::LoadU(df, u[1]));
-  hn::StoreU(dir.x, dd, w[0]);
-  hn::StoreU(dir.y, dd, w[1]);
-  hn::StoreU(dir.z, dd, w[2]);
-  hn::StoreU(hn::IfThenElseZero(map.inLanes, map.projectedSolidAngle), dd, projected);
-  hn::StoreU(hn::IfThenElseZero(toF(map.inLanes), setF(1.f)), df, mapped);
-}
-template <LightMeasure kMeasure>
-void polygonLightPdfs(const std::vector<PacketPolygonLight>& polygons, const V3F& x, const V3F& n, MF active,
-                      const V3F& w, const V3F& p, float (&pdf)[kMaxPacketLanes],
-                      float (&byScalar)[kMaxPacketLanes]) {
-  const DF df;
-  HWY_ALIGN float index[kMaxPacketLanes];
-  for (size_t k = 0; k < hn::Lanes(df); ++k) index[k] = float(k);
-  PacketScene scene;  // the scalar lanes are reported, not computed: no scene to query
-  scene.polygons = polygons;
-  PacketHit h{};
-  h.p = x;
-  h.ns = n;
-  const PolygonLanes light = gatherPolygons(polygons, index);
-  const PolygonTechnique<kMeasure> technique(scene, light, index, h, active, 0);
-  hn::StoreU(hn::IfThenZeroElse(technique.scalarLanes, technique.lanesPdf(w, p)), df, pdf);
-  hn::StoreU(hn::IfThenElseZero(technique.scalarLanes, setF(1.f)), df, byScalar);
-}
-void PolygonLightPdfs(LightMeasure measure, const std::vector<PacketPolygonLight>& polygons,
-                      const float (&x)[3][kMaxPacketLanes], const float (&n)[3][kMaxPacketLanes],
-                      const float (&active)[kMaxPacketLanes], const float (&w)[3][kMaxPacketLanes],
-                      const float (&p)[3][kMaxPacketLanes], float (&pdf)[kMaxPacketLanes],
-                      float (&byScalar)[kMaxPacketLanes]) {
-  const DF df;
-  const MF on = hn::LoadU(df, active) != hn::Zero(df);
-  const V3F xs = loadF3(x), ns = loadF3(n), ws = loadF3(w), ps = loadF3(p);
-  switch (measure) {
-    case LightMeasure::Area:
-      return polygonLightPdfs<LightMeasure::Area>(polygons, xs, ns, on, ws, ps, pdf, byScalar);
-    case LightMeasure::SolidAngle:
-      return polygonLightPdfs<LightMeasure::SolidAngle>(polygons, xs, ns, on, ws, ps, pdf, byScalar);
-    case LightMeasure::ProjectedSolidAngle:
-      return polygonLightPdfs<LightMeasure::ProjectedSolidAngle>(polygons, xs, ns, on, ws, ps, pdf, byScalar);
-  }
-}
-void AzimuthIntervals(const double (&alpha)[5][kMaxPacketLanes], const double (&count)[kMaxPacketLanes],
-                      double (&intervals)[4][4][kMaxPacketLanes]) {
-  const DD dd;
-  VD alphas[5];
-  for (int i = 0; i < 5; ++i) alphas[i] = hn::LoadU(dd, alpha[i]);
-  projected_polygon::IntervalLanes found[ProjectedPolygonLanes::kIntervals];
-  projected_polygon::azimuthIntervals(alphas, hn::LoadU(dd, count), found);
-  for (int s = 0; s < 4; ++s) {
-    hn::StoreU(found[s].from, dd, intervals[s][0]);
-    hn::StoreU(found[s].to, dd, intervals[s][1]);
-    hn::StoreU(found[s].edgeA, dd, intervals[s][2]);
-    hn::StoreU(found[s].edgeB, dd, intervals[s][3]);
-  }
-}
 int Lanes() {
   return static_cast<int>(hn::Lanes(DD()));
 }
@@ -650,6 +572,9 @@ int Lanes() {
 }  // namespace HWY_NAMESPACE
 }  // namespace penumbra
 HWY_AFTER_NAMESPACE();
+
+// The entries that let the tests run one piece of a kernel alone.
+#include "core/render/packet_test_entries-inl.h"
 
 #if HWY_ONCE
 namespace penumbra {
