@@ -7,14 +7,15 @@
 //     --benchmark_enable_random_interleaving=true --benchmark_report_aggregates_only=true
 //
 // Every loop builds the same Embree scene as the renderer (the meshes as loaded, RTC_BUILD_QUALITY_HIGH,
-// RTC_SCENE_FLAG_ROBUST), traces one jittered camera ray per pixel with rtcIntersect1, offsets the hit
-// along its geometric normal and traces 4 cosine-distributed occlusion rays from it. They differ only in
-// how the occlusion rays are handed to Embree:
+// RTC_SCENE_FLAG_ROBUST), traces one jittered camera ray per pixel with rtcIntersect1 (the last: as a
+// stream), offsets the hit along its geometric normal and traces 4 cosine-distributed occlusion rays
+// from it. They differ only in how the rays are handed to Embree:
 //   Occluded1   one rtcOccluded1 per ray
 //   Occluded4   the 4 rays of one shading point as an rtcOccluded4 packet
 //   Occluded8   the 8 rays of two camera samples as an rtcOccluded8 packet
 //   Occluded16  the 16 rays of four camera samples as an rtcOccluded16 packet (CPUs with AVX-512 only)
 //   Stream      a row's rays (4 x 768) as one rtcOccluded1M stream (RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT)
+//   Streams     Stream, and the row's camera rays as one rtcIntersect1M stream (..._FLAG_COHERENT)
 // What the loops leave out and the renderer does: the sampler's draws (Owen-scrambled or PCG), the
 // gaussian filter, shading normals, scale-aware ray offsets, per-pixel variance, any scene.
 #include <benchmark/benchmark.h>
@@ -86,14 +87,11 @@ struct Hit {
   bool valid = false;
 };
 
-Hit traceCameraRay(const EmbreeRock& rock, const PerspectiveCamera& camera, int x, int y, FastRng& rng) {
-  const Ray ray = camera.generateRay(Vec2(float(x) + rng.next(), float(y) + rng.next()));
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
-  RTCRayHit rh;
-  setupRay(ray, ray.tMax, rh.ray);
-  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  rtcIntersect1(rock.scene, &context, &rh);
+Ray jitteredCameraRay(const PerspectiveCamera& camera, int x, int y, FastRng& rng) {
+  return camera.generateRay(Vec2(float(x) + rng.next(), float(y) + rng.next()));
+}
+
+Hit shadingPoint(const Ray& ray, const RTCRayHit& rh) {
   Hit hit;
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return hit;
   Vec3 n = glm::normalize(Vec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z));
@@ -102,6 +100,16 @@ Hit traceCameraRay(const EmbreeRock& rock, const PerspectiveCamera& camera, int 
   hit.frame = Frame(n);
   hit.valid = true;
   return hit;
+}
+
+Hit traceCameraRay(const EmbreeRock& rock, const PerspectiveCamera& camera, int x, int y, FastRng& rng) {
+  const Ray ray = jitteredCameraRay(camera, x, y, rng);
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRayHit rh;
+  setupRayHit(ray, rh);
+  rtcIntersect1(rock.scene, &context, &rh);
+  return shadingPoint(ray, rh);
 }
 
 // Occlusion ray `k` of a shading point, in lane `lane` of a packet of N rays (SoA layout).
@@ -166,11 +174,26 @@ float rowOccluded1(const EmbreeRock& rock, const PerspectiveCamera& camera, int 
   return total;
 }
 
+// The row's occlusion rays as one stream; its camera rays one by one, or also as one stream.
 float rowStream(const EmbreeRock& rock, const PerspectiveCamera& camera, int y, FastRng& rng,
-                std::vector<RTCRay>& rays) {
+                std::vector<RTCRay>& rays, std::vector<Ray>& primary, std::vector<RTCRayHit>& primaryHits,
+                bool streamCameraRays) {
+  if (streamCameraRays) {
+    primary.clear();
+    primaryHits.resize(size_t(camera.width()));
+    for (int x = 0; x < camera.width(); ++x) {
+      primary.push_back(jitteredCameraRay(camera, x, y, rng));
+      setupRayHit(primary.back(), primaryHits[size_t(x)]);
+    }
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    rtcIntersect1M(rock.scene, &context, primaryHits.data(), unsigned(primaryHits.size()), sizeof(RTCRayHit));
+  }
   rays.clear();
   for (int x = 0; x < camera.width(); ++x) {
-    const Hit hit = traceCameraRay(rock, camera, x, y, rng);
+    const Hit hit = streamCameraRays ? shadingPoint(primary[size_t(x)], primaryHits[size_t(x)])
+                                     : traceCameraRay(rock, camera, x, y, rng);
     if (!hit.valid) continue;
     for (int k = 0; k < kAoRays; ++k) {
       const Vec3 d = cosineDirection(hit.frame, rng);
@@ -189,7 +212,7 @@ float rowStream(const EmbreeRock& rock, const PerspectiveCamera& camera, int y, 
   return total;
 }
 
-enum class Variant { Occluded1, Occluded4, Occluded8, Occluded16, Stream };
+enum class Variant { Occluded1, Occluded4, Occluded8, Occluded16, Stream, Streams };
 
 void BM_Yardstick_RockAo(benchmark::State& state) {
   const EmbreeRock& rock = embreeRock();
@@ -207,6 +230,8 @@ void BM_Yardstick_RockAo(benchmark::State& state) {
   FastRng rng{0x9E3779B97F4A7C15ULL};
   std::vector<RTCRay> stream;
   stream.reserve(size_t(camera.width()) * kAoRays);
+  std::vector<Ray> primary;
+  std::vector<RTCRayHit> primaryHits;
   double sum = 0;
   int passes = 0;
   for (auto _ : state) {
@@ -225,7 +250,8 @@ void BM_Yardstick_RockAo(benchmark::State& state) {
           sum += pixelsByPackets<16, RTCRay16>(rock, camera, y, rng, rtcOccluded16);
           break;
         case Variant::Stream:
-          sum += rowStream(rock, camera, y, rng, stream);
+        case Variant::Streams:
+          sum += rowStream(rock, camera, y, rng, stream, primary, primaryHits, variant == Variant::Streams);
           break;
       }
     }
@@ -237,7 +263,7 @@ void BM_Yardstick_RockAo(benchmark::State& state) {
 }
 BENCHMARK(BM_Yardstick_RockAo)
     ->ArgName("variant")
-    ->DenseRange(0, 4)
+    ->DenseRange(0, 5)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->MinTime(2.0);

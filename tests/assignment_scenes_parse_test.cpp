@@ -66,7 +66,9 @@ TEST(AssignmentScenes, LightSamplingMeasuresSampleEveryLight) {
         applyOverride(d, "integrator.measure", measure);
       }
       const IntegratorDesc s = buildSettings(d).integrator;
-      if (s.usesLightSelection()) EXPECT_EQ(s.lightSelection, LightSelection::All) << measure;
+      if (s.usesLightSelection()) {
+        EXPECT_EQ(s.lightSelection, LightSelection::All) << measure;
+      }
     }
   }
   EXPECT_GT(lit, 0);

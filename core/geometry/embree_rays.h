@@ -25,6 +25,12 @@ inline void setupRay(const Ray& ray, float tMax, RTCRay& r) {
   r.flags = 0;
 }
 
+inline void setupRayHit(const Ray& ray, RTCRayHit& rh) {
+  setupRay(ray, ray.tMax, rh.ray);
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+}
+
 // An occlusion query's context: Embree's, followed by the sphere the shadow ray must not test.
 struct OcclusionContext {
   RTCIntersectContext base;

@@ -2,6 +2,7 @@
 
 #include <embree3/rtcore.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <string>
@@ -222,10 +223,12 @@ bool SceneGeometry::nearestEmbreeTriangle(const Ray& r, TriangleCandidate& c, in
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRayHit rh;
-  setupRay(r, r.tMax, rh.ray);
-  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  setupRayHit(r, rh);
   rtcIntersect1(static_cast<RTCScene>(scene_.get()), &context, &rh);
+  return readEmbreeHit(rh, c, sphere);
+}
+
+bool SceneGeometry::readEmbreeHit(const RTCRayHit& rh, TriangleCandidate& c, int* sphere) const {
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
   if (spheresInEmbree_ && rh.hit.geomID == sphereGeometryId_) {
     *sphere = static_cast<int>(rh.hit.primID);
@@ -270,63 +273,107 @@ bool SceneGeometry::nearestFlatTriangle(const Ray& r, TriangleCandidate& c) cons
   return true;
 }
 
-bool SceneGeometry::intersect(const Ray& ray, SurfaceHit& hit) const {
-  Ray r = ray;
-  int sphereHit = -1;
+void SceneGeometry::nearestOutsideBvh(const Ray& ray, NearestHit& n) const {
+  n.r = ray;
   for (size_t i = 0; i < flatSphereCount_; ++i) {
     float t;
-    if (spheres_[i].intersect(r, t)) {
-      r.tMax = t;
-      sphereHit = static_cast<int>(i);
+    if (spheres_[i].intersect(n.r, t)) {
+      n.r.tMax = t;
+      n.sphere = static_cast<int>(i);
     }
   }
-
-  const Parallelogram* quadHit = nullptr;
-  float quadU = 0.f, quadV = 0.f;
   for (const Parallelogram& q : quads_) {
     float t, u, v;
-    if (intersectParallelogram(q, r, r.tMax, t, u, v)) {
-      r.tMax = t;
-      quadHit = &q;
-      quadU = u;
-      quadV = v;
+    if (intersectParallelogram(q, n.r, n.r.tMax, t, u, v)) {
+      n.r.tMax = t;
+      n.quad = &q;
+      n.quadU = u;
+      n.quadV = v;
     }
   }
+  if (!flat_.empty() && nearestFlatTriangle(n.r, n.tri)) {
+    n.triHit = true;
+    n.r.tMax = n.tri.isect.t;
+  }
+}
 
-  TriangleCandidate tri;
-  bool triHit = false;
-  if (!flat_.empty() && nearestFlatTriangle(r, tri)) {
-    triHit = true;
-    r.tMax = tri.isect.t;
+void SceneGeometry::takeBvhAnswer(bool triangle, int bvhSphere, const TriangleCandidate& c, NearestHit& n) {
+  if (triangle) {
+    n.tri = c;
+    n.triHit = true;
+  } else if (bvhSphere >= 0) {
+    n.sphere = bvhSphere;
+    n.r.tMax = c.isect.t;
+    n.triHit = false;
+    n.quad = nullptr;
   }
-  if (scene_) {
-    // Every Embree hit is nearer than the ones above (it is bounded by r.tMax).
-    int bvhSphere = -1;
-    if (nearestEmbreeTriangle(r, tri, &bvhSphere)) {
-      triHit = true;
-    } else if (bvhSphere >= 0) {
-      sphereHit = bvhSphere;
-      r.tMax = tri.isect.t;
-      triHit = false;
-      quadHit = nullptr;
-    }
-  }
-  if (triHit) {
+}
+
+bool SceneGeometry::fillNearestHit(const Ray& ray, const NearestHit& n, SurfaceHit& hit) const {
+  if (n.triHit) {
     // Embree hits keep offsets relative to the triangle's coordinates (its t carries that error);
     // brute-force hits are projected and offset relative to |p| (see projectOntoPlane).
-    fillTriangleHit(meshes_[tri.mesh], tri.prim, tri.isect, meshIds_[tri.mesh], hit);
-    if (tri.flat) projectOntoPlane(tri.flat->plane, hit);
+    fillTriangleHit(meshes_[n.tri.mesh], n.tri.prim, n.tri.isect, meshIds_[n.tri.mesh], hit);
+    if (n.tri.flat) projectOntoPlane(n.tri.flat->plane, hit);
     return true;
   }
-  if (quadHit) {
-    fillParallelogramHit(*quadHit, ray, r.tMax, quadU, quadV, meshIds_[quadHit->mesh], hit);
+  if (n.quad) {
+    fillParallelogramHit(*n.quad, ray, n.r.tMax, n.quadU, n.quadV, meshIds_[n.quad->mesh], hit);
     return true;
   }
-  if (sphereHit >= 0) {
-    spheres_[sphereHit].fillHit(ray, r.tMax, sphereIds_[sphereHit], hit);
+  if (n.sphere >= 0) {
+    spheres_[n.sphere].fillHit(ray, n.r.tMax, sphereIds_[n.sphere], hit);
     return true;
   }
   return false;
+}
+
+bool SceneGeometry::intersect(const Ray& ray, SurfaceHit& hit) const {
+  NearestHit n;
+  nearestOutsideBvh(ray, n);
+  if (scene_) {
+    TriangleCandidate c;
+    int bvhSphere = -1;
+    const bool triangle = nearestEmbreeTriangle(n.r, c, &bvhSphere);
+    takeBvhAnswer(triangle, bvhSphere, c, n);
+  }
+  return fillNearestHit(ray, n, hit);
+}
+
+// Embree reports a ray through the edge shared by two triangles on whichever it meets first, and a
+// stream meets them in another order than rtcIntersect1; a hit whose barycentric is within this of 0
+// is asked again alone, so that the answer is intersect()'s.
+constexpr float kStreamEdgeBarycentric = 0x1p-12f;
+
+void SceneGeometry::intersectMany(const Ray* rays, size_t n, SurfaceHit* hits, bool* found,
+                                  Coherence coherence) const {
+  for (size_t first = 0; first < n; first += kIntersectManyRays) {
+    const size_t count = std::min(kIntersectManyRays, n - first);
+    NearestHit nearest[kIntersectManyRays];
+    for (size_t i = 0; i < count; ++i) nearestOutsideBvh(rays[first + i], nearest[i]);
+    if (scene_) {
+      RTCRayHit stream[kIntersectManyRays];
+      for (size_t i = 0; i < count; ++i) setupRayHit(nearest[i].r, stream[i]);
+      RTCIntersectContext context;
+      rtcInitIntersectContext(&context);
+      context.flags = coherence == Coherence::Coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT
+                                                       : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+      rtcIntersect1M(static_cast<RTCScene>(scene_.get()), &context, stream, unsigned(count),
+                     sizeof(RTCRayHit));
+      for (size_t i = 0; i < count; ++i) {
+        TriangleCandidate c;
+        int bvhSphere = -1;
+        bool triangle = readEmbreeHit(stream[i], c, &bvhSphere);
+        if (triangle && std::min({c.isect.b0, c.isect.b1, c.isect.b2}) < kStreamEdgeBarycentric) {
+          bvhSphere = -1;
+          triangle = nearestEmbreeTriangle(nearest[i].r, c, &bvhSphere);
+        }
+        takeBvhAnswer(triangle, bvhSphere, c, nearest[i]);
+      }
+    }
+    for (size_t i = 0; i < count; ++i)
+      found[first + i] = fillNearestHit(rays[first + i], nearest[i], hits[first + i]);
+  }
 }
 
 bool SceneGeometry::occluded(const Ray& ray, int32_t skipSphere) const {

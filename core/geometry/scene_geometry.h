@@ -21,6 +21,8 @@
 #include "core/geometry/triangle.h"
 #include "core/geometry/triangle_mesh.h"
 
+struct RTCRayHit;  // Embree's ray and hit record (embree3/rtcore_ray.h), named here only by pointer
+
 namespace penumbra {
 
 enum class AccelMode : uint8_t {
@@ -73,6 +75,14 @@ class SceneGeometry {
 
   // Nearest hit with ray.tMin < t < ray.tMax.
   bool intersect(const Ray& ray, SurfaceHit& hit) const;
+  // intersect() of rays[0..n): found[i] = intersect(rays[i], hits[i]), bit for bit unless two surfaces
+  // lie within a few ulps of one distance along a ray (coplanar overlaps), where either may be
+  // reported. The rays that reach the BVH go to Embree as one stream (rtcIntersect1M) per
+  // kIntersectManyRays, told whether they are coherent (camera rays) or not.
+  enum class Coherence : uint8_t { Coherent, Incoherent };
+  void intersectMany(const Ray* rays, size_t n, SurfaceHit* hits, bool* found,
+                     Coherence coherence = Coherence::Coherent) const;
+  static constexpr size_t kIntersectManyRays = 64;
   // Whether anything is hit with ray.tMin < t < ray.tMax. Sphere `skipSphere` (an index returned by
   // addSphere) is not tested: a shadow ray towards a point of a convex light that faces the shading
   // point cannot be blocked by that light, and testing it would only add rounding (and cost).
@@ -122,6 +132,21 @@ class SceneGeometry {
   // The nearest hit in the Embree scene closer than r.tMax: a triangle (c filled) or a sphere
   // (*sphere set to its index).
   [[gnu::noinline]] bool nearestEmbreeTriangle(const Ray& r, TriangleCandidate& c, int* sphere) const;
+  // nearestEmbreeTriangle()'s answer read from Embree's record of the query.
+  bool readEmbreeHit(const RTCRayHit& rh, TriangleCandidate& c, int* sphere) const;
+  // One ray's nearest hit between intersect()'s steps: outside the BVH first, then Embree's.
+  struct NearestHit {
+    Ray r;  // r.tMax: the nearest hit so far
+    int sphere = -1;
+    const Parallelogram* quad = nullptr;
+    float quadU = 0.f, quadV = 0.f;
+    TriangleCandidate tri;
+    bool triHit = false;
+  };
+  void nearestOutsideBvh(const Ray& ray, NearestHit& n) const;
+  // Folds in the BVH's answer (every Embree hit is nearer than the ones outside: it is bounded by r.tMax).
+  static void takeBvhAnswer(bool triangle, int bvhSphere, const TriangleCandidate& c, NearestHit& n);
+  bool fillNearestHit(const Ray& ray, const NearestHit& n, SurfaceHit& hit) const;
   [[gnu::noinline]] bool nearestFlatTriangle(const Ray& r, TriangleCandidate& c) const;
   // Owners of Embree's reference-counted handles, opaque here so that this header needs no Embree.
   struct ReleaseEmbreeDevice {

@@ -31,7 +31,12 @@ struct AoIntegrator {
   [[gnu::always_inline]] void forEachVisibilityRay(const Scene& scene, const Ray& ray, Draws& draws,
                                                    F&& f) const {
     SurfaceHit hit;
-    if (!scene.geometry.intersect(ray, hit)) return;
+    if (scene.geometry.intersect(ray, hit)) forEachVisibilityRayAt(scene, ray, hit, draws, f);
+  }
+  // The same from the camera ray's hit, found beforehand (with others, by SceneGeometry::intersectMany).
+  template <class Draws, class F>
+  [[gnu::always_inline]] void forEachVisibilityRayAt(const Scene& scene, const Ray& ray,
+                                                     const SurfaceHit& hit, Draws& draws, F&& f) const {
     ShadingPoint sp(scene, ray, hit);
     for (int i = 0; i < samples; ++i) {
       Vec2 u = draws.next2D(uint32_t(i), uint32_t(samples));  // one request: stratified among themselves

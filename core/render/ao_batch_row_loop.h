@@ -3,7 +3,9 @@
 // (OcclusionBatch: rtcOccluded1M). The camera samples' draws, filter offsets and camera rays are made in
 // SIMD packets as in the packet row loop. Each pixel's rays, their contributions and the order in which they
 // are summed are those of AoIntegrator::Li, so the image equals the per-sample row loop's
-// (row_loop.h) bit for bit; the batch only changes how Embree is asked.
+// (row_loop.h) bit for bit; the batch only changes how Embree is asked. With the packets, the batch's
+// camera rays also go to Embree together (SceneGeometry::intersectMany: the same hits, except where
+// two surfaces overlap in one plane and either may be reported).
 #pragma once
 
 #include <algorithm>
@@ -26,14 +28,11 @@ namespace penumbra {
 // fits in L2 (48 KB of Embree's rays). A batch is also the unit of cancellation.
 inline constexpr int kAoBatchRays = 1024;
 
-// Lane k's shading draws of a packet, handed to the integrator in place of the sampler: draw i of
-// the integrator's one request of n.
-struct PacketLaneDraws {
-  const PacketDraws& draws;
-  int lane;
-  Vec2 next2D(uint32_t i, uint32_t /*n*/) const {
-    return Vec2(draws.draw[i].u[0][lane], draws.draw[i].u[1][lane]);
-  }
+// A camera sample's shading draws, kept from its packet until its camera ray's hit is known: draw i
+// of the integrator's one request of n.
+struct StoredDraws {
+  const Vec2* u;
+  Vec2 next2D(uint32_t i, uint32_t /*n*/) const { return u[i]; }
 };
 
 template <HemisphereWarp kWarp>
@@ -63,24 +62,31 @@ RowRenderer aoBatchRowsFor(const RenderJob& job, AoIntegrator<kWarp> integrator)
     PacketDraws draws;
     PacketRays cameraRays;
     float cameraWeight[kMaxPacketLanes];
+    // The batch's camera samples, traced together: rays, hits and shading draws (`samples` each).
+    std::vector<Ray> primaryRays;
+    std::vector<SurfaceHit> primaryHits;
+    std::unique_ptr<bool[]> primaryFound;
+    std::vector<Vec2> shadingDraws;
   };
   auto batch = std::make_shared<Batch>(scene->geometry, lanes ? size_t(integrator.samples) : 0);
+  const int batchPixels = std::max(1, kAoBatchRays / std::max(1, integrator.samples));
+  batch->primaryFound.reset(new bool[size_t(batchPixels)]);
   RowRenderer r;
-  r.row = [camera, filter, scene, integrator, batch, lanes, packetCamera, plan, laneCount, kernels](
-              int y, uint32_t pass, Sampler& sampler, Film& film, uint64_t& badSamples,
-              const std::atomic<bool>& cancel) {
+  r.row = [camera, filter, scene, integrator, batch, batchPixels, lanes, packetCamera, plan, laneCount,
+           kernels](int y, uint32_t pass, Sampler& sampler, Film& film, uint64_t& badSamples,
+                    const std::atomic<bool>& cancel) {
     Batch& b = *batch;
     const int width = camera.width();
-    const int pixels = std::max(1, kAoBatchRays / std::max(1, integrator.samples));
-    // Queues pixel x's visibility rays (`draws`: the sampler after its filter draw, or its lane's
-    // draws).
-    auto queuePixel = [&](const Ray& ray, float weight, auto& draws) {
+    const int pixels = batchPixels;
+    auto queueRay = [&](const Ray& shadow, float contribution) {
+      b.rays.add(shadow);
+      b.contribution.push_back(contribution);
+    };
+    // Queues one camera sample's visibility rays, traced alone (the sampler after its filter draw).
+    auto queuePixel = [&](const Ray& ray, float weight) {
       b.weight.push_back(weight);
       b.firstRay.push_back(uint32_t(b.rays.size()));
-      integrator.forEachVisibilityRay(*scene, ray, draws, [&](const Ray& shadow, float contribution) {
-        b.rays.add(shadow);
-        b.contribution.push_back(contribution);
-      });
+      integrator.forEachVisibilityRay(*scene, ray, sampler, queueRay);
     };
     const PacketDrawPlan draws = plan->view();
     if (lanes) startPacketStreamRow(sampler, pass, b.start);
@@ -92,21 +98,36 @@ RowRenderer aoBatchRowsFor(const RenderJob& job, AoIntegrator<kWarp> integrator)
       b.firstRay.clear();
       b.weight.clear();
       if (lanes) {
+        // The packets' camera rays and draws first, then their hits as one query, then the AO rays.
+        const int samples = integrator.samples;
+        b.primaryRays.clear();
+        b.shadingDraws.clear();
         for (int x = x0; x < x1; x += laneCount) {
           const int count = std::min(laneCount, x1 - x);
           startPacketStreams(x, y, count, laneCount, b.start);
           kernels.samplerDraws(b.start, draws, b.filterU, b.draws);
           kernels.cameraRays(packetCamera, x, y, count, b.filterU, b.cameraRays, b.cameraWeight);
           for (int k = 0; k < count; ++k) {
-            PacketLaneDraws laneDraws{b.draws, k};
-            queuePixel(cameraRay(b.cameraRays, k), b.cameraWeight[k], laneDraws);
+            b.primaryRays.push_back(cameraRay(b.cameraRays, k));
+            b.weight.push_back(b.cameraWeight[k]);
+            for (int i = 0; i < samples; ++i)
+              b.shadingDraws.emplace_back(b.draws.draw[i].u[0][k], b.draws.draw[i].u[1][k]);
           }
+        }
+        b.primaryHits.resize(b.primaryRays.size());
+        scene->geometry.intersectMany(b.primaryRays.data(), b.primaryRays.size(), b.primaryHits.data(),
+                                      b.primaryFound.get());
+        for (size_t i = 0; i < b.primaryRays.size(); ++i) {
+          b.firstRay.push_back(uint32_t(b.rays.size()));
+          StoredDraws stored{b.shadingDraws.data() + i * size_t(samples)};
+          if (b.primaryFound[i])
+            integrator.forEachVisibilityRayAt(*scene, b.primaryRays[i], b.primaryHits[i], stored, queueRay);
         }
       } else {
         for (int x = x0; x < x1; ++x) {
           float weight;
           const Ray ray = startCameraSample(camera, *filter, sampler, x, y, pass, weight);
-          queuePixel(ray, weight, sampler);
+          queuePixel(ray, weight);
         }
       }
       b.firstRay.push_back(uint32_t(b.rays.size()));

@@ -127,17 +127,21 @@ void queryLightSamples(const Scene& scene, LightMeasure measure, const float (&l
 }
 
 void queryCameraHits(const Scene& scene, const PacketRays& rays, int lanes, PacketHitLanes& out) {
+  Ray ray[kMaxPacketLanes];
+  SurfaceHit hits[kMaxPacketLanes];
+  bool found[kMaxPacketLanes];
+  for (int k = 0; k < lanes; ++k) ray[k] = cameraRay(rays, k);
+  scene.geometry.intersectMany(ray, size_t(lanes), hits, found);
   for (int k = 0; k < lanes; ++k) {
-    const Ray ray = cameraRay(rays, k);
-    SurfaceHit hit;
-    if (!scene.geometry.intersect(ray, hit)) {
+    const SurfaceHit& hit = hits[k];
+    if (!found[k]) {
       out.hit[k] = out.offsetScale[k] = out.shades[k] = out.glossy[k] = out.emitter[k] = out.object[k] = 0.f;
       for (auto* v : {&out.p, &out.ng, &out.ns, &out.nsHit, &out.albedoOverPi, &out.emitted})
         setLane(*v, k, Vec3(0.f));
       continue;
     }
     const SurfaceMaterial& material = scene.materials[hit.objectId];
-    const ShadingPoint sp(scene, ray, hit, false);
+    const ShadingPoint sp(scene, ray[k], hit, false);
     out.hit[k] = 1.f;
     setLane(out.p, k, hit.p);
     setLane(out.ng, k, sp.ng);
@@ -151,7 +155,7 @@ void queryCameraHits(const Scene& scene, const PacketRays& rays, int lanes, Pack
     out.emitter[k] = material.emits() ? 1.f : 0.f;
     out.object[k] = float(hit.objectId);
     setLane(out.albedoOverPi, k, material.bsdf.albedo * kInvPi);
-    setLane(out.emitted, k, emittedAt(scene, material, hit, ray));
+    setLane(out.emitted, k, emittedAt(scene, material, hit, ray[k]));
   }
 }
 
@@ -198,22 +202,33 @@ void queryOccluded(const Scene& scene, const PacketSegments& rays, int lanes, in
 }
 
 void queryEmittersAlong(const Scene& scene, const PacketSegments& rays, int lanes, PacketEmitterLanes& out) {
+  // The active lanes' rays, traced together.
+  Ray ray[kMaxPacketLanes];
+  SurfaceHit hits[kMaxPacketLanes];
+  bool found[kMaxPacketLanes];
+  int laneOf[kMaxPacketLanes];
+  size_t active = 0;
   for (int k = 0; k < lanes; ++k) {
     out.light[k] = -1.f;
-    SurfaceHit hit;
     if (rays.active[k] == 0.f) continue;
-    const Ray ray = segment(rays, k);
-    if (!scene.geometry.intersect(ray, hit)) continue;
+    ray[active] = segment(rays, k);
+    laneOf[active++] = k;
+  }
+  scene.geometry.intersectMany(ray, active, hits, found, SceneGeometry::Coherence::Incoherent);
+  for (size_t i = 0; i < active; ++i) {
+    if (!found[i]) continue;
+    const int k = laneOf[i];
+    const SurfaceHit& hit = hits[i];
     // addEmitterAlong: a sphere light's outer side, a polygon light's emitting side.
     const SurfaceMaterial& material = scene.materials[hit.objectId];
     size_t light;
     Color3 Le;
     if (material.sphereLight >= 0) {
       light = size_t(material.sphereLight);
-      Le = scene.sphereLights[light].eval(hit.p, hit.ng, ray.d);
+      Le = scene.sphereLights[light].eval(hit.p, hit.ng, ray[i].d);
     } else if (const PolygonLight* polygon = scene.polygonLightOf(material, hit.primId)) {
       light = scene.sphereLights.size() + size_t(polygon - scene.polygonLights.data());
-      Le = polygon->eval(ray.d);
+      Le = polygon->eval(ray[i].d);
     } else {
       continue;
     }

@@ -102,7 +102,9 @@ TEST(StrategyAxes, FallbacksApplyEverywhere) {
     EXPECT_TRUE(strategyApplies(fallback, false)) << strategyLabel(d);
     EXPECT_EQ(fallback.type, d.type) << strategyLabel(d);
     EXPECT_EQ(applicableStrategy(d, true), d) << strategyLabel(d);
-    if (sceneNeed(d) == SceneNeed::Nothing) EXPECT_EQ(fallback, d) << strategyLabel(d);
+    if (sceneNeed(d) == SceneNeed::Nothing) {
+      EXPECT_EQ(fallback, d) << strategyLabel(d);
+    }
   }
   // Light sampling needs area lights; without them the scene renders by hemisphere sampling.
   EXPECT_EQ(applicableStrategy(directByLight(LightMeasure::Area), false),
