@@ -107,7 +107,7 @@ Hit traceCameraRay(const EmbreeRock& rock, const PerspectiveCamera& camera, int 
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRayHit rh;
-  setupRayHit(ray, rh);
+  setupRayHit(ray, ray.tMax, rh);
   rtcIntersect1(rock.scene, &context, &rh);
   return shadingPoint(ray, rh);
 }
@@ -183,7 +183,7 @@ float rowStream(const EmbreeRock& rock, const PerspectiveCamera& camera, int y, 
     primaryHits.resize(size_t(camera.width()));
     for (int x = 0; x < camera.width(); ++x) {
       primary.push_back(jitteredCameraRay(camera, x, y, rng));
-      setupRayHit(primary.back(), primaryHits[size_t(x)]);
+      setupRayHit(primary.back(), primary.back().tMax, primaryHits[size_t(x)]);
     }
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);

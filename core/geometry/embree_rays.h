@@ -25,8 +25,8 @@ inline void setupRay(const Ray& ray, float tMax, RTCRay& r) {
   r.flags = 0;
 }
 
-inline void setupRayHit(const Ray& ray, RTCRayHit& rh) {
-  setupRay(ray, ray.tMax, rh.ray);
+inline void setupRayHit(const Ray& ray, float tMax, RTCRayHit& rh) {
+  setupRay(ray, tMax, rh.ray);
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
 }

@@ -223,7 +223,7 @@ bool SceneGeometry::nearestEmbreeTriangle(const Ray& r, TriangleCandidate& c, in
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRayHit rh;
-  setupRayHit(r, rh);
+  setupRayHit(r, r.tMax, rh);
   rtcIntersect1(static_cast<RTCScene>(scene_.get()), &context, &rh);
   return readEmbreeHit(rh, c, sphere);
 }
@@ -274,27 +274,31 @@ bool SceneGeometry::nearestFlatTriangle(const Ray& r, TriangleCandidate& c) cons
 }
 
 void SceneGeometry::nearestOutsideBvh(const Ray& ray, NearestHit& n) const {
-  n.r = ray;
+  Ray r = ray;
+  n.sphere = -1;
+  n.quad = nullptr;
+  n.triHit = false;
   for (size_t i = 0; i < flatSphereCount_; ++i) {
     float t;
-    if (spheres_[i].intersect(n.r, t)) {
-      n.r.tMax = t;
+    if (spheres_[i].intersect(r, t)) {
+      r.tMax = t;
       n.sphere = static_cast<int>(i);
     }
   }
   for (const Parallelogram& q : quads_) {
     float t, u, v;
-    if (intersectParallelogram(q, n.r, n.r.tMax, t, u, v)) {
-      n.r.tMax = t;
+    if (intersectParallelogram(q, r, r.tMax, t, u, v)) {
+      r.tMax = t;
       n.quad = &q;
       n.quadU = u;
       n.quadV = v;
     }
   }
-  if (!flat_.empty() && nearestFlatTriangle(n.r, n.tri)) {
+  if (!flat_.empty() && nearestFlatTriangle(r, n.tri)) {
     n.triHit = true;
-    n.r.tMax = n.tri.isect.t;
+    r.tMax = n.tri.isect.t;
   }
+  n.tMax = r.tMax;
 }
 
 void SceneGeometry::takeBvhAnswer(bool triangle, int bvhSphere, const TriangleCandidate& c, NearestHit& n) {
@@ -303,7 +307,7 @@ void SceneGeometry::takeBvhAnswer(bool triangle, int bvhSphere, const TriangleCa
     n.triHit = true;
   } else if (bvhSphere >= 0) {
     n.sphere = bvhSphere;
-    n.r.tMax = c.isect.t;
+    n.tMax = c.isect.t;
     n.triHit = false;
     n.quad = nullptr;
   }
@@ -318,11 +322,11 @@ bool SceneGeometry::fillNearestHit(const Ray& ray, const NearestHit& n, SurfaceH
     return true;
   }
   if (n.quad) {
-    fillParallelogramHit(*n.quad, ray, n.r.tMax, n.quadU, n.quadV, meshIds_[n.quad->mesh], hit);
+    fillParallelogramHit(*n.quad, ray, n.tMax, n.quadU, n.quadV, meshIds_[n.quad->mesh], hit);
     return true;
   }
   if (n.sphere >= 0) {
-    spheres_[n.sphere].fillHit(ray, n.r.tMax, sphereIds_[n.sphere], hit);
+    spheres_[n.sphere].fillHit(ray, n.tMax, sphereIds_[n.sphere], hit);
     return true;
   }
   return false;
@@ -334,7 +338,7 @@ bool SceneGeometry::intersect(const Ray& ray, SurfaceHit& hit) const {
   if (scene_) {
     TriangleCandidate c;
     int bvhSphere = -1;
-    const bool triangle = nearestEmbreeTriangle(n.r, c, &bvhSphere);
+    const bool triangle = nearestEmbreeTriangle(Ray{ray.o, ray.d, ray.tMin, n.tMax}, c, &bvhSphere);
     takeBvhAnswer(triangle, bvhSphere, c, n);
   }
   return fillNearestHit(ray, n, hit);
@@ -353,7 +357,7 @@ void SceneGeometry::intersectMany(const Ray* rays, size_t n, SurfaceHit* hits, b
     for (size_t i = 0; i < count; ++i) nearestOutsideBvh(rays[first + i], nearest[i]);
     if (scene_) {
       RTCRayHit stream[kIntersectManyRays];
-      for (size_t i = 0; i < count; ++i) setupRayHit(nearest[i].r, stream[i]);
+      for (size_t i = 0; i < count; ++i) setupRayHit(rays[first + i], nearest[i].tMax, stream[i]);
       RTCIntersectContext context;
       rtcInitIntersectContext(&context);
       context.flags = coherence == Coherence::Coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT
@@ -366,7 +370,8 @@ void SceneGeometry::intersectMany(const Ray* rays, size_t n, SurfaceHit* hits, b
         bool triangle = readEmbreeHit(stream[i], c, &bvhSphere);
         if (triangle && std::min({c.isect.b0, c.isect.b1, c.isect.b2}) < kStreamEdgeBarycentric) {
           bvhSphere = -1;
-          triangle = nearestEmbreeTriangle(nearest[i].r, c, &bvhSphere);
+          const Ray& ray = rays[first + i];
+          triangle = nearestEmbreeTriangle(Ray{ray.o, ray.d, ray.tMin, nearest[i].tMax}, c, &bvhSphere);
         }
         takeBvhAnswer(triangle, bvhSphere, c, nearest[i]);
       }

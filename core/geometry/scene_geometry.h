@@ -124,24 +124,26 @@ class SceneGeometry {
     TrianglePlane plane;
   };
   // The nearest triangle hit closer than r.tMax, by either path (kept out of intersect's hot loop).
+  // Left uninitialised: every query that reports a triangle writes all of it.
   struct TriangleCandidate {
-    TriangleIntersection isect{};
-    uint32_t mesh = 0, prim = 0;
-    const FlatTriangle* flat = nullptr;  // set on the brute-force path (its hit is re-projected)
+    TriangleIntersection isect;
+    uint32_t mesh, prim;
+    const FlatTriangle* flat;  // set on the brute-force path (its hit is re-projected)
   };
   // The nearest hit in the Embree scene closer than r.tMax: a triangle (c filled) or a sphere
   // (*sphere set to its index).
   [[gnu::noinline]] bool nearestEmbreeTriangle(const Ray& r, TriangleCandidate& c, int* sphere) const;
   // nearestEmbreeTriangle()'s answer read from Embree's record of the query.
   bool readEmbreeHit(const RTCRayHit& rh, TriangleCandidate& c, int* sphere) const;
-  // One ray's nearest hit between intersect()'s steps: outside the BVH first, then Embree's.
+  // One ray's nearest hit between intersect()'s steps: outside the BVH first, then Embree's. Trivial
+  // to construct (intersectMany keeps a chunk of them on the stack); nearestOutsideBvh sets it.
   struct NearestHit {
-    Ray r;  // r.tMax: the nearest hit so far
-    int sphere = -1;
-    const Parallelogram* quad = nullptr;
-    float quadU = 0.f, quadV = 0.f;
+    float tMax;  // the nearest hit so far
+    int sphere;
+    const Parallelogram* quad;
+    float quadU, quadV;
     TriangleCandidate tri;
-    bool triHit = false;
+    bool triHit;
   };
   void nearestOutsideBvh(const Ray& ray, NearestHit& n) const;
   // Folds in the BVH's answer (every Embree hit is nearer than the ones outside: it is bounded by r.tMax).

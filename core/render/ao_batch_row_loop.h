@@ -77,7 +77,6 @@ RowRenderer aoBatchRowsFor(const RenderJob& job, AoIntegrator<kWarp> integrator)
                     const std::atomic<bool>& cancel) {
     Batch& b = *batch;
     const int width = camera.width();
-    const int pixels = batchPixels;
     auto queueRay = [&](const Ray& shadow, float contribution) {
       b.rays.add(shadow);
       b.contribution.push_back(contribution);
@@ -90,9 +89,9 @@ RowRenderer aoBatchRowsFor(const RenderJob& job, AoIntegrator<kWarp> integrator)
     };
     const PacketDrawPlan draws = plan->view();
     if (lanes) startPacketStreamRow(sampler, pass, b.start);
-    for (int x0 = 0; x0 < width; x0 += pixels) {
+    for (int x0 = 0; x0 < width; x0 += batchPixels) {
       if (cancel.load(std::memory_order_relaxed)) return;
-      const int x1 = std::min(width, x0 + pixels);
+      const int x1 = std::min(width, x0 + batchPixels);
       b.rays.clear();
       b.contribution.clear();
       b.firstRay.clear();
