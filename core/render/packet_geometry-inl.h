@@ -291,11 +291,9 @@ HWY_INLINE PacketHit fillHit(const PacketScene& scene, const Nearest& n, const V
   return h;
 }
 
-// The camera rays' hits as the queries find them.
-HWY_INLINE PacketHit queriedHit(const Scene& scene, const PacketRays& rays) {
+// The camera rays' hits as the row loop queried them (queryCameraHits), in lanes.
+HWY_INLINE PacketHit queriedHit(const PacketHitLanes& lanes) {
   const DF df;
-  PacketHitLanes lanes;
-  queryCameraHits(scene, rays, int(hn::Lanes(df)), lanes);
   PacketHit h;
   h.hit = loadMask(lanes.hit);
   h.p = loadF3(lanes.p);
@@ -312,9 +310,11 @@ HWY_INLINE PacketHit queriedHit(const Scene& scene, const PacketRays& rays) {
   return h;
 }
 
-// What each lane's camera ray hits (SceneGeometry::intersect and the ShadingPoint).
-HWY_INLINE PacketHit cameraHit(const PacketScene& scene, const PacketRays& rays) {
-  if (scene.geometryQueried) return queriedHit(*scene.scene, rays);
+// What each lane's camera ray hits (SceneGeometry::intersect and the ShadingPoint): the hits the row
+// loop queried (`queried`) where the scene's rays are queried, else found in lanes.
+HWY_INLINE PacketHit cameraHit(const PacketScene& scene, const PacketRays& rays,
+                               const PacketHitLanes* queried) {
+  if (scene.geometryQueried) return queriedHit(*queried);
   const DF df;
   const V3F o = loadF3(rays.o), d = loadF3(rays.d);
   return fillHit(scene, nearest(scene, o, d, hn::LoadU(df, rays.tMin), hn::LoadU(df, rays.tMax)), o, d);

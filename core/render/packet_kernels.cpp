@@ -153,9 +153,10 @@ HWY_INLINE void storeLightShare(const PacketScene& scene, MF shaded, const Packe
 }
 
 // SimpleIntegrator: the delta lights alone.
-HWY_INLINE void shadeSimple(const PacketScene& scene, const PacketRays& rays, PacketRadiance& out) {
+HWY_INLINE void shadeSimple(const PacketScene& scene, const PacketRays& rays, const PacketHitLanes* queried,
+                            PacketRadiance& out) {
   const DF df;
-  const PacketHit h = cameraHit(scene, rays);
+  const PacketHit h = cameraHit(scene, rays, queried);
   const VF zero = hn::Zero(df);
   const MF shaded = hn::And(h.hit, h.shades);
   GlossySurfaces g;
@@ -245,10 +246,10 @@ HWY_INLINE void addEveryLight(const PacketScene& scene, const PacketHit& h, cons
 // LightDirectIntegrator<measure, All> through directRadiance: every light, every sample, shadow
 // tested; the mean over the samples, times albedo/π, plus the emission at the hit.
 template <LightMeasure kMeasure>
-HWY_INLINE void shadeDirect(const PacketScene& scene, const PacketRays& rays, const PacketDraws& draws,
-                            PacketRadiance& out) {
+HWY_INLINE void shadeDirect(const PacketScene& scene, const PacketRays& rays, const PacketHitLanes* queried,
+                            const PacketDraws& draws, PacketRadiance& out) {
   const DF df;
-  const PacketHit h = cameraHit(scene, rays);
+  const PacketHit h = cameraHit(scene, rays, queried);
   const VF zero = hn::Zero(df);
   V3F E{zero, zero, zero};
   const MF shaded = hn::And(h.hit, h.shades);
@@ -290,11 +291,11 @@ HWY_INLINE void pickLights(const PacketScene& scene, const PacketHit& h, MF shad
 // sample one light picked per lane, sampled by the measure in the lanes that picked it, each sample's
 // cos θ / (pdf · pmf) divided in double.
 template <LightMeasure kMeasure>
-HWY_INLINE void shadeSelected(const PacketScene& scene, const PacketRays& rays, const PacketDraws& draws,
-                              PacketRadiance& out) {
+HWY_INLINE void shadeSelected(const PacketScene& scene, const PacketRays& rays, const PacketHitLanes* queried,
+                              const PacketDraws& draws, PacketRadiance& out) {
   const DF df;
   const DD dd;
-  const PacketHit h = cameraHit(scene, rays);
+  const PacketHit h = cameraHit(scene, rays, queried);
   const VF zero = hn::Zero(df);
   V3F E{zero, zero, zero};
   const MF shaded = hn::And(h.hit, h.shades);
@@ -353,11 +354,12 @@ HWY_INLINE void shadeSelected(const PacketScene& scene, const PacketRays& rays, 
 // cosine warp on diffuse surfaces, the BSDF's sampler on glossy ones): directions about the shading
 // normal, each traced to the emitter it reaches first.
 template <HemisphereWarp kWarp, bool kBsdf = false>
-HWY_INLINE void shadeHemisphere(const PacketScene& scene, const PacketRays& rays, const PacketDraws& draws,
+HWY_INLINE void shadeHemisphere(const PacketScene& scene, const PacketRays& rays,
+                                const PacketHitLanes* queried, const PacketDraws& draws,
                                 PacketRadiance& out) {
   static_assert(!kBsdf || kWarp == HemisphereWarp::Cosine);
   const DF df;
-  const PacketHit h = cameraHit(scene, rays);
+  const PacketHit h = cameraHit(scene, rays, queried);
   const VF zero = hn::Zero(df);
   V3F E{zero, zero, zero};
   const MF shaded = hn::And(h.hit, h.shades);
@@ -402,10 +404,10 @@ HWY_INLINE VF misWeight(VF a, VF b) {
 // scalar techniques lane by lane (ScalarLightSamples, queryLightPdfs).
 // With PacketScene::lightShare, MisLightShareIntegrator's channels instead of the radiance.
 template <LightMeasure kMeasure, MisHeuristic kHeuristic>
-HWY_INLINE void shadeMis(const PacketScene& scene, const PacketRays& rays, const PacketDraws& draws,
-                         PacketRadiance& out) {
+HWY_INLINE void shadeMis(const PacketScene& scene, const PacketRays& rays, const PacketHitLanes* queried,
+                         const PacketDraws& draws, PacketRadiance& out) {
   const DF df;
-  const PacketHit h = cameraHit(scene, rays);
+  const PacketHit h = cameraHit(scene, rays, queried);
   const VF zero = hn::Zero(df);
   // The two techniques' weighted estimates (MisIntegrator::techniques).
   V3F lightPart{zero, zero, zero}, bsdfPart{zero, zero, zero};
@@ -470,10 +472,10 @@ HWY_INLINE void shadeMis(const PacketScene& scene, const PacketRays& rays, const
 // to the scene's extent; the unoccluded ones' contributions (1 for the cosine warp, 2 cos θ for the
 // uniform one) summed in order.
 template <HemisphereWarp kWarp>
-HWY_INLINE void shadeAo(const PacketScene& scene, const PacketRays& rays, const PacketDraws& draws,
-                        PacketRadiance& out) {
+HWY_INLINE void shadeAo(const PacketScene& scene, const PacketRays& rays, const PacketHitLanes* queried,
+                        const PacketDraws& draws, PacketRadiance& out) {
   const DF df;
-  const PacketHit h = cameraHit(scene, rays);
+  const PacketHit h = cameraHit(scene, rays, queried);
   const VF zero = hn::Zero(df);
   VF sum = zero;
   if (!hn::AllFalse(df, h.hit)) {
@@ -500,9 +502,10 @@ HWY_INLINE void shadeAo(const PacketScene& scene, const PacketRays& rays, const 
 }
 
 // NormalsIntegrator: |ns| of the hit as it comes from the geometry, 0 where nothing is hit.
-HWY_INLINE void shadeNormals(const PacketScene& scene, const PacketRays& rays, PacketRadiance& out) {
+HWY_INLINE void shadeNormals(const PacketScene& scene, const PacketRays& rays, const PacketHitLanes* queried,
+                             PacketRadiance& out) {
   const DF df;
-  const PacketHit h = cameraHit(scene, rays);
+  const PacketHit h = cameraHit(scene, rays, queried);
   hn::StoreU(hn::IfThenElseZero(h.hit, hn::Abs(h.nsHit.x)), df, out.L[0]);
   hn::StoreU(hn::IfThenElseZero(h.hit, hn::Abs(h.nsHit.y)), df, out.L[1]);
   hn::StoreU(hn::IfThenElseZero(h.hit, hn::Abs(h.nsHit.z)), df, out.L[2]);
@@ -510,47 +513,49 @@ HWY_INLINE void shadeNormals(const PacketScene& scene, const PacketRays& rays, P
 
 }  // namespace
 
-void ShadePacket(const PacketScene& scene, const PacketRays& rays, const PacketDraws& draws,
-                 PacketRadiance& out) {
+void ShadePacket(const PacketScene& scene, const PacketRays& rays, const PacketHitLanes* queried,
+                 const PacketDraws& draws, PacketRadiance& out) {
   switch (scene.kernel) {
     case PacketKernel::LightArea:
-      return shadeDirect<LightMeasure::Area>(scene, rays, draws, out);
+      return shadeDirect<LightMeasure::Area>(scene, rays, queried, draws, out);
     case PacketKernel::LightSolidAngle:
-      return shadeDirect<LightMeasure::SolidAngle>(scene, rays, draws, out);
+      return shadeDirect<LightMeasure::SolidAngle>(scene, rays, queried, draws, out);
     case PacketKernel::LightAreaSelected:
-      return shadeSelected<LightMeasure::Area>(scene, rays, draws, out);
+      return shadeSelected<LightMeasure::Area>(scene, rays, queried, draws, out);
     case PacketKernel::LightSolidAngleSelected:
-      return shadeSelected<LightMeasure::SolidAngle>(scene, rays, draws, out);
+      return shadeSelected<LightMeasure::SolidAngle>(scene, rays, queried, draws, out);
     case PacketKernel::LightProjectedSolidAngle:
-      return shadeDirect<LightMeasure::ProjectedSolidAngle>(scene, rays, draws, out);
+      return shadeDirect<LightMeasure::ProjectedSolidAngle>(scene, rays, queried, draws, out);
     case PacketKernel::LightProjectedSolidAngleSelected:
-      return shadeSelected<LightMeasure::ProjectedSolidAngle>(scene, rays, draws, out);
+      return shadeSelected<LightMeasure::ProjectedSolidAngle>(scene, rays, queried, draws, out);
     case PacketKernel::HemisphereUniform:
-      return shadeHemisphere<HemisphereWarp::Uniform>(scene, rays, draws, out);
+      return shadeHemisphere<HemisphereWarp::Uniform>(scene, rays, queried, draws, out);
     case PacketKernel::HemisphereCosine:
-      return shadeHemisphere<HemisphereWarp::Cosine>(scene, rays, draws, out);
+      return shadeHemisphere<HemisphereWarp::Cosine>(scene, rays, queried, draws, out);
     case PacketKernel::Bsdf:
-      return shadeHemisphere<HemisphereWarp::Cosine, true>(scene, rays, draws, out);
+      return shadeHemisphere<HemisphereWarp::Cosine, true>(scene, rays, queried, draws, out);
     case PacketKernel::MisAreaBalance:
-      return shadeMis<LightMeasure::Area, MisHeuristic::Balance>(scene, rays, draws, out);
+      return shadeMis<LightMeasure::Area, MisHeuristic::Balance>(scene, rays, queried, draws, out);
     case PacketKernel::MisAreaPower:
-      return shadeMis<LightMeasure::Area, MisHeuristic::Power>(scene, rays, draws, out);
+      return shadeMis<LightMeasure::Area, MisHeuristic::Power>(scene, rays, queried, draws, out);
     case PacketKernel::MisSolidAngleBalance:
-      return shadeMis<LightMeasure::SolidAngle, MisHeuristic::Balance>(scene, rays, draws, out);
+      return shadeMis<LightMeasure::SolidAngle, MisHeuristic::Balance>(scene, rays, queried, draws, out);
     case PacketKernel::MisSolidAnglePower:
-      return shadeMis<LightMeasure::SolidAngle, MisHeuristic::Power>(scene, rays, draws, out);
+      return shadeMis<LightMeasure::SolidAngle, MisHeuristic::Power>(scene, rays, queried, draws, out);
     case PacketKernel::MisProjectedSolidAngleBalance:
-      return shadeMis<LightMeasure::ProjectedSolidAngle, MisHeuristic::Balance>(scene, rays, draws, out);
+      return shadeMis<LightMeasure::ProjectedSolidAngle, MisHeuristic::Balance>(scene, rays, queried, draws,
+                                                                                out);
     case PacketKernel::MisProjectedSolidAnglePower:
-      return shadeMis<LightMeasure::ProjectedSolidAngle, MisHeuristic::Power>(scene, rays, draws, out);
+      return shadeMis<LightMeasure::ProjectedSolidAngle, MisHeuristic::Power>(scene, rays, queried, draws,
+                                                                              out);
     case PacketKernel::Simple:
-      return shadeSimple(scene, rays, out);
+      return shadeSimple(scene, rays, queried, out);
     case PacketKernel::AoUniform:
-      return shadeAo<HemisphereWarp::Uniform>(scene, rays, draws, out);
+      return shadeAo<HemisphereWarp::Uniform>(scene, rays, queried, draws, out);
     case PacketKernel::AoCosine:
-      return shadeAo<HemisphereWarp::Cosine>(scene, rays, draws, out);
+      return shadeAo<HemisphereWarp::Cosine>(scene, rays, queried, draws, out);
     case PacketKernel::Normals:
-      return shadeNormals(scene, rays, out);
+      return shadeNormals(scene, rays, queried, out);
   }
 }
 void CameraRays(const PacketCamera& camera, int x0, int y, int count, const float (&u)[2][kMaxPacketLanes],

@@ -83,9 +83,12 @@ std::vector<std::string> availablePacketTargets();
 // rendering (tests, benchmarks, PENUMBRA_SIMD).
 bool forcePacketTarget(const std::string& name);
 
-// The radiance of each lane's camera ray by the scene's kernel.
-using PacketShader = void (*)(const PacketScene& scene, const PacketRays& rays, const PacketDraws& draws,
-                              PacketRadiance& out);
+struct PacketHitLanes;
+// The radiance of each lane's camera ray by the scene's kernel. Where the scene's rays are queried
+// (PacketScene::geometryQueried), `queried` holds the rays' hits (queryCameraHits); elsewhere it is
+// not read and the kernel finds the hits in lanes.
+using PacketShader = void (*)(const PacketScene& scene, const PacketRays& rays, const PacketHitLanes* queried,
+                              const PacketDraws& draws, PacketRadiance& out);
 // Each lane's camera ray and filter weight (startCameraSample after its filter draw u[.][lane], in
 // lanes) for pixels x0 .. x0 + count - 1 of row y; lanes past `count` repeat the last pixel.
 using PacketCameraRays = void (*)(const PacketCamera& camera, int x0, int y, int count,

@@ -1,5 +1,7 @@
 #include "core/render/packet_queries.h"
 
+#include <cassert>
+
 #include "core/integrators/light_technique.h"
 #include "core/integrators/polygon_light_technique.h"
 #include "core/integrators/reflection.h"
@@ -126,36 +128,43 @@ void queryLightSamples(const Scene& scene, LightMeasure measure, const float (&l
   }
 }
 
-void queryCameraHits(const Scene& scene, const PacketRays& rays, int lanes, PacketHitLanes& out) {
-  Ray ray[kMaxPacketLanes];
-  SurfaceHit hits[kMaxPacketLanes];
-  bool found[kMaxPacketLanes];
-  for (int k = 0; k < lanes; ++k) ray[k] = cameraRay(rays, k);
-  scene.geometry.intersectMany(ray, size_t(lanes), hits, found);
-  for (int k = 0; k < lanes; ++k) {
-    const SurfaceHit& hit = hits[k];
-    if (!found[k]) {
-      out.hit[k] = out.offsetScale[k] = out.shades[k] = out.glossy[k] = out.emitter[k] = out.object[k] = 0.f;
-      for (auto* v : {&out.p, &out.ng, &out.ns, &out.nsHit, &out.albedoOverPi, &out.emitted})
+void queryCameraHits(const Scene& scene, const PacketRays* rays, int packets, int lanes,
+                     PacketHitLanes* out) {
+  Ray ray[kMaxQueriedCameraRays];
+  SurfaceHit hits[kMaxQueriedCameraRays];
+  bool found[kMaxQueriedCameraRays];
+  assert(packets * lanes <= kMaxQueriedCameraRays);
+  const int count = packets * lanes;
+  for (int i = 0; i < count; ++i) ray[i] = cameraRay(rays[i / lanes], i % lanes);
+  scene.geometry.intersectMany(ray, size_t(count), hits, found);
+  for (int i = 0; i < count; ++i) {
+    PacketHitLanes& lanesOut = out[i / lanes];
+    const int k = i % lanes;
+    const SurfaceHit& hit = hits[i];
+    if (!found[i]) {
+      lanesOut.hit[k] = lanesOut.offsetScale[k] = lanesOut.shades[k] = lanesOut.glossy[k] =
+          lanesOut.emitter[k] = lanesOut.object[k] = 0.f;
+      for (auto* v : {&lanesOut.p, &lanesOut.ng, &lanesOut.ns, &lanesOut.nsHit, &lanesOut.albedoOverPi,
+                      &lanesOut.emitted})
         setLane(*v, k, Vec3(0.f));
       continue;
     }
     const SurfaceMaterial& material = scene.materials[hit.objectId];
-    const ShadingPoint sp(scene, ray[k], hit, false);
-    out.hit[k] = 1.f;
-    setLane(out.p, k, hit.p);
-    setLane(out.ng, k, sp.ng);
-    setLane(out.ns, k, sp.ns);
-    setLane(out.nsHit, k, hit.ns);
-    out.offsetScale[k] = hit.offsetScale;
+    const ShadingPoint sp(scene, ray[i], hit, false);
+    lanesOut.hit[k] = 1.f;
+    setLane(lanesOut.p, k, hit.p);
+    setLane(lanesOut.ng, k, sp.ng);
+    setLane(lanesOut.ns, k, sp.ns);
+    setLane(lanesOut.nsHit, k, hit.ns);
+    lanesOut.offsetScale[k] = hit.offsetScale;
     const bool glossy = !material.bsdf.isDiffuse();
     // directRadiance's two tests of whether anything is reflected.
-    out.shades[k] = (glossy ? material.bsdf.reflects() : !isBlack(material.bsdf.albedo)) ? 1.f : 0.f;
-    out.glossy[k] = glossy ? 1.f : 0.f;
-    out.emitter[k] = material.emits() ? 1.f : 0.f;
-    out.object[k] = float(hit.objectId);
-    setLane(out.albedoOverPi, k, material.bsdf.albedo * kInvPi);
-    setLane(out.emitted, k, emittedAt(scene, material, hit, ray[k]));
+    lanesOut.shades[k] = (glossy ? material.bsdf.reflects() : !isBlack(material.bsdf.albedo)) ? 1.f : 0.f;
+    lanesOut.glossy[k] = glossy ? 1.f : 0.f;
+    lanesOut.emitter[k] = material.emits() ? 1.f : 0.f;
+    lanesOut.object[k] = float(hit.objectId);
+    setLane(lanesOut.albedoOverPi, k, material.bsdf.albedo * kInvPi);
+    setLane(lanesOut.emitted, k, emittedAt(scene, material, hit, ray[i]));
   }
 }
 

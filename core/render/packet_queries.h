@@ -1,8 +1,9 @@
 // The ray queries of the packet kernels in scenes whose geometry the kernels do not hold themselves
-// (shapes in a BVH, loose triangles): answered lane by lane by the scene's SceneGeometry, with the
-// scalar integrators' own code around each query (ShadingPoint, emittedAt, SphereLight::eval), so
+// (shapes in a BVH, loose triangles): answered by the scene's SceneGeometry, with the scalar
+// integrators' own code around each lane's query (ShadingPoint, emittedAt, SphereLight::eval), so
 // that every lane gets exactly what the scalar integrator gets. The kernels keep the shading (light
-// sampling, warps, MIS weights, sums) in lanes; only the traversal is one ray at a time.
+// sampling, warps, MIS weights, sums) in lanes; the rays go to SceneGeometry's many-ray queries
+// together (Embree's streams): a packet's shadow and BSDF-sampled rays, several packets' camera rays.
 // Lanes are arrays of kMaxPacketLanes (the first `lanes` used); a lane is active where active[k] != 0.
 #pragma once
 
@@ -74,7 +75,10 @@ struct alignas(64) PacketGlossyLanes {
   float R[3][kMaxPacketLanes];   // Bsdf::specularReflectance
 };
 
-void queryCameraHits(const Scene& scene, const PacketRays& rays, int lanes, PacketHitLanes& out);
+// The hits of `packets` packets' camera rays (rays[0 .. packets − 1], `lanes` lanes each), queried
+// together as one stream; packets × lanes is at most kMaxQueriedCameraRays.
+inline constexpr int kMaxQueriedCameraRays = 64;
+void queryCameraHits(const Scene& scene, const PacketRays* rays, int packets, int lanes, PacketHitLanes* out);
 // The glossy lanes among those of `shaded` (nonzero) whose hit is `object` (PacketHitLanes::object):
 // their frames about the facing shading normals ns and the camera rays' wo.
 void queryGlossyLanes(const Scene& scene, const PacketRays& rays, const float (&object)[kMaxPacketLanes],

@@ -113,7 +113,7 @@ std::string rowLoopSummary(const RenderJob& job) {
   const std::string reason = packetPathEnabled() ? packetUnsupportedReason(job) : "PENUMBRA_SIMD=off";
   if (reason.empty())
     return "packets of " + std::to_string(packetLanes()) + " camera samples (" + packetTargetName() + ")" +
-           (packetGeometryQueried(*job.scene) ? ", rays sent to Embree a packet at a time" : "");
+           (packetGeometryQueried(*job.scene) ? ", rays sent to Embree as streams" : "");
   return "one camera sample at a time: " + reason;
 }
 
