@@ -130,10 +130,10 @@ void queryLightSamples(const Scene& scene, LightMeasure measure, const float (&l
 
 void queryCameraHits(const Scene& scene, const PacketRays* rays, int packets, int lanes,
                      PacketHitLanes* out) {
-  Ray ray[kMaxQueriedCameraRays];
-  SurfaceHit hits[kMaxQueriedCameraRays];
-  bool found[kMaxQueriedCameraRays];
-  assert(packets * lanes <= kMaxQueriedCameraRays);
+  Ray ray[kQueriedCameraRays];
+  SurfaceHit hits[kQueriedCameraRays];
+  bool found[kQueriedCameraRays];
+  assert(packets * lanes <= kQueriedCameraRays);
   const int count = packets * lanes;
   for (int i = 0; i < count; ++i) ray[i] = cameraRay(rays[i / lanes], i % lanes);
   scene.geometry.intersectMany(ray, size_t(count), hits, found);

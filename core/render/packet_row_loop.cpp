@@ -18,11 +18,6 @@ namespace penumbra {
 
 namespace {
 
-// Camera rays queried together where the scene's rays are queried: several packets' worth, since
-// Embree traverses a coherent stream of 4 or 8 rays hardly faster than one ray at a time (32 measured
-// faster than 16 and 64 on the Cornell box with AVX2 and AVX-512).
-inline constexpr int kQueriedCameraRays = 32;
-static_assert(kQueriedCameraRays <= kMaxQueriedCameraRays);
 // At most this much of a worker's draws for the packets of one query.
 inline constexpr size_t kMaxGroupDrawBytes = size_t(1) << 19;
 
@@ -50,7 +45,7 @@ struct PacketBuffers {
   PacketRadiance radiance;
 };
 
-// How many packets' camera rays go to one query.
+// How many packets' camera rays go to one query (queryCameraHits: up to kQueriedCameraRays rays).
 int packetsPerQuery(const PacketScene& scene, int lanes, size_t drawCount) {
   if (!scene.geometryQueried) return 1;
   const size_t drawBytes = std::max<size_t>(drawCount, 1) * sizeof(PacketDraw);
